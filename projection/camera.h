@@ -1,0 +1,100 @@
+// The camera: pose, projection, optional lens and viewport, composed once; projects, clips and unprojects.
+//
+// The pipeline for a world point X (homogeneous, so directions at infinity project too):
+//   clip = P * V * X  ->  clip against near/far (and side/lens planes for lines), never dividing by w <= 0
+//   -> ndc = clip.xyz / w  ->  lens distortion as an NDC warp  ->  viewport to pixels in the origin's convention.
+#pragma once
+
+#include <optional>
+#include <span>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "clip.h"
+#include "distortion.h"
+#include "geometry.h"
+#include "lens.h"
+#include "polylines.h"
+#include "pose.h"
+#include "projection.h"
+#include "result.h"
+#include "viewport.h"
+
+namespace overlayd {
+
+enum class PointStatus {
+    Clipped,   // behind the near plane, beyond the far plane, or outside the lens's valid field: no pixel
+    Outside,   // in front of the camera but outside the scissor rectangle
+    Visible,   // lands inside the scissor rectangle
+};
+
+struct ProjectedPoint {
+    glm::dvec2 pixel{0.0}; // meaningful unless Clipped
+    double depth = 0.0;    // NDC depth in the projection's DepthRange; meaningful unless Clipped
+    PointStatus status = PointStatus::Clipped;
+};
+
+// Chord error allowed when a straight 3D segment is drawn through a distorting lens as a polyline.
+inline constexpr double kDefaultCurveTolerancePx = 0.25;
+
+class Camera
+{
+public:
+    // view maps world to the internal camera frame (Pose::viewMatrix(), possibly times a scene-graph inverse).
+    static Result<Camera> create(const glm::dmat4 &view, const Projection &projection, const Distortion &distortion,
+                                 const Viewport &viewport);
+    static Result<Camera> create(const Pose &pose, const Projection &projection, const Distortion &distortion,
+                                 const Viewport &viewport);
+
+    ProjectedPoint project(const glm::dvec3 &world) const { return project(glm::dvec4(world, 1.0)); }
+    ProjectedPoint project(const glm::dvec4 &world) const;
+    // Batch form: out.size() must be at least world.size(); allocates nothing.
+    void projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const;
+
+    // Appends the visible part of the straight 3D segment a-b as polylines (several where the lens's valid field
+    // cuts it); curved through a distorting lens to within tolerancePx.
+    void projectSegment(const glm::dvec4 &a, const glm::dvec4 &b, Polylines &out,
+                        double tolerancePx = kDefaultCurveTolerancePx) const;
+    // A connected 3D polyline (closed: last point joins the first); unbroken runs come out as one polyline.
+    void projectPolyline(std::span<const glm::dvec4> world, bool closed, Polylines &out,
+                         double tolerancePx = kDefaultCurveTolerancePx) const;
+
+    // The world-space ray of points that land on `pixel` (origin convention). Perspective rays start at the
+    // camera centre, orthographic rays on the near plane.
+    Result<Ray> unproject(const glm::dvec2 &pixel) const;
+
+    const glm::dmat4 &view() const { return view_; }
+    const Projection &projection() const { return projection_; }
+    const glm::dmat4 &viewProjection() const { return viewProjection_; }
+    const Viewport &viewport() const { return viewport_; }
+    const std::optional<Lens> &lens() const { return lens_; }
+    const ClipPlanes &segmentClipPlanes() const { return segmentPlanes_; }
+    glm::dvec3 position() const;
+
+private:
+    Camera(const glm::dmat4 &view, const Projection &projection, std::optional<Lens> lens, const Viewport &viewport);
+
+    bool inFrontAndNearerThanFar(const glm::dvec4 &clip) const;
+    // Pixel of a clip-space point already known to be clipped in (w > 0, inside the lens cone).
+    glm::dvec2 clipToPixel(const glm::dvec4 &clip) const;
+    void refine(const glm::dvec4 &a, const glm::dvec4 &d, double tA, const glm::dvec2 &pA, double tB,
+                const glm::dvec2 &pB, int depth, double tolerance, Polylines &out) const;
+    // Emits the clip-space piece a + t d, t in [t0, t1]; continues the last polyline when asked to.
+    void emitPiece(const glm::dvec4 &a, const glm::dvec4 &d, double t0, double t1, bool continueLast,
+                   double tolerance, Polylines &out) const;
+    std::optional<std::array<double, 2>> clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const;
+
+    glm::dmat4 view_;
+    Projection projection_;
+    std::optional<Lens> lens_;
+    Viewport viewport_;
+    glm::dmat4 viewProjection_;
+    glm::dmat4 inverseViewProjection_;
+    ClipPlanes segmentPlanes_;
+    double nearPlaneW_; // the near test is z + nearPlaneW_ * w >= 0: 0 for ZeroToOne, 1 for MinusOneToOne
+};
+
+} // namespace overlayd

@@ -1,0 +1,36 @@
+// Lens distortion models of OpenCV (and ROS camera_info), applied to normalized optical coordinates.
+#pragma once
+
+#include <array>
+
+#include <glm/vec2.hpp>
+
+#include "result.h"
+
+namespace overlayd {
+
+enum class DistortionModel {
+    None,
+    RadialTangential, // OpenCV 5 coefficients / ROS "plumb_bob": k1, k2, p1, p2, k3
+    Rational,         // OpenCV 8 coefficients / ROS "rational_polynomial": k1, k2, p1, p2, k3, k4, k5, k6
+    Fisheye,          // OpenCV fisheye / ROS "equidistant": k1, k2, k3, k4 on theta = atan(r)
+};
+
+struct Distortion {
+    DistortionModel model = DistortionModel::None;
+    std::array<double, 8> coeffs{}; // in the order listed beside each model; unused trailing entries are 0
+};
+
+// How many coefficients a model takes (0, 5, 8, 4).
+int coefficientCount(DistortionModel model);
+Status validateDistortion(const Distortion &distortion);
+
+// (x, y) = (X/Z, Y/Z) in the optical frame -> the distorted normalized point, exactly as OpenCV computes it.
+glm::dvec2 distortNormalized(const Distortion &distortion, const glm::dvec2 &xy);
+// Inverse of distortNormalized by Newton's method, to 1e-12; fails rather than return a wrong point.
+Result<glm::dvec2> undistortNormalized(const Distortion &distortion, const glm::dvec2 &distorted);
+// The radius |(x, y)| up to which the radial mapping keeps increasing. Past it, polynomial models fold back and
+// send points far outside the calibrated field onto the image, so nothing beyond it is drawn.
+double monotonicRadius(const Distortion &distortion);
+
+} // namespace overlayd

@@ -1,0 +1,151 @@
+// Camera pose builders: seeds 000-002 graphics forms, orientations, and OpenCV/ROS extrinsics.
+#include "pose.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_access.hpp>
+
+#include "checks.h"
+
+namespace overlayd {
+
+using checks::str;
+
+glm::dmat4 Pose::viewMatrix() const
+{
+    glm::dmat4 view(rotation);
+    view[3] = glm::dvec4(translation, 1.0);
+    return view;
+}
+
+glm::dvec3 Pose::position() const
+{
+    return -(glm::transpose(rotation) * translation);
+}
+
+glm::dmat3 internalFromAxes(CameraAxes axes)
+{
+    // GLM matrices are column-major: each dvec3 below is a column, i.e. where that input axis lands.
+    switch (axes) {
+    case CameraAxes::Body: // x forward -> -Z, y left -> -X, z up -> +Y
+        return glm::dmat3(glm::dvec3(0, 0, -1), glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0));
+    case CameraAxes::Optical: // x right -> X, y down -> -Y, z forward -> -Z
+        return glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, -1));
+    case CameraAxes::OpenGl:
+        break;
+    }
+    return glm::dmat3(1.0);
+}
+
+namespace {
+
+// Builds the pose whose camera axes, expressed in world coordinates, are the columns u, v, w.
+Pose poseFromBasis(const glm::dvec3 &eye, const glm::dvec3 &u, const glm::dvec3 &v, const glm::dvec3 &w)
+{
+    Pose pose;
+    pose.rotation = glm::transpose(glm::dmat3(u, v, w));
+    pose.translation = -(pose.rotation * eye);
+    return pose;
+}
+
+} // namespace
+
+Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const glm::dvec3 &up)
+{
+    if (!checks::finite(eye) || !checks::finite(gaze) || !checks::finite(up))
+        return makeError(ErrorCode::InvalidArgument, "eye, gaze and up must be finite");
+    const double gazeLength = glm::length(gaze);
+    const double upLength = glm::length(up);
+    if (gazeLength == 0.0)
+        return makeError(ErrorCode::DegenerateBasis, "gaze direction is the zero vector");
+    if (upLength == 0.0)
+        return makeError(ErrorCode::DegenerateBasis, "up vector is the zero vector");
+    const glm::dvec3 w = -gaze / gazeLength;
+    const glm::dvec3 side = glm::cross(up, w);
+    if (glm::length(side) <= checks::kDegenerate * upLength)
+        return makeError(ErrorCode::DegenerateBasis,
+                         "up " + str(up) + " is parallel to the gaze direction " + str(gaze));
+    const glm::dvec3 u = glm::normalize(side);
+    const glm::dvec3 v = glm::cross(w, u);
+    return poseFromBasis(eye, u, v, w);
+}
+
+Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const glm::dvec3 &up)
+{
+    if (eye == target)
+        return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + str(eye));
+    return poseFromGaze(eye, target - eye, up);
+}
+
+Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, const glm::dvec3 &vup)
+{
+    if (!checks::finite(prp) || !checks::finite(vpn) || !checks::finite(vup))
+        return makeError(ErrorCode::InvalidArgument, "PRP, VPN and VUP must be finite");
+    if (glm::length(vpn) == 0.0)
+        return makeError(ErrorCode::DegenerateBasis, "VPN is the zero vector");
+    if (glm::length(vup) == 0.0)
+        return makeError(ErrorCode::DegenerateBasis, "VUP is the zero vector");
+    const glm::dvec3 zAxis = glm::normalize(vpn);
+    const glm::dvec3 side = glm::cross(vup, zAxis);
+    if (glm::length(side) <= checks::kDegenerate * glm::length(vup))
+        return makeError(ErrorCode::DegenerateBasis, "VUP " + str(vup) + " is parallel to VPN " + str(vpn));
+    const glm::dvec3 xAxis = glm::normalize(side);
+    const glm::dvec3 yAxis = glm::cross(zAxis, xAxis);
+    return poseFromBasis(prp, xAxis, yAxis, zAxis);
+}
+
+Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &worldFromAxes, CameraAxes axes)
+{
+    const double norm = std::sqrt(glm::dot(worldFromAxes, worldFromAxes));
+    if (!std::isfinite(norm) || !checks::finite(position))
+        return makeError(ErrorCode::InvalidArgument, "position and orientation must be finite");
+    if (std::abs(norm - 1.0) > checks::kOrthonormal)
+        return makeError(ErrorCode::NotOrthonormal,
+                         "orientation quaternion is not of unit length (|q| = " + str(norm) + ")");
+    const glm::dmat3 worldFromGivenAxes = glm::mat3_cast(worldFromAxes / norm);
+    const glm::dmat3 worldFromInternal = worldFromGivenAxes * glm::transpose(internalFromAxes(axes));
+    return poseFromBasis(position, worldFromInternal[0], worldFromInternal[1], worldFromInternal[2]);
+}
+
+Result<Pose> poseFromYawPitchRoll(const glm::dvec3 &position, double yawDeg, double pitchDeg, double rollDeg)
+{
+    if (!std::isfinite(yawDeg) || !std::isfinite(pitchDeg) || !std::isfinite(rollDeg))
+        return makeError(ErrorCode::InvalidArgument, "yaw, pitch and roll must be finite");
+    const glm::dquat yaw = glm::angleAxis(glm::radians(yawDeg), glm::dvec3(0, 0, 1));
+    const glm::dquat pitch = glm::angleAxis(glm::radians(pitchDeg), glm::dvec3(0, 1, 0));
+    const glm::dquat roll = glm::angleAxis(glm::radians(rollDeg), glm::dvec3(1, 0, 0));
+    return poseFromOrientation(position, yaw * pitch * roll, CameraAxes::Body);
+}
+
+Result<Pose> poseFromRt(const glm::dmat3 &rotation, const glm::dvec3 &translation)
+{
+    if (auto status = checks::requireRotation(rotation, "extrinsic rotation R"); !status)
+        return status.error();
+    if (!checks::finite(translation))
+        return makeError(ErrorCode::InvalidArgument, "extrinsic translation t must be finite");
+    // x_internal = F x_optical with F = diag(1, -1, -1): exact, no rounding is introduced.
+    const glm::dmat3 flip = internalFromAxes(CameraAxes::Optical);
+    return Pose{flip * rotation, flip * translation};
+}
+
+glm::dmat3 rotationFromRodrigues(const glm::dvec3 &rvec)
+{
+    const double theta = glm::length(rvec);
+    if (theta < 1e-300)
+        return glm::dmat3(1.0);
+    const glm::dvec3 k = rvec / theta;
+    const double c = std::cos(theta);
+    const double s = std::sin(theta);
+    // Column-major cross-product matrix [k]x.
+    const glm::dmat3 cross(glm::dvec3(0, k.z, -k.y), glm::dvec3(-k.z, 0, k.x), glm::dvec3(k.y, -k.x, 0));
+    return c * glm::dmat3(1.0) + (1.0 - c) * glm::outerProduct(k, k) + s * cross;
+}
+
+Result<Pose> poseFromRodrigues(const glm::dvec3 &rvec, const glm::dvec3 &tvec)
+{
+    if (!checks::finite(rvec))
+        return makeError(ErrorCode::InvalidArgument, "rvec must be finite");
+    return poseFromRt(rotationFromRodrigues(rvec), tvec);
+}
+
+} // namespace overlayd

@@ -1,0 +1,52 @@
+// Camera pose (extrinsics): every way users describe it, converging on one world-to-camera rigid transform.
+#pragma once
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "result.h"
+
+namespace overlayd {
+
+// The internal camera frame is OpenGL's (seeds 000-003): X right, Y up, looking down -Z.
+// A Pose maps world points into it: x_camera = rotation * x_world + translation.
+struct Pose {
+    glm::dmat3 rotation{1.0};
+    glm::dvec3 translation{0.0};
+
+    glm::dmat4 viewMatrix() const;
+    glm::dvec3 position() const; // the camera centre in world coordinates
+};
+
+// How the axes of a given orientation are laid out on the camera.
+enum class CameraAxes {
+    Body,    // x forward (optical axis), y left, z up: ROS REP 103 body frame
+    Optical, // x right, y down, z forward: OpenCV and ROS "_optical_frame"
+    OpenGl,  // x right, y up, looking down -z: the internal frame
+};
+
+// Rotation taking vectors in the given camera axes to the internal (OpenGL) camera axes.
+glm::dmat3 internalFromAxes(CameraAxes axes);
+
+// Seeds 001/002: eye, gaze and up: w = -g/|g|, u = t x w / |t x w|, v = w x u.
+Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const glm::dvec3 &up);
+// Eye, a target point looked at, and up (gluLookAt).
+Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const glm::dvec3 &up);
+// Seed 000: Z' = VPN (pointing back towards the viewer), X' = normalize(VUP x VPN), Y' = Z' x X'.
+Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, const glm::dvec3 &vup);
+// Position plus the orientation of the camera's `axes` in the world (a unit quaternion, world_from_axes).
+Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &worldFromAxes, CameraAxes axes);
+// Position plus yaw, pitch, roll in degrees of the Body axes, ROS/aerospace order:
+// world_from_body = Rz(yaw) * Ry(pitch) * Rx(roll). With a Z-up world, positive pitch turns the optical axis down.
+Result<Pose> poseFromYawPitchRoll(const glm::dvec3 &position, double yawDeg, double pitchDeg, double rollDeg);
+// OpenCV/ROS extrinsics: x_optical = R * x_world + t, camera looking along +Z with Y down.
+Result<Pose> poseFromRt(const glm::dmat3 &rotation, const glm::dvec3 &translation);
+// OpenCV's rvec (Rodrigues axis * angle in radians) and tvec.
+Result<Pose> poseFromRodrigues(const glm::dvec3 &rvec, const glm::dvec3 &tvec);
+
+// Rodrigues' formula: the rotation by |rvec| radians about rvec.
+glm::dmat3 rotationFromRodrigues(const glm::dvec3 &rvec);
+
+} // namespace overlayd

@@ -1,0 +1,29 @@
+// Names for error codes, used in messages and tests.
+#include "result.h"
+
+namespace overlayd {
+
+const char *errorCodeName(ErrorCode code)
+{
+    switch (code) {
+    case ErrorCode::InvalidArgument:
+        return "invalid argument";
+    case ErrorCode::DegenerateBasis:
+        return "degenerate basis";
+    case ErrorCode::NotOrthonormal:
+        return "not orthonormal";
+    case ErrorCode::UnknownFrame:
+        return "unknown frame";
+    case ErrorCode::DuplicateFrame:
+        return "duplicate frame";
+    case ErrorCode::CyclicFrames:
+        return "cyclic frames";
+    case ErrorCode::Unsupported:
+        return "unsupported";
+    case ErrorCode::NoConvergence:
+        return "no convergence";
+    }
+    return "unknown error";
+}
+
+} // namespace overlayd
