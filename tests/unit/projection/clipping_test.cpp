@@ -1,0 +1,1 @@
+// clipping_test: to be written.

@@ -1,0 +1,1 @@
+// equivalence_test: to be written.

@@ -1,0 +1,1 @@
+// geometry_test: to be written.

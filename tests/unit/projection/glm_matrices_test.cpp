@@ -1,0 +1,1 @@
+// glm_matrices_test: to be written.

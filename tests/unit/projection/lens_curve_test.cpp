@@ -1,0 +1,1 @@
+// lens_curve_test: to be written.

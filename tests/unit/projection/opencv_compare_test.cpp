@@ -1,0 +1,1 @@
+// opencv_compare_test: to be written.

@@ -1,0 +1,1 @@
+// pose_test: to be written.

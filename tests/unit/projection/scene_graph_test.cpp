@@ -1,0 +1,1 @@
+// scene_graph_test: to be written.

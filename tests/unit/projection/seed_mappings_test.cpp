@@ -1,0 +1,1 @@
+// seed_mappings_test: to be written.

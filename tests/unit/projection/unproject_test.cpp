@@ -1,0 +1,1 @@
+// unproject_test: to be written.

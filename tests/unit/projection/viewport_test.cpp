@@ -1,0 +1,1 @@
+// viewport_test: to be written.
