@@ -3,7 +3,7 @@
 set -euo pipefail
 
 packages=(
-    build-essential cmake ninja-build pkg-config
+    build-essential clang cmake ninja-build pkg-config
     libglm-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libopencv-dev
