@@ -26,9 +26,9 @@
 namespace overlayd {
 
 enum class PointStatus {
-    Clipped,   // behind the near plane, beyond the far plane, or outside the lens's valid field: no pixel
-    Outside,   // in front of the camera but outside the scissor rectangle
-    Visible,   // lands inside the scissor rectangle
+    Clipped, // behind the near plane, beyond the far plane, or outside the lens's valid field: no pixel
+    Outside, // in front of the camera but outside the scissor rectangle
+    Visible, // lands inside the scissor rectangle
 };
 
 struct ProjectedPoint {
@@ -75,16 +75,44 @@ public:
     glm::dvec3 position() const;
 
 private:
-    Camera(const glm::dmat4 &view, const Projection &projection, std::optional<Lens> lens, const Viewport &viewport);
+    // Constants of the per-point path from clip space to pixels, composed once so that projectPoints runs a
+    // short loop per lens model (see camera.cpp).
+    struct PointPath {
+        glm::dmat2 toNormalized{1.0};  // (clip.x, clip.y, clip.w) -> w * normalized optical coordinates
+        glm::dvec2 toNormalizedW{0.0}; //   (for no lens: w * NDC)
+        glm::dmat2 toPixel{1.0};       // (distorted) normalized coordinates or NDC -> pixel
+        glm::dvec2 toPixelOffset{0.0};
+        double validRadius2 = 0.0;
+        double nearW = 0.0; // the near test is z + nearW * w >= 0: 0 for ZeroToOne, 1 for MinusOneToOne
+        bool hasFar = false;
+        glm::dvec2 scissorMin{0.0}, scissorMax{0.0};
+    };
+    // The pixel of a clip-space point known to be in front and inside the lens cone, and the whole per-point test
+    // and mapping, for one lens model (DistortionModel::None: no lens).
+    // Always inlined: the batch loop relies on it (an out-of-line call per point costs more than the maths).
+    template<DistortionModel Model>
+    [[gnu::always_inline]] static inline glm::dvec2
+    pixelFromClip(const PointPath &path, const std::array<double, 8> &coeffs, const glm::dvec4 &clip, double inverseW);
+    template<DistortionModel Model>
+    [[gnu::always_inline]] static inline bool isClipped(const PointPath &path, const glm::dvec4 &clip);
+    [[gnu::always_inline]] static inline void store(const PointPath &path, const glm::dvec2 &pixel, double depth,
+                                                    ProjectedPoint &out);
+    template<DistortionModel Model>
+    [[gnu::always_inline]] static inline void projectClip(const PointPath &path, const std::array<double, 8> &coeffs,
+                                                          const glm::dvec4 &clip, ProjectedPoint &out);
+    template<DistortionModel Model>
+    void projectBatch(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const;
 
-    bool inFrontAndNearerThanFar(const glm::dvec4 &clip) const;
+    Camera(const glm::dmat4 &view, const Projection &projection, std::optional<Lens> lens, const Viewport &viewport);
+    PointPath composePointPath() const;
+
     // Pixel of a clip-space point already known to be clipped in (w > 0, inside the lens cone).
     glm::dvec2 clipToPixel(const glm::dvec4 &clip) const;
     void refine(const glm::dvec4 &a, const glm::dvec4 &d, double tA, const glm::dvec2 &pA, double tB,
                 const glm::dvec2 &pB, int depth, double tolerance, Polylines &out) const;
     // Emits the clip-space piece a + t d, t in [t0, t1]; continues the last polyline when asked to.
-    void emitPiece(const glm::dvec4 &a, const glm::dvec4 &d, double t0, double t1, bool continueLast,
-                   double tolerance, Polylines &out) const;
+    void emitPiece(const glm::dvec4 &a, const glm::dvec4 &d, double t0, double t1, bool continueLast, double tolerance,
+                   Polylines &out) const;
     std::optional<std::array<double, 2>> clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const;
 
     glm::dmat4 view_;
@@ -95,6 +123,7 @@ private:
     glm::dmat4 inverseViewProjection_;
     ClipPlanes segmentPlanes_;
     double nearPlaneW_; // the near test is z + nearPlaneW_ * w >= 0: 0 for ZeroToOne, 1 for MinusOneToOne
+    PointPath path_;
 };
 
 } // namespace overlayd

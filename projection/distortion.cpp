@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <glm/mat2x2.hpp>
 
+#include "distortion_formulas.h"
+
 namespace overlayd {
 
 int coefficientCount(DistortionModel model)
@@ -38,36 +40,11 @@ Status validateDistortion(const Distortion &distortion)
 
 namespace {
 
-glm::dvec2 distortPolynomial(const std::array<double, 8> &c, const glm::dvec2 &p)
-{
-    const auto [k1, k2, p1, p2, k3, k4, k5, k6] = c;
-    const double r2 = p.x * p.x + p.y * p.y;
-    const double r4 = r2 * r2, r6 = r4 * r2;
-    const double radial = (1.0 + k1 * r2 + k2 * r4 + k3 * r6) / (1.0 + k4 * r2 + k5 * r4 + k6 * r6);
-    const double a1 = 2.0 * p.x * p.y;
-    return {p.x * radial + p1 * a1 + p2 * (r2 + 2.0 * p.x * p.x), p.y * radial + p1 * (r2 + 2.0 * p.y * p.y) + p2 * a1};
-}
-
-double fisheyeTheta(const std::array<double, 8> &c, double theta)
-{
-    const double t2 = theta * theta;
-    return theta * (1.0 + t2 * (c[0] + t2 * (c[1] + t2 * (c[2] + t2 * c[3]))));
-}
-
-glm::dvec2 distortFisheye(const std::array<double, 8> &c, const glm::dvec2 &p)
-{
-    const double r = std::sqrt(p.x * p.x + p.y * p.y);
-    const double theta = std::atan(r);
-    // OpenCV uses the same guard: below 1e-8 the ratio theta_d / r tends to 1.
-    const double scale = r > 1e-8 ? fisheyeTheta(c, theta) / r : 1.0;
-    return p * scale;
-}
-
 // The distorted radius as a function of the undistorted one, along one direction (tangential terms aside).
 double radialImage(const Distortion &d, double r)
 {
     if (d.model == DistortionModel::Fisheye)
-        return fisheyeTheta(d.coeffs, std::atan(r));
+        return formulas::fisheyeTheta(d.coeffs, std::atan(r));
     const auto &c = d.coeffs;
     const double r2 = r * r;
     return r * (1.0 + c[0] * r2 + c[1] * r2 * r2 + c[4] * r2 * r2 * r2) /
@@ -82,10 +59,11 @@ glm::dvec2 distortNormalized(const Distortion &distortion, const glm::dvec2 &xy)
     case DistortionModel::None:
         return xy;
     case DistortionModel::RadialTangential:
+        return formulas::radialTangential(distortion.coeffs, xy.x, xy.y);
     case DistortionModel::Rational:
-        return distortPolynomial(distortion.coeffs, xy);
+        return formulas::rational(distortion.coeffs, xy.x, xy.y);
     case DistortionModel::Fisheye:
-        return distortFisheye(distortion.coeffs, xy);
+        return formulas::fisheye(distortion.coeffs, xy.x, xy.y);
     }
     return xy;
 }

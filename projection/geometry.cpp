@@ -52,8 +52,8 @@ double pointLineDistance(const glm::dvec3 &point, const glm::dvec3 &linePoint, c
 std::array<std::optional<Plane>, 6> frustumPlanes(const glm::dmat4 &m, DepthRange depth)
 {
     const glm::dvec4 r0 = glm::row(m, 0), r1 = glm::row(m, 1), r2 = glm::row(m, 2), r3 = glm::row(m, 3);
-    const std::array<glm::dvec4, 6> raw = {r3 + r0, r3 - r0, r3 + r1, r3 - r1,
-                                           depth == DepthRange::ZeroToOne ? r2 : r3 + r2, r3 - r2};
+    const std::array<glm::dvec4, 6> raw = {
+        r3 + r0, r3 - r0, r3 + r1, r3 - r1, depth == DepthRange::ZeroToOne ? r2 : r3 + r2, r3 - r2};
     std::array<std::optional<Plane>, 6> planes;
     for (std::size_t i = 0; i < raw.size(); ++i) {
         const double length = glm::length(glm::dvec3(raw[i]));

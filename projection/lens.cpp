@@ -64,7 +64,9 @@ std::optional<std::array<double, 2>> Lens::clipToValidCone(const glm::dvec4 &a, 
     const double qa = glm::dot(l1, l1) - r2 * d.w * d.w;
     const double qb = 2.0 * (glm::dot(l0, l1) - r2 * a.w * d.w);
     const double qc = glm::dot(l0, l0) - r2 * a.w * a.w;
-    auto q = [&](double t) { return (qa * t + qb) * t + qc; };
+    auto q = [&](double t) {
+        return (qa * t + qb) * t + qc;
+    };
     const double disc = qb * qb - 4.0 * qa * qc;
     if (std::abs(qa) < 1e-300) { // linear
         if (std::abs(qb) < 1e-300)

@@ -1,7 +1,9 @@
 // Camera pose builders: seeds 000-002 graphics forms, orientations, and OpenCV/ROS extrinsics.
 #include "pose.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <glm/gtc/matrix_access.hpp>
 
@@ -39,6 +41,16 @@ glm::dmat3 internalFromAxes(CameraAxes axes)
 
 namespace {
 
+// v / |v| without overflow or underflow: |v| of a finite vector past 1e154 (or below 1e-154) would square to inf
+// (or 0) and turn a usable direction into a refused one. Nothing for the zero vector.
+std::optional<glm::dvec3> unitDirection(const glm::dvec3 &v)
+{
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (largest == 0.0)
+        return std::nullopt;
+    return glm::normalize(v / largest);
+}
+
 // Builds the pose whose camera axes, expressed in world coordinates, are the columns u, v, w.
 Pose poseFromBasis(const glm::dvec3 &eye, const glm::dvec3 &u, const glm::dvec3 &v, const glm::dvec3 &w)
 {
@@ -54,15 +66,15 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
 {
     if (!checks::finite(eye) || !checks::finite(gaze) || !checks::finite(up))
         return makeError(ErrorCode::InvalidArgument, "eye, gaze and up must be finite");
-    const double gazeLength = glm::length(gaze);
-    const double upLength = glm::length(up);
-    if (gazeLength == 0.0)
+    const auto gazeDirection = unitDirection(gaze);
+    const auto upDirection = unitDirection(up);
+    if (!gazeDirection)
         return makeError(ErrorCode::DegenerateBasis, "gaze direction is the zero vector");
-    if (upLength == 0.0)
+    if (!upDirection)
         return makeError(ErrorCode::DegenerateBasis, "up vector is the zero vector");
-    const glm::dvec3 w = -gaze / gazeLength;
-    const glm::dvec3 side = glm::cross(up, w);
-    if (glm::length(side) <= checks::kDegenerate * upLength)
+    const glm::dvec3 w = -*gazeDirection;
+    const glm::dvec3 side = glm::cross(*upDirection, w);
+    if (glm::length(side) <= checks::kDegenerate)
         return makeError(ErrorCode::DegenerateBasis,
                          "up " + str(up) + " is parallel to the gaze direction " + str(gaze));
     const glm::dvec3 u = glm::normalize(side);
@@ -72,6 +84,9 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
 
 Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const glm::dvec3 &up)
 {
+    // Non-finite first: infinite eye and target compare equal but are not "the same point".
+    if (!checks::finite(eye) || !checks::finite(target) || !checks::finite(up))
+        return makeError(ErrorCode::InvalidArgument, "eye, target and up must be finite");
     if (eye == target)
         return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + str(eye));
     return poseFromGaze(eye, target - eye, up);
@@ -81,13 +96,15 @@ Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, con
 {
     if (!checks::finite(prp) || !checks::finite(vpn) || !checks::finite(vup))
         return makeError(ErrorCode::InvalidArgument, "PRP, VPN and VUP must be finite");
-    if (glm::length(vpn) == 0.0)
+    const auto vpnDirection = unitDirection(vpn);
+    const auto vupDirection = unitDirection(vup);
+    if (!vpnDirection)
         return makeError(ErrorCode::DegenerateBasis, "VPN is the zero vector");
-    if (glm::length(vup) == 0.0)
+    if (!vupDirection)
         return makeError(ErrorCode::DegenerateBasis, "VUP is the zero vector");
-    const glm::dvec3 zAxis = glm::normalize(vpn);
-    const glm::dvec3 side = glm::cross(vup, zAxis);
-    if (glm::length(side) <= checks::kDegenerate * glm::length(vup))
+    const glm::dvec3 zAxis = *vpnDirection;
+    const glm::dvec3 side = glm::cross(*vupDirection, zAxis);
+    if (glm::length(side) <= checks::kDegenerate)
         return makeError(ErrorCode::DegenerateBasis, "VUP " + str(vup) + " is parallel to VPN " + str(vpn));
     const glm::dvec3 xAxis = glm::normalize(side);
     const glm::dvec3 yAxis = glm::cross(zAxis, xAxis);

@@ -1,9 +1,9 @@
 // Camera pose (extrinsics): every way users describe it, converging on one world-to-camera rigid transform.
 #pragma once
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
 #include "result.h"

@@ -163,8 +163,7 @@ Result<Projection> Projection::window(const WindowIntrinsics &w, DepthRange dept
         return status.error();
     const glm::dvec3 cw(w.centre, -w.focal);
     const glm::dmat4 zeroToOne = seed000::perspective(w.near / w.far) * seed000::scaleFar(w.far) *
-                                 seed000::scaleXY(w.focal, 2.0 * w.halfWidth, 2.0 * w.halfHeight) *
-                                 seed000::shear(cw);
+                                 seed000::scaleXY(w.focal, 2.0 * w.halfWidth, 2.0 * w.halfHeight) * seed000::shear(cw);
     const glm::dmat4 m = depth == DepthRange::ZeroToOne ? zeroToOne : zeroToOneToMinusOneToOne() * zeroToOne;
     return Projection(m, depth, true, true);
 }

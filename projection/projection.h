@@ -67,8 +67,7 @@ public:
 private:
     Projection(const glm::dmat4 &matrix, DepthRange depth, bool perspective, bool hasFar)
         : matrix_(matrix), depth_(depth), perspective_(perspective), hasFar_(hasFar)
-    {
-    }
+    {}
 
     glm::dmat4 matrix_;
     DepthRange depth_;

@@ -51,8 +51,7 @@ private:
 };
 
 // Result<void>: success, or an Error.
-struct Ok {
-};
+struct Ok {};
 using Status = Result<Ok>;
 
 inline Error makeError(ErrorCode code, std::string message)

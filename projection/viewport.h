@@ -28,7 +28,7 @@ struct ViewportSpec {
     int frameWidth = 0, frameHeight = 0;
     std::optional<PixelRect> window{}; // posx, posy, xres, yres; the whole frame when unset
     Origin origin = Origin::TopLeft;
-    double pixelAspect = 1.0;         // horizontal / vertical pixel spacing (non-square pixels)
+    double pixelAspect = 1.0;           // horizontal / vertical pixel spacing (non-square pixels)
     std::optional<PixelRect> scissor{}; // limits drawing; the window when unset
 };
 

@@ -18,8 +18,7 @@
 
 #include "projection/camera.h"
 
-namespace overlayd::test
-{
+namespace overlayd::test {
 
 // One calibrated camera as OpenCV describes it: x_optical = R(rvec) x_world + tvec, then K and distortion.
 struct CvCamera {

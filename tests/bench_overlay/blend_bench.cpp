@@ -1,0 +1,149 @@
+// Per-frame blend of a cached overlay against a cold memcpy of the same frame, in the same run.
+//
+// The layer is a grid of anti-aliased 2-pixel lines drawn with OpenCV onto transparent black (which yields
+// premultiplied colour), grown until it covers ~9.5% of the pixels, the coverage landscape.md measures. Frames come
+// from a ring larger than the caches so that both the blend and the copy start cold.
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "overlay/native_layer.h"
+
+namespace overlayd {
+namespace {
+
+constexpr double kCoverage = 0.095;
+constexpr size_t kRingBytes = size_t(96) << 20;
+
+std::unique_ptr<OverlayLayer> gridLayer(unsigned width, unsigned height)
+{
+    auto layer = std::make_unique<OverlayLayer>(width, height);
+    cv::Mat rgba(height, width, CV_8UC4, layer->data());
+    const cv::Scalar colours[] = {{255, 60, 0, 255}, {0, 255, 120, 255}, {40, 80, 255, 255}};
+    std::vector<cv::Mat> channels;
+    for (int k = 0; k < 1000; ++k) {
+        // Near-horizontal rungs and lines converging on a vanishing point above the frame, like a ground grid.
+        const double t = (k / 2 * 0.618034) - int(k / 2 * 0.618034);
+        cv::Point a(0, int(t * height)), b(width - 1, int(t * height) + 7);
+        if (k % 2)
+            a = {int(width / 2), -int(height)}, b = {int(t * 3 * width - width), int(height) - 1};
+        cv::line(rgba, a, b, colours[k % 3], 2, cv::LINE_AA);
+        cv::split(rgba, channels);
+        if (cv::countNonZero(channels[3]) >= kCoverage * width * height)
+            break;
+    }
+    layer->updateSpans();
+    return layer;
+}
+
+struct Ring {
+    FrameLayout layout;
+    std::vector<uint8_t> bytes;
+    size_t count;
+
+    Ring(const PixelFormatInfo &format, unsigned width, unsigned height)
+        : layout(*makeFrameLayout(format, width, height)), count(kRingBytes / layout.totalSize + 1)
+    {
+        bytes.assign(layout.totalSize * count, 0x80);
+    }
+    uint8_t *frame(size_t i) { return bytes.data() + (i % count) * layout.totalSize; }
+};
+
+void blendBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    const PixelFormatInfo &format = *pixelFormatFromName(formatName);
+    const auto layer = gridLayer(width, height);
+    const auto native = NativeLayer::convert(*layer, format, Colorimetry{});
+    Ring ring(format, width, height);
+    size_t i = 0;
+    for (auto _ : state) {
+        const Status status = native->blend(ring.layout.view(ring.frame(i++)));
+        benchmark::DoNotOptimize(status.ok());
+    }
+    state.counters["coverage_%"] = 100.0 * layer->coveredPixels() / (width * height);
+    state.counters["touched_bytes"] = native->touchedBytes();
+    state.counters["runs"] = native->runs().size();
+}
+
+void memcpyBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    size_t i = 0;
+    for (auto _ : state) {
+        std::memcpy(ring.frame(i + ring.count / 2), ring.frame(i), ring.layout.totalSize);
+        benchmark::ClobberMemory();
+        ++i;
+    }
+}
+
+// The cost paid when the overlay changes: converting the layer to the frame's format.
+void convertBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    const PixelFormatInfo &format = *pixelFormatFromName(formatName);
+    const auto layer = gridLayer(width, height);
+    for (auto _ : state) {
+        auto native = NativeLayer::convert(*layer, format, Colorimetry{});
+        benchmark::DoNotOptimize(native.ok());
+    }
+}
+
+// Prints blend / memcpy per case once every run is in, because runs drift and only a same-run ratio means much.
+class RatioReporter : public benchmark::ConsoleReporter
+{
+public:
+    void ReportRuns(const std::vector<Run> &runs) override
+    {
+        for (const Run &run : runs)
+            seconds_[run.benchmark_name()] = run.GetAdjustedRealTime();
+        ConsoleReporter::ReportRuns(runs);
+    }
+    void Finalize() override
+    {
+        ConsoleReporter::Finalize();
+        for (const auto &[name, time] : seconds_) {
+            const bool aggregate = name.find('_') != std::string::npos;
+            if (name.rfind("blend/", 0) != 0 || (aggregate && !name.ends_with("_median")))
+                continue;
+            const auto copy = seconds_.find("memcpy/" + name.substr(6));
+            if (copy != seconds_.end())
+                std::printf("%-28s blend / cold memcpy = %.3f\n", name.c_str(), time / copy->second);
+        }
+    }
+
+private:
+    std::map<std::string, double> seconds_;
+};
+
+} // namespace
+} // namespace overlayd
+
+int main(int argc, char **argv)
+{
+    using namespace overlayd;
+    struct Size {
+        const char *format;
+        unsigned width, height;
+    };
+    for (const Size &s : {Size{"YUYV", 1280, 720}, Size{"NV12", 1920, 1080}, Size{"YUYV", 1920, 1080}}) {
+        const std::string name = std::string(s.format) + "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
+        benchmark::RegisterBenchmark(("blend/" + name).c_str(), blendBench, s.format, s.width, s.height)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("memcpy/" + name).c_str(), memcpyBench, s.format, s.width, s.height)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("convert/" + name).c_str(), convertBench, s.format, s.width, s.height)
+            ->Unit(benchmark::kMillisecond);
+    }
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv))
+        return 1;
+    RatioReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::Shutdown();
+    return 0;
+}
