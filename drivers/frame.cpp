@@ -28,6 +28,10 @@ Result<FrameLayout> makeFrameLayout(const PixelFormatInfo &format, unsigned widt
     if (width == 0 || height == 0)
         return makeError(ErrorCode::InvalidArgument,
                          "frame size must be > 0 (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (width > kMaxFrameDimension || height > kMaxFrameDimension)
+        return makeError(ErrorCode::InvalidArgument, "frame size " + std::to_string(width) + "x" +
+                                                         std::to_string(height) + " exceeds the limit of " +
+                                                         std::to_string(kMaxFrameDimension) + " per side");
     const unsigned minStride = format.minStride(0, width);
     if (stride == 0)
         stride = minStride;

@@ -24,6 +24,9 @@ struct FrameView {
     std::array<PlaneView, 3> planes{};
 };
 
+// Frames wider or taller than this are refused before anything is allocated (V4L2 drivers top out at 16384 too).
+inline constexpr unsigned kMaxFrameDimension = 16384;
+
 struct PlaneLayout {
     size_t offset = 0;
     unsigned stride = 0;

@@ -22,6 +22,20 @@ const char *errorCodeName(ErrorCode code)
         return "unsupported";
     case ErrorCode::NoConvergence:
         return "no convergence";
+    case ErrorCode::NotFound:
+        return "not found";
+    case ErrorCode::Io:
+        return "i/o error";
+    case ErrorCode::Malformed:
+        return "malformed";
+    case ErrorCode::EndOfStream:
+        return "end of stream";
+    case ErrorCode::TryAgain:
+        return "try again";
+    case ErrorCode::DeviceLost:
+        return "device lost";
+    case ErrorCode::ConfigError:
+        return "config error";
     }
     return "unknown error";
 }

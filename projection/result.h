@@ -16,6 +16,14 @@ enum class ErrorCode {
     CyclicFrames,    // scene-graph parents that form a loop
     Unsupported,     // a combination the model does not define (e.g. distortion without pinhole intrinsics)
     NoConvergence,   // an iterative inversion (undistortion) that did not converge
+    // Sources, sinks and files (the frame path returns these instead of throwing).
+    NotFound,    // a file or device that does not exist
+    Io,          // a read or write that failed (errno in the message)
+    Malformed,   // a file whose contents do not parse (names the file and, where it applies, the frame)
+    EndOfStream, // a finite source has no more frames
+    TryAgain,    // nothing ready yet (EAGAIN); not a failure
+    DeviceLost,  // the device vanished or stopped answering (ENODEV, EIO, timeout); retry later
+    ConfigError, // a config file that does not validate (the message lists every problem)
 };
 
 const char *errorCodeName(ErrorCode code);

@@ -6,7 +6,10 @@ packages=(
     build-essential clang cmake ninja-build pkg-config
     libglm-dev
     libgtest-dev libgmock-dev libbenchmark-dev
-    libopencv-dev
+    libopencv-dev fonts-dejavu-core
+    libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev
+    # Independent clients the tests check our output with.
+    ffmpeg v4l-utils systemd
 )
 
 missing=()

@@ -1,0 +1,50 @@
+// DaemonConfig: everything one overlayd instance runs from, loaded from a TOML file and validated in one pass.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "config/camera_spec.h"
+#include "drivers/sink_options.h"
+#include "drivers/source_options.h"
+#include "overlay/annotation.h"
+#include "projection/result.h"
+
+namespace overlayd {
+
+enum class LogLevel { Debug, Info, Notice, Warning, Error };
+
+struct DaemonSettings {
+    LogLevel logLevel = LogLevel::Info;
+    double statsIntervalSec = 10.0; // 0: no periodic stats
+};
+
+struct DaemonConfig {
+    std::string path;  // the file it came from, for messages
+    CameraSpec camera; // builds the stream's Camera once the frame size is known
+    OverlayScene scene;
+    SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
+    std::vector<SinkOptions> sinks;
+    DaemonSettings daemon;
+};
+
+// One thing wrong with a config file. line/column are 1-based, 0 when unknown (e.g. a missing key).
+struct ConfigProblem {
+    std::string file;
+    unsigned line = 0, column = 0;
+    std::string key; // dotted path, e.g. "camera.intrinsics.fx" or "annotations[2].style.width"
+    std::string message; // includes "did you mean 'x'?" for unknown keys
+    // "file:line:column: key: message"
+    std::string format() const;
+};
+
+// Parses and validates everything, collecting every problem instead of stopping at the first. Never throws. On
+// failure `problems` is non-empty and the result's error (ConfigError) summarizes them.
+Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigProblem> &problems);
+// The same from text (tests, stdin); `name` stands in for the file name in messages, and relative paths in the
+// config resolve against baseDirectory.
+Result<DaemonConfig> loadConfigText(std::string_view text, const std::string &name, const std::string &baseDirectory,
+                                    std::vector<ConfigProblem> &problems);
+
+} // namespace overlayd

@@ -1,0 +1,34 @@
+// What a user can configure about a frame sink, and the one factory that builds any of them.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "drivers/frame_sink.h"
+#include "projection/result.h"
+
+namespace overlayd {
+
+enum class SinkKind {
+    Y4m,        // a Y4M file, or stdout with path "-" (overlayd run ... | ffplay -)
+    Raw,        // raw frames back to back, rows packed
+    Snapshot,   // PNG/JPEG (by extension) every `every` frames; a %d in the path numbers them, else overwritten
+    Null,       // counts frames, for measurements
+    V4l2Output, // a V4L2 output device (v4l2loopback, vivid's output node)
+};
+
+enum class DropPolicy { DropOldest, DropNewest };
+
+struct SinkOptions {
+    SinkKind kind = SinkKind::Null;
+    std::string path;           // file, "-" for stdout, or device
+    unsigned every = 1;         // Snapshot: one image per `every` frames
+    unsigned jpegQuality = 90;  // Snapshot .jpg
+    unsigned queueDepth = 4;    // frames waiting for this sink before the drop policy applies
+    DropPolicy dropPolicy = DropPolicy::DropOldest;
+    unsigned bufferCount = 4;   // V4l2Output
+};
+
+Result<std::unique_ptr<FrameSink>> makeSink(const SinkOptions &options);
+
+} // namespace overlayd

@@ -1,0 +1,65 @@
+// What a user can configure about a frame source, and the one factory that builds any of them.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "drivers/colorimetry.h"
+#include "drivers/frame_source.h"
+#include "projection/camera.h"
+#include "projection/result.h"
+
+namespace overlayd {
+
+enum class SourceKind { Synthetic, Replay, V4l2 };
+
+// Deterministic patterns; CheckerboardScene renders a checkerboard ground plane (z = 0 in world) through the
+// stream's camera, per pixel, by unprojecting a ray and intersecting the plane.
+enum class SyntheticPattern { ColourBars, Checkerboard, MovingGradient, Noise, CheckerboardScene };
+
+struct SyntheticOptions {
+    SyntheticPattern pattern = SyntheticPattern::CheckerboardScene;
+    uint64_t seed = 1;            // Noise
+    unsigned checkerPx = 40;      // Checkerboard: square size in pixels
+    double checkerMetres = 1.0;   // CheckerboardScene: square size on the ground (squares have corners at k * size)
+    std::optional<Camera> camera; // CheckerboardScene: the stream's camera (its viewport is the frame size)
+    // Diagnostics and tests: after this many frames the source stops delivering (TryAgain forever, no error), as a
+    // wedged camera would; the systemd watchdog must then stop being petted. 0: never.
+    uint64_t stallAfterFrames = 0;
+};
+
+enum class ReplayFormat { Auto, Y4m, Raw, Images }; // Auto: from the path's extension (%d in it: Images)
+
+struct ReplayOptions {
+    std::string path; // Y4M file, raw file, or an image sequence pattern such as "frames/%04d.png"
+    ReplayFormat format = ReplayFormat::Auto;
+    bool loop = false;
+    unsigned firstIndex = 0; // Images: the number the sequence starts at
+};
+
+struct V4l2CaptureOptions {
+    std::string device = "/dev/video0"; // a path, a /dev/v4l/by-id|by-path link, or a card name
+    unsigned bufferCount = 4;
+    double noSignalTimeoutSec = 2.0; // no frame for this long: the stream is torn down and retried
+};
+
+struct SourceOptions {
+    SourceKind kind = SourceKind::Synthetic;
+    // The requested stream. Raw replay and synthetic sources produce exactly this; Y4M and images take size and
+    // (for Y4M) format from the file; V4L2 negotiates (Valid / Adjusted / Invalid).
+    std::string pixelFormat = "YUYV";
+    unsigned width = 1280, height = 720;
+    double fps = 30.0;
+    std::optional<Colorimetry> colorimetry; // default: BT.601 limited, or what the device reports
+    SyntheticOptions synthetic;
+    ReplayOptions replay;
+    V4l2CaptureOptions v4l2;
+};
+
+// Validates before allocating anything (sizes, fps, format names). V4L2 support may be compiled out: then asking
+// for it is an Unsupported error, never a crash.
+Result<std::unique_ptr<FrameSource>> makeSource(const SourceOptions &options);
+
+} // namespace overlayd

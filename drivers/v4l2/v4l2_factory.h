@@ -1,0 +1,17 @@
+// The V4L2 entry points the driver factory calls (drivers/v4l2/ implements them).
+#pragma once
+
+#include <memory>
+
+#include "drivers/frame_sink.h"
+#include "drivers/frame_source.h"
+#include "drivers/sink_options.h"
+#include "drivers/source_options.h"
+#include "projection/result.h"
+
+namespace overlayd {
+
+Result<std::unique_ptr<FrameSource>> makeV4l2Source(const SourceOptions &options);
+Result<std::unique_ptr<FrameSink>> makeV4l2OutputSink(const SinkOptions &options);
+
+} // namespace overlayd

@@ -1,0 +1,40 @@
+// OverlayRenderer: one stream's overlay. World annotations are projected and rasterized once per change of scene,
+// camera or format; screen text whose tokens change (timestamp, frame number) lives on small layers of its own that
+// are re-rendered only when their text changes; the per-frame work is the native-format blend.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "drivers/frame.h"
+#include "drivers/stream.h"
+#include "overlay/annotation.h"
+#include "projection/camera.h"
+#include "projection/result.h"
+
+namespace overlayd {
+
+class OverlayRenderer
+{
+public:
+    virtual ~OverlayRenderer() = default;
+
+    // Configure time: validates the scene (unknown frames, non-finite values, widths, sizes) and renders it for a
+    // stream. The camera's viewport must have the stream's frame size.
+    static Result<std::unique_ptr<OverlayRenderer>> create(const OverlayScene &scene, const Camera &camera,
+                                                           const StreamFormat &format);
+
+    // The camera moved or changed (dynamic overlays): re-project and re-rasterize before the next blend.
+    virtual Status setCamera(const Camera &camera) = 0;
+    // Layers are named by the annotations' styles; an unknown name is an InvalidArgument error.
+    virtual Status setLayerEnabled(std::string_view layer, bool enabled) = 0;
+    virtual std::vector<std::string> layerNames() const = 0;
+
+    // Frame path (no allocation once the text layers have warmed up, no exceptions): refreshes token text if it
+    // changed and blends every enabled layer into the frame in place. fps feeds the {fps} token.
+    virtual Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) = 0;
+};
+
+} // namespace overlayd
