@@ -3,14 +3,29 @@
 #pragma once
 
 #include <optional>
+#include <string>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 #include "projection/camera.h"
 #include "projection/distortion.h"
 #include "projection/pose.h"
+#include "projection/projection.h"
 #include "projection/result.h"
 #include "projection/viewport.h"
 
 namespace overlayd {
+
+// Which of Projection's constructors the intrinsics use.
+enum class IntrinsicsForm {
+    FieldOfView,         // fovDeg across fovAxis, aspect from the viewport window (round circles)
+    Frustum,             // bounds.left..top on the near plane (glFrustum)
+    Pinhole,             // calibrated fx, fy, cx, cy, skew for an image of pinhole.width x height
+    Window,              // seed 000's window model
+    Orthographic,        // bounds.left..top box (glOrtho)
+    Seed000Orthographic, // seed 000's P_o for a centred orthoSize window
+};
 
 class CameraSpec
 {
@@ -19,9 +34,30 @@ public:
     // to this one; the viewport's frame size is this one.
     Result<Camera> build(unsigned frameWidth, unsigned frameHeight) const;
 
-    // Filled by the config loader (config/camera_spec.cpp and the loader own the details).
-    Pose pose{}; // world to camera; a camera mounted on a scene-graph frame is resolved to world when loading
-    // ... the config helper adds the intrinsics forms, distortion, near/far, depth range and viewport fields here.
+    // The steps of build(), separate so that the config loader can report each failure at the keys behind it.
+    Result<Viewport> buildViewport(unsigned frameWidth, unsigned frameHeight) const;
+    Result<Projection> buildProjection(const Viewport &viewport) const;
+    // Pinhole intrinsics rescaled to the viewport window: pixel centres map as u' = (u + 0.5) s - 0.5.
+    PinholeIntrinsics scaledPinhole(const Viewport &viewport) const;
+    // World to the internal camera frame: the pose in its mount frame, after world to mount.
+    glm::dmat4 view() const;
+
+    // Filled by the config loader.
+    Pose pose{}; // mount frame to camera
+    std::string mountFrame = "world";
+    glm::dmat4 worldFromMount{1.0}; // resolved from the scene graph when loading
+
+    IntrinsicsForm form = IntrinsicsForm::FieldOfView;
+    FovAxis fovAxis = FovAxis::Vertical;
+    double fovDeg = 60.0;
+    FrustumBounds bounds{};      // Frustum and Orthographic: left, right, bottom, top (near/far below)
+    PinholeIntrinsics pinhole{}; // width, height 0: the stream's viewport window
+    WindowIntrinsics window{};   // focal, centre, half spans (near/far below)
+    glm::dvec2 orthoSize{2.0, 2.0};
+    double near = 0.1, far = 1000.0; // metres in front of the camera; far may be kInfiniteFar (perspective)
+    DepthRange depth = DepthRange::MinusOneToOne;
+    Distortion distortion{};
+    ViewportSpec viewport{}; // frameWidth/frameHeight are set by build()
 };
 
 } // namespace overlayd

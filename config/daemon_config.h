@@ -33,7 +33,7 @@ struct DaemonConfig {
 struct ConfigProblem {
     std::string file;
     unsigned line = 0, column = 0;
-    std::string key; // dotted path, e.g. "camera.intrinsics.fx" or "annotations[2].style.width"
+    std::string key;     // dotted path, e.g. "camera.pinhole.fx" or "annotation[2].style.width" (0-based)
     std::string message; // includes "did you mean 'x'?" for unknown keys
     // "file:line:column: key: message"
     std::string format() const;

@@ -33,7 +33,7 @@ struct Style {
 struct AxesShape {
     double length = 1.0;
     std::array<Rgba, 3> colours{kRed, kGreen, kBlue}; // X, Y, Z
-    bool labels = false;                                // "X", "Y", "Z" at the tips
+    bool labels = false;                              // "X", "Y", "Z" at the tips
 };
 
 // Lines u = i * spacing and v = j * spacing on the plane origin + u * axisU + v * axisV, for |u| <= extentU and
@@ -129,7 +129,7 @@ using Shape = std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, Bo
                            HorizonShape, GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape>;
 
 struct Annotation {
-    std::string name;                  // for logs and error messages
+    std::string name;                       // for logs and error messages
     std::string frame = SceneGraph::kWorld; // the scene-graph frame its coordinates are in (ignored by screen items)
     Style style{};
     Shape shape;

@@ -8,19 +8,66 @@
 
 namespace overlayd {
 
+namespace {
+
+Status checkPlacement(const OverlayLayer &layer, const PixelFormatInfo &format, const LayerPlacement &p)
+{
+    const bool fits = p.x + layer.width() <= p.frameWidth && p.y + layer.height() <= p.frameHeight;
+    const bool aligned = p.x % format.hSubSampling == 0 && p.y % format.vSubSampling == 0;
+    const bool wholeRight = layer.width() % format.hSubSampling == 0 || p.x + layer.width() == p.frameWidth;
+    const bool wholeBottom = layer.height() % format.vSubSampling == 0 || p.y + layer.height() == p.frameHeight;
+    if (fits && aligned && wholeRight && wholeBottom)
+        return Ok{};
+    return makeError(ErrorCode::InvalidArgument,
+                     "a " + std::to_string(layer.width()) + "x" + std::to_string(layer.height()) + " layer at " +
+                         std::to_string(p.x) + "," + std::to_string(p.y) + " does not fit " + std::string(format.name) +
+                         " macropixels of a " + std::to_string(p.frameWidth) + "x" + std::to_string(p.frameHeight) +
+                         " frame");
+}
+
+} // namespace
+
 Result<NativeLayer> NativeLayer::convert(const OverlayLayer &layer, const PixelFormatInfo &format,
                                          Colorimetry colorimetry)
 {
+    return convert(layer, format, colorimetry, {0, 0, layer.width(), layer.height()});
+}
+
+Result<NativeLayer> NativeLayer::convert(const OverlayLayer &layer, const PixelFormatInfo &format,
+                                         Colorimetry colorimetry, const LayerPlacement &placement)
+{
     if (layer.width() == 0 || layer.height() == 0)
         return makeError(ErrorCode::InvalidArgument, "overlay layer is empty");
-    NativeLayer out(format, layer.width(), layer.height());
-    layerConverter(format.layout)(layer, format, YcbcrEncoder(colorimetry), out);
+    if (Status status = checkPlacement(layer, format, placement); !status)
+        return status.error();
+    NativeLayer out(format, placement);
+    if (Status status = out.update(layer, colorimetry); !status)
+        return status.error();
     return out;
+}
+
+Status NativeLayer::update(const OverlayLayer &layer, Colorimetry colorimetry)
+{
+    if (layer.width() + placement_.x > width_ || layer.height() + placement_.y > height_)
+        return makeError(ErrorCode::InvalidArgument, "layer does not fit the frame it was converted for");
+    runs_.clear();
+    values_.clear();
+    inverseAlpha_.clear();
+    // Covered pixels times bytes per pixel, plus whole macropixels at span ends: enough for one allocation.
+    const size_t estimate = layer.coveredPixels() * (format_->bitsPerPixel + 7) / 8 * 3 / 2 + 64;
+    values_.reserve(estimate);
+    inverseAlpha_.reserve(estimate);
+    runs_.reserve(layer.spans().size() * 2);
+    layerConverter(format_->layout)(layer, *format_, YcbcrEncoder(colorimetry), *this);
+    return Ok{};
 }
 
 void NativeLayer::beginRun(unsigned plane, unsigned row, unsigned byteOffset)
 {
-    runs_.push_back({plane, row, byteOffset, 0, uint32_t(values_.size())});
+    // Converters count in layer pixels; a placed layer's runs move by whole groups and whole plane rows.
+    const unsigned rowShift = placement_.y / format_->planes[plane].verticalSubSampling;
+    const unsigned byteShift = placement_.x / format_->pixelsPerGroup * format_->planes[plane].bytesPerGroup;
+    runs_.push_back({plane, row + rowShift, byteOffset + byteShift, 0, uint32_t(values_.size())});
 }
 
 Status NativeLayer::blend(const FrameView &frame) const

@@ -14,12 +14,27 @@
 
 namespace overlayd {
 
+// Where a layer smaller than the frame sits: its pixel (0, 0) on frame pixel (x, y). x and y must be multiples of
+// the format's chroma subsampling, and the layer must end on a whole macropixel or at the frame's edge, so that a
+// chroma sample never mixes layer pixels with frame pixels the layer does not describe.
+struct LayerPlacement {
+    unsigned x = 0, y = 0;
+    unsigned frameWidth = 0, frameHeight = 0;
+};
+
 class NativeLayer
 {
 public:
     // Configure time: converts the layer for one format and colorimetry (the colorimetry is unused for RGB formats).
     static Result<NativeLayer> convert(const OverlayLayer &layer, const PixelFormatInfo &format,
                                        Colorimetry colorimetry);
+    // The same for a layer placed on a larger frame (a small text layer).
+    static Result<NativeLayer> convert(const OverlayLayer &layer, const PixelFormatInfo &format,
+                                       Colorimetry colorimetry, const LayerPlacement &placement);
+
+    // Re-converts a redrawn layer of the same size and placement, reusing this layer's memory (the dynamic path:
+    // fresh vectors would page-fault their way through megabytes every frame).
+    Status update(const OverlayLayer &layer, Colorimetry colorimetry);
 
     // Frame path: blends into the frame in place; touches only the bytes of the layer's runs. The frame must have
     // the format and size the layer was converted for; its strides may be anything its format allows.
@@ -39,12 +54,13 @@ public:
     void endRun() { runs_.back().length = values_.size() - runs_.back().dataOffset; }
 
 private:
-    NativeLayer(const PixelFormatInfo &format, unsigned width, unsigned height)
-        : format_(&format), width_(width), height_(height)
+    NativeLayer(const PixelFormatInfo &format, const LayerPlacement &placement)
+        : format_(&format), width_(placement.frameWidth), height_(placement.frameHeight), placement_(placement)
     {}
 
     const PixelFormatInfo *format_;
-    unsigned width_, height_;
+    unsigned width_, height_; // of the frame
+    LayerPlacement placement_;
     std::vector<NativeRun> runs_;
     std::vector<uint8_t> values_;       // premultiplied value per touched byte
     std::vector<uint8_t> inverseAlpha_; // 255 - alpha per touched byte

@@ -2,6 +2,7 @@
 #include "overlay/overlay_layer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 namespace overlayd {
@@ -13,6 +14,15 @@ OverlayLayer::OverlayLayer(unsigned width, unsigned height)
 void OverlayLayer::clear()
 {
     std::fill(pixels_.begin(), pixels_.end(), 0);
+    spans_.clear();
+    std::fill(rowStart_.begin(), rowStart_.end(), 0);
+    coveredPixels_ = 0;
+}
+
+void OverlayLayer::clearCovered()
+{
+    for (const Span &span : spans_)
+        std::memset(pixels_.data() + span.y * stride() + span.x0 * 4, 0, size_t(span.x1 - span.x0) * 4);
     spans_.clear();
     std::fill(rowStart_.begin(), rowStart_.end(), 0);
     coveredPixels_ = 0;
@@ -42,6 +52,14 @@ void OverlayLayer::updateSpans()
         const uint8_t *row = pixels_.data() + y * stride();
         unsigned x = 0;
         while (x < width_) {
+            // Most of a layer is transparent: test the alpha of four pixels at a time.
+            static_assert(std::endian::native == std::endian::little, "alpha is the high byte of each 32-bit pixel");
+            for (uint64_t a = 0, b = 0; x + 4 <= width_; x += 4) {
+                std::memcpy(&a, row + x * 4, 8);
+                std::memcpy(&b, row + x * 4 + 8, 8);
+                if (((a | b) & 0xff000000ff000000ull) != 0)
+                    break;
+            }
             while (x < width_ && row[x * 4 + 3] == 0)
                 ++x;
             const unsigned x0 = x;

@@ -32,6 +32,9 @@ public:
     const uint8_t *pixel(unsigned x, unsigned y) const { return pixels_.data() + y * stride() + x * 4; }
 
     void clear();
+    // Clears only the pixels of the spans found by the last updateSpans(): cheap when little is covered. Valid only
+    // if nothing was drawn since.
+    void clearCovered();
     // Replaces the pixels of a rectangle (clipped to the layer) with one colour.
     void fillRect(int x, int y, int width, int height, Rgba colour);
 

@@ -9,12 +9,14 @@ namespace overlayd {
 namespace {
 
 // The encoding is affine in colour, so premultiplying moves the offset into alpha: a*(off + s*c) = a*off + s*(a*c).
-BlendSample sample(float alpha, float offset, float scaledPremultiplied)
+// lrintf (one instruction) instead of std::round (a library call): it rounds halves to even, which moves a value
+// by at most one code only when it lies exactly halfway.
+inline BlendSample sample(float alpha, float offset, float scaledPremultiplied)
 {
-    const float a = std::round(alpha);
-    const float value = std::round(alpha / 255.0f * offset + scaledPremultiplied);
+    const long a = std::lrintf(alpha);
+    const long value = std::lrintf(alpha * (1.0f / 255.0f) * offset + scaledPremultiplied);
     // value <= alpha keeps the blend inside 0..255 without a per-pixel clamp.
-    return {uint8_t(std::clamp(value, 0.0f, a)), uint8_t(a)};
+    return {uint8_t(std::clamp(value, 0L, a)), uint8_t(a)};
 }
 
 } // namespace

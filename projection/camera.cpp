@@ -1,7 +1,7 @@
 // Camera: projection of points and segments with clipping before the divide, lens curves, and unprojection.
 #include "camera.h"
 
-#include "distortion_formulas.h"
+#include "point_kernel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,7 +78,7 @@ Camera::Camera(const glm::dmat4 &view, const Projection &projection, std::option
       nearPlaneW_(projection.depthRange() == DepthRange::MinusOneToOne ? 1.0 : 0.0), path_(composePointPath())
 {}
 
-Camera::PointPath Camera::composePointPath() const
+PointPath Camera::composePointPath() const
 {
     PointPath path;
     // The viewport is ndc * scale + offset; its scale and offset are multiples of 0.5, so both come out exact.
@@ -92,6 +92,7 @@ Camera::PointPath Camera::composePointPath() const
         path.toPixel = viewportLinear * lens_->normalizedToNdc().linear;
         path.toPixelOffset = scale * lens_->normalizedToNdc().offset + offset;
         path.validRadius2 = lens_->validRadius() * lens_->validRadius();
+        path.coeffs = lens_->distortion().coeffs;
     } else {
         path.toPixel = viewportLinear;
         path.toPixelOffset = offset;
@@ -110,154 +111,42 @@ glm::dvec3 Camera::position() const
     return glm::dvec3(centre) / centre.w;
 }
 
-template<DistortionModel Model>
-inline glm::dvec2 Camera::pixelFromClip(const PointPath &path, const std::array<double, 8> &coeffs,
-                                        const glm::dvec4 &clip, double inverseW)
-{
-    if constexpr (Model == DistortionModel::None) {
-        return glm::dvec2(clip.x * inverseW * path.toPixel[0][0], clip.y * inverseW * path.toPixel[1][1]) +
-               path.toPixelOffset;
-    } else {
-        const glm::dvec2 scaled = path.toNormalized * glm::dvec2(clip) + path.toNormalizedW * clip.w;
-        const double x = scaled.x * inverseW, y = scaled.y * inverseW;
-        glm::dvec2 distorted;
-        if constexpr (Model == DistortionModel::RadialTangential)
-            distorted = formulas::radialTangential(coeffs, x, y);
-        else if constexpr (Model == DistortionModel::Rational)
-            distorted = formulas::rational(coeffs, x, y);
-        else
-            distorted = formulas::fisheye(coeffs, x, y);
-        return path.toPixel * distorted + path.toPixelOffset;
-    }
-}
+namespace {
 
-template<DistortionModel Model>
-inline bool Camera::isClipped(const PointPath &path, const glm::dvec4 &clip)
-{
-    // In front (w > 0, which also refuses NaN), not nearer than near, not beyond far: tested before any divide.
-    // Bitwise or, not ||: which points are clipped is data-dependent, so branches would mispredict.
-    bool clipped = !(clip.w > 0.0) | (clip.z + path.nearW * clip.w < 0.0) | (path.hasFar & (clip.w - clip.z < 0.0));
-    if constexpr (Model != DistortionModel::None) {
-        // Inside the lens's valid cone (Lens::insideValidCone, same arithmetic).
-        const glm::dvec2 scaled = path.toNormalized * glm::dvec2(clip) + path.toNormalizedW * clip.w;
-        clipped |= !(glm::dot(scaled, scaled) <= path.validRadius2 * clip.w * clip.w);
-    }
-    return clipped;
-}
+using PointLanes = OVERLAYD_LANES_NS::ProjectedLanes<double>;
 
-template<DistortionModel Model>
-inline void Camera::projectClip(const PointPath &path, const std::array<double, 8> &coeffs, const glm::dvec4 &clip,
-                                ProjectedPoint &out)
+// The same kernel as the batch loops, on one point (see point_kernel.h), so both give the same bits.
+PointLanes projectClip(const PointPath &path, DistortionModel model, const glm::dvec4 &clip)
 {
-    if (isClipped<Model>(path, clip)) {
-        out = ProjectedPoint{};
-        return;
-    }
-    // One division per point (divisions are slow); everything else is multiply-add.
-    const double inverseW = 1.0 / clip.w;
-    store(path, pixelFromClip<Model>(path, coeffs, clip, inverseW), clip.z * inverseW, out);
-}
-
-inline void Camera::store(const PointPath &path, const glm::dvec2 &pixel, double depth, ProjectedPoint &out)
-{
-    const bool inScissor = (pixel.x >= path.scissorMin.x) & (pixel.x <= path.scissorMax.x) &
-                           (pixel.y >= path.scissorMin.y) & (pixel.y <= path.scissorMax.y);
-    // Field by field: assigning a temporary here made GCC bounce the struct through the stack.
-    out.pixel = pixel;
-    out.depth = depth;
-    out.status = inScissor ? PointStatus::Visible : PointStatus::Outside;
-}
-
-template<DistortionModel Model>
-void Camera::projectBatch(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const
-{
-    // Local copies: the stores to out cannot alias them, so they stay in registers across the loop.
-    const PointPath path = path_;
-    const std::array<double, 8> coeffs = lens_ ? lens_->distortion().coeffs : std::array<double, 8>{};
-    const glm::dvec4 c0 = viewProjection_[0], c1 = viewProjection_[1], c2 = viewProjection_[2], c3 = viewProjection_[3];
-    // viewProjection_ * (p, 1) summed in GLM's order, so that project() gives the same bits.
-    auto toClip = [&](const glm::dvec3 &p) {
-        return (c0 * p.x + c1 * p.y) + (c2 * p.z + c3);
-    };
-    const std::size_t n = std::min(world.size(), out.size());
-    // Blocks of points go through each stage together: one point's work is a long chain of dependent operations
-    // (divide, distortion polynomial), and independent points side by side keep the FPU busy. Clipped points go
-    // through the maths too (harmlessly: nothing traps) and are overwritten at the end, which avoids branches.
-    constexpr std::size_t kBlock = 8;
-    std::size_t i = 0;
-    for (; i + kBlock <= n; i += kBlock) {
-        glm::dvec4 clip[kBlock];
-        glm::dvec2 pixel[kBlock];
-        double inverseW[kBlock];
-        bool clipped[kBlock];
-        for (std::size_t j = 0; j < kBlock; ++j)
-            clip[j] = toClip(world[i + j]);
-        for (std::size_t j = 0; j < kBlock; ++j)
-            clipped[j] = isClipped<Model>(path, clip[j]);
-        for (std::size_t j = 0; j < kBlock; ++j)
-            inverseW[j] = 1.0 / clip[j].w;
-        for (std::size_t j = 0; j < kBlock; ++j)
-            pixel[j] = pixelFromClip<Model>(path, coeffs, clip[j], inverseW[j]);
-        for (std::size_t j = 0; j < kBlock; ++j) {
-            if (clipped[j])
-                out[i + j] = ProjectedPoint{};
-            else
-                store(path, pixel[j], clip[j].z * inverseW[j], out[i + j]);
-        }
-    }
-    for (; i < n; ++i)
-        projectClip<Model>(path, coeffs, toClip(world[i]), out[i]);
-}
-
-glm::dvec2 Camera::clipToPixel(const glm::dvec4 &clip) const
-{
-    switch (lens_ ? lens_->distortion().model : DistortionModel::None) {
+    using OVERLAYD_LANES_NS::projectClipLanes;
+    switch (model) {
     case DistortionModel::None:
         break;
     case DistortionModel::RadialTangential:
-        return pixelFromClip<DistortionModel::RadialTangential>(path_, lens_->distortion().coeffs, clip, 1.0 / clip.w);
+        return projectClipLanes<DistortionModel::RadialTangential>(path, clip.x, clip.y, clip.z, clip.w);
     case DistortionModel::Rational:
-        return pixelFromClip<DistortionModel::Rational>(path_, lens_->distortion().coeffs, clip, 1.0 / clip.w);
+        return projectClipLanes<DistortionModel::Rational>(path, clip.x, clip.y, clip.z, clip.w);
     case DistortionModel::Fisheye:
-        return pixelFromClip<DistortionModel::Fisheye>(path_, lens_->distortion().coeffs, clip, 1.0 / clip.w);
+        return projectClipLanes<DistortionModel::Fisheye>(path, clip.x, clip.y, clip.z, clip.w);
     }
-    return pixelFromClip<DistortionModel::None>(path_, {}, clip, 1.0 / clip.w);
+    return projectClipLanes<DistortionModel::None>(path, clip.x, clip.y, clip.z, clip.w);
+}
+
+} // namespace
+
+glm::dvec2 Camera::clipToPixel(const glm::dvec4 &clip) const
+{
+    const PointLanes r = projectClip(path_, lens_ ? lens_->distortion().model : DistortionModel::None, clip);
+    return {r.x, r.y};
 }
 
 ProjectedPoint Camera::project(const glm::dvec4 &world) const
 {
-    const glm::dvec4 clip = viewProjection_ * world;
-    ProjectedPoint result;
-    switch (lens_ ? lens_->distortion().model : DistortionModel::None) {
-    case DistortionModel::None:
-        projectClip<DistortionModel::None>(path_, {}, clip, result);
-        break;
-    case DistortionModel::RadialTangential:
-        projectClip<DistortionModel::RadialTangential>(path_, lens_->distortion().coeffs, clip, result);
-        break;
-    case DistortionModel::Rational:
-        projectClip<DistortionModel::Rational>(path_, lens_->distortion().coeffs, clip, result);
-        break;
-    case DistortionModel::Fisheye:
-        projectClip<DistortionModel::Fisheye>(path_, lens_->distortion().coeffs, clip, result);
-        break;
-    }
-    return result;
-}
-
-void Camera::projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const
-{
-    // One loop per lens model, so the model is not re-dispatched per point.
-    switch (lens_ ? lens_->distortion().model : DistortionModel::None) {
-    case DistortionModel::None:
-        return projectBatch<DistortionModel::None>(world, out);
-    case DistortionModel::RadialTangential:
-        return projectBatch<DistortionModel::RadialTangential>(world, out);
-    case DistortionModel::Rational:
-        return projectBatch<DistortionModel::Rational>(world, out);
-    case DistortionModel::Fisheye:
-        return projectBatch<DistortionModel::Fisheye>(world, out);
-    }
+    const PointLanes r =
+        projectClip(path_, lens_ ? lens_->distortion().model : DistortionModel::None, viewProjection_ * world);
+    if (r.clipped)
+        return ProjectedPoint{};
+    return {{r.x, r.y}, r.depth, r.inScissor ? PointStatus::Visible : PointStatus::Outside};
 }
 
 std::optional<std::array<double, 2>> Camera::clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const

@@ -17,6 +17,7 @@
 #include "distortion.h"
 #include "geometry.h"
 #include "lens.h"
+#include "point_path.h"
 #include "polylines.h"
 #include "pose.h"
 #include "projection.h"
@@ -37,6 +38,14 @@ struct ProjectedPoint {
     PointStatus status = PointStatus::Clipped;
 };
 
+// The batch loops of Camera::projectPoints: all give the same bits; Best is the widest this CPU runs.
+enum class BatchKernel {
+    Best,
+    Lanes2,       // SSE2 (any x86-64) or NEON (arm64)
+    Lanes4Avx2,   // x86-64 with AVX2
+    Lanes8Avx512, // x86-64 with AVX-512F
+};
+
 // Chord error allowed when a straight 3D segment is drawn through a distorting lens as a polyline.
 inline constexpr double kDefaultCurveTolerancePx = 0.25;
 
@@ -51,8 +60,16 @@ public:
 
     ProjectedPoint project(const glm::dvec3 &world) const { return project(glm::dvec4(world, 1.0)); }
     ProjectedPoint project(const glm::dvec4 &world) const;
-    // Batch form: out.size() must be at least world.size(); allocates nothing.
-    void projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const;
+    // Batch form: projects min(world.size(), out.size()) points; allocates nothing. Same bits as project(), 2, 4
+    // or 8 points at a time (the widest loop the CPU runs; see docs/speed.md).
+    void projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const
+    {
+        projectPoints(world, out, BatchKernel::Best);
+    }
+    // The same with a chosen loop, for tests and benchmarks; a kernel this CPU cannot run falls back to Lanes2.
+    void projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out, BatchKernel kernel) const;
+    // Whether this build and this CPU can run `kernel` (Best and Lanes2 always can).
+    static bool batchKernelAvailable(BatchKernel kernel);
 
     // Appends the visible part of the straight 3D segment a-b as polylines (several where the lens's valid field
     // cuts it); curved through a distorting lens to within tolerancePx.
@@ -75,34 +92,6 @@ public:
     glm::dvec3 position() const;
 
 private:
-    // Constants of the per-point path from clip space to pixels, composed once so that projectPoints runs a
-    // short loop per lens model (see camera.cpp).
-    struct PointPath {
-        glm::dmat2 toNormalized{1.0};  // (clip.x, clip.y, clip.w) -> w * normalized optical coordinates
-        glm::dvec2 toNormalizedW{0.0}; //   (for no lens: w * NDC)
-        glm::dmat2 toPixel{1.0};       // (distorted) normalized coordinates or NDC -> pixel
-        glm::dvec2 toPixelOffset{0.0};
-        double validRadius2 = 0.0;
-        double nearW = 0.0; // the near test is z + nearW * w >= 0: 0 for ZeroToOne, 1 for MinusOneToOne
-        bool hasFar = false;
-        glm::dvec2 scissorMin{0.0}, scissorMax{0.0};
-    };
-    // The pixel of a clip-space point known to be in front and inside the lens cone, and the whole per-point test
-    // and mapping, for one lens model (DistortionModel::None: no lens).
-    // Always inlined: the batch loop relies on it (an out-of-line call per point costs more than the maths).
-    template<DistortionModel Model>
-    [[gnu::always_inline]] static inline glm::dvec2
-    pixelFromClip(const PointPath &path, const std::array<double, 8> &coeffs, const glm::dvec4 &clip, double inverseW);
-    template<DistortionModel Model>
-    [[gnu::always_inline]] static inline bool isClipped(const PointPath &path, const glm::dvec4 &clip);
-    [[gnu::always_inline]] static inline void store(const PointPath &path, const glm::dvec2 &pixel, double depth,
-                                                    ProjectedPoint &out);
-    template<DistortionModel Model>
-    [[gnu::always_inline]] static inline void projectClip(const PointPath &path, const std::array<double, 8> &coeffs,
-                                                          const glm::dvec4 &clip, ProjectedPoint &out);
-    template<DistortionModel Model>
-    void projectBatch(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const;
-
     Camera(const glm::dmat4 &view, const Projection &projection, std::optional<Lens> lens, const Viewport &viewport);
     PointPath composePointPath() const;
 

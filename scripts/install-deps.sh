@@ -7,9 +7,10 @@ packages=(
     libglm-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libopencv-dev fonts-dejavu-core
-    libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev
+    libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
     # Independent clients the tests check our output with.
     ffmpeg v4l-utils systemd
+    qemu-system-x86 busybox-static cpio kmod xz-utils python3 binutils make # tests/vm: the real-driver tier
 )
 
 missing=()

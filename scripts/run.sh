@@ -1,11 +1,16 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs overlayd's main job on its embedded default: the synthetic 3D scene
-# (a checkerboard ground seen through a distorting camera, with a projected grid and axes) written to a PNG.
+# Installs what is missing, builds, and runs overlayd on its embedded default, config/examples/demo.toml: a
+# synthetic 1280x720 camera over a checkerboard ground with a projected grid, axes, labels and a timestamp. It stops
+# by itself after 150 frames (5 s at 30 fps) and leaves out/demo.y4m and a PNG snapshot every 30 frames.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 build_dir=${BUILD_DIR:-build}
 mkdir -p out
-"$build_dir/daemon/overlayd-preview" out/preview.png
-echo "open out/preview.png to see it"
+"$build_dir/daemon/overlayd" run --config config/examples/demo.toml --frames 150
+echo
+echo "Done. To look at the result:"
+echo "  ffplay out/demo.y4m              # the 150-frame video (or: mpv out/demo.y4m)"
+echo "  xdg-open out/demo-0000.png       # snapshots every 30 frames: $(ls out/demo-*.png 2>/dev/null | tr '\n' ' ')"
+echo "Change the camera or the annotations in config/examples/demo.toml; 'overlayd check-config FILE' validates it."

@@ -1,16 +1,50 @@
-// Placeholder until the V4L2 capture source and output sink land: asking for them is a clear error.
+// The V4L2 entry points: the capture source and the output sink on the real kernel.
 #include "drivers/v4l2/v4l2_factory.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+#include "drivers/v4l2/capture_source.h"
+#include "drivers/v4l2/output_sink.h"
+#include "drivers/v4l2/v4l2_syscalls.h"
 
 namespace overlayd {
 
-Result<std::unique_ptr<FrameSource>> makeV4l2Source(const SourceOptions &)
+namespace {
+
+// Until the daemon hands its logger down, the few driver lines go to stderr, with journald's "notice" priority
+// prefix when stderr is the journal (systemd sets JOURNAL_STREAM for the service).
+void logToStderr(const std::string &line)
 {
-    return makeError(ErrorCode::Unsupported, "V4L2 capture is not implemented yet");
+    std::fprintf(stderr, "%sv4l2: %s\n", std::getenv("JOURNAL_STREAM") ? "<5>" : "", line.c_str());
 }
 
-Result<std::unique_ptr<FrameSink>> makeV4l2OutputSink(const SinkOptions &)
+} // namespace
+
+Result<std::unique_ptr<FrameSource>> makeV4l2Source(const SourceOptions &options)
 {
-    return makeError(ErrorCode::Unsupported, "V4L2 output is not implemented yet");
+    return makeV4l2Source(options, logToStderr);
+}
+
+Result<std::unique_ptr<FrameSource>> makeV4l2Source(const SourceOptions &options,
+                                                    std::function<void(const std::string &)> log)
+{
+    if (options.v4l2.bufferCount < 2 || options.v4l2.bufferCount > 32)
+        return makeError(ErrorCode::ConfigError,
+                         "source.v4l2.buffers must be 2..32 (got " + std::to_string(options.v4l2.bufferCount) + ")");
+    return std::unique_ptr<FrameSource>(
+        std::make_unique<v4l2::V4l2CaptureSource>(v4l2::realSyscalls(), options, std::move(log)));
+}
+
+Result<std::unique_ptr<FrameSink>> makeV4l2OutputSink(const SinkOptions &options)
+{
+    if (options.bufferCount < 2 || options.bufferCount > 32)
+        return makeError(ErrorCode::ConfigError,
+                         "sink buffers must be 2..32 (got " + std::to_string(options.bufferCount) + ")");
+    if (options.path.empty())
+        return makeError(ErrorCode::ConfigError, "a v4l2 sink needs a device path");
+    return std::unique_ptr<FrameSink>(std::make_unique<v4l2::V4l2OutputSink>(v4l2::realSyscalls(), options));
 }
 
 } // namespace overlayd

@@ -1,0 +1,84 @@
+// Calibration import: picks the reader for a file and turns its camera matrix and coefficients into our types.
+#include "config/calibration.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace overlayd {
+
+namespace {
+
+Error malformed(const std::string &path, const std::string &what)
+{
+    return makeError(ErrorCode::Malformed, "calibration file '" + path + "': " + what);
+}
+
+Result<DistortionModel> pickModel(const std::string &path, std::string_view model, size_t count)
+{
+    if (model == "plumb_bob" || model == "radtan")
+        return DistortionModel::RadialTangential;
+    if (model == "rational_polynomial" || model == "rational")
+        return DistortionModel::Rational;
+    if (model == "equidistant" || model == "fisheye")
+        return DistortionModel::Fisheye;
+    if (!model.empty())
+        return malformed(path, "unknown distortion_model '" + std::string(model) +
+                                   "' (expected plumb_bob | rational_polynomial | equidistant)");
+    // OpenCV's calibrateCamera writes 4, 5, 8, 12 or 14 coefficients; 4 means k1 k2 p1 p2 there.
+    if (count == 0)
+        return DistortionModel::None;
+    return count <= 5 ? DistortionModel::RadialTangential : DistortionModel::Rational;
+}
+
+} // namespace
+
+Result<Calibration> makeCalibration(const std::string &path, const std::array<double, 9> &k,
+                                    const std::vector<double> &coefficients, std::string_view model, int width,
+                                    int height)
+{
+    for (double value : k)
+        if (!std::isfinite(value))
+            return malformed(path, "camera_matrix has a non-finite entry");
+    if (k[3] != 0.0 || k[6] != 0.0 || k[7] != 0.0 || k[8] != 1.0)
+        return malformed(path, "camera_matrix must be [fx skew cx; 0 fy cy; 0 0 1]");
+    if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+        return malformed(path, "image_width/image_height missing or out of range (got " + std::to_string(width) + "x" +
+                                   std::to_string(height) + ")");
+    auto picked = pickModel(path, model, coefficients.size());
+    if (!picked)
+        return picked.error();
+    Calibration out;
+    out.pinhole = PinholeIntrinsics{k[0], k[4], k[2], k[5], k[1], width, height};
+    out.distortion.model = *picked;
+    const size_t used = size_t(coefficientCount(*picked));
+    for (size_t i = 0; i < coefficients.size(); ++i) {
+        if (!std::isfinite(coefficients[i]))
+            return malformed(path, "distortion_coefficients has a non-finite entry");
+        if (i < used)
+            out.distortion.coeffs[i] = coefficients[i];
+        else if (coefficients[i] != 0.0)
+            return malformed(path, std::to_string(coefficients.size()) +
+                                       " distortion coefficients, but the model takes " + std::to_string(used) +
+                                       " (thin-prism and tilt terms are not supported)");
+    }
+    if (auto status = validateDistortion(out.distortion); !status)
+        return malformed(path, status.error().message);
+    return out;
+}
+
+Result<Calibration> loadCalibration(const std::string &path)
+{
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        return makeError(ErrorCode::NotFound, "calibration file '" + path + "' does not exist");
+    std::ifstream in(path);
+    std::string firstLine;
+    std::getline(in, firstLine);
+    const std::string extension = std::filesystem::path(path).extension().string();
+    if (extension == ".xml" || firstLine.rfind("%YAML:", 0) == 0 || firstLine.rfind("<?xml", 0) == 0)
+        return detail::loadOpenCvCalibration(path);
+    return detail::loadRosCalibration(path);
+}
+
+} // namespace overlayd

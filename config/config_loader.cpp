@@ -1,0 +1,156 @@
+// loadConfigFile / loadConfigText: parse with toml++, read every section, then check what spans sections (frame
+// names, the camera composed through projection/), collecting every problem in one pass.
+#include "config/daemon_config.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "config/config_sections.h"
+
+namespace overlayd {
+
+namespace config {
+namespace {
+
+std::vector<std::string> frameNames(const std::vector<FrameSpec> &frames)
+{
+    std::vector<std::string> names{SceneGraph::kWorld};
+    for (const FrameSpec &frame : frames)
+        names.push_back(frame.name);
+    return names;
+}
+
+void checkFrameName(TableReader &table, std::string_view key, const std::string &name,
+                    const std::vector<std::string> &names)
+{
+    if (std::find(names.begin(), names.end(), name) != names.end())
+        return;
+    std::string message = "unknown frame '" + name + "' (define it in a [[frame]] table)";
+    if (const std::string guess = closestMatch(name, names); !guess.empty())
+        message += "; did you mean '" + guess + "'?";
+    table.problem(key, std::move(message));
+}
+
+// Parents and annotation frames must name frames; the scene graph itself catches duplicates and cycles.
+std::optional<SceneGraph> checkFrames(TableReader &root, DaemonConfig &config)
+{
+    const std::vector<std::string> names = frameNames(config.scene.frames);
+    std::vector<TableReader> frames = root.tables("frame");
+    for (size_t i = 0; i < frames.size() && i < config.scene.frames.size(); ++i)
+        if (frames[i].has("parent"))
+            checkFrameName(frames[i], "parent", config.scene.frames[i].parent, names);
+    std::vector<TableReader> annotations = root.tables("annotation");
+    for (size_t i = 0; i < annotations.size() && i < config.scene.annotations.size(); ++i)
+        if (annotations[i].has("frame"))
+            checkFrameName(annotations[i], "frame", config.scene.annotations[i].frame, names);
+    auto graph = SceneGraph::create(config.scene.frames);
+    if (!graph) {
+        root.problem("frame", graph.error().message);
+        return std::nullopt;
+    }
+    return graph.value();
+}
+
+// False when the camera or viewport had problems of their own: composing the Camera would only repeat them.
+bool readCamera(TableReader &root, const std::string &baseDirectory, DaemonConfig &config, CameraKeys &keys)
+{
+    const size_t before = root.problems().size();
+    if (auto viewport = root.table("viewport"))
+        readViewport(*viewport, config.camera.viewport);
+    auto camera = root.table("camera");
+    if (camera) {
+        config.camera.mountFrame = camera->string("frame").value_or(SceneGraph::kWorld);
+        readPose(*camera, config.camera.pose);
+        readIntrinsics(*camera, baseDirectory, config.camera, keys);
+        camera->finish();
+    }
+    return root.problems().size() == before;
+}
+
+// Composes the Camera for the configured stream size the way the daemon will, so that projection/'s refusals
+// land on the keys behind them.
+void checkCamera(TableReader &root, DaemonConfig &config, const SceneGraph &graph, const CameraKeys &keys)
+{
+    CameraSpec &spec = config.camera;
+    auto camera = root.table("camera");
+    if (auto mount = graph.worldMatrix(spec.mountFrame))
+        spec.worldFromMount = *mount;
+    else if (camera)
+        checkFrameName(*camera, "frame", spec.mountFrame, frameNames(config.scene.frames));
+    auto viewport = spec.buildViewport(config.source.width, config.source.height);
+    if (!viewport) {
+        root.problem("viewport", viewport.error().message);
+        return;
+    }
+    auto projection = spec.buildProjection(*viewport);
+    if (!projection) {
+        if (camera)
+            camera->problem(keys.intrinsics, projection.error().message);
+        return;
+    }
+    if (auto built = Camera::create(spec.view(), *projection, spec.distortion, *viewport); !built && camera)
+        camera->problem(keys.hasDistortion ? "distortion" : keys.intrinsics, built.error().message);
+}
+
+Error summarize(const Problems &found, std::vector<ConfigProblem> &problems)
+{
+    problems = found.sorted();
+    std::string message = std::to_string(problems.size()) + " problem(s) in " + found.file() + ":";
+    for (const ConfigProblem &problem : problems)
+        message += "\n" + problem.format();
+    return makeError(ErrorCode::ConfigError, message);
+}
+
+} // namespace
+} // namespace config
+
+Result<DaemonConfig> loadConfigText(std::string_view text, const std::string &name, const std::string &baseDirectory,
+                                    std::vector<ConfigProblem> &problems)
+{
+    problems.clear();
+    config::Problems found(name);
+    toml::table root;
+    try {
+        root = toml::parse(text, name);
+    } catch (const toml::parse_error &e) {
+        // toml++ stops at the first syntax error: nothing after it can be read reliably.
+        found.add(e.source().begin.line, e.source().begin.column, "", "syntax error: " + std::string(e.description()));
+        return config::summarize(found, problems);
+    }
+    DaemonConfig result;
+    result.path = name;
+    config::TableReader reader(root, "", found);
+    config::CameraKeys keys;
+    config::readDaemon(reader, result.daemon);
+    config::readSource(reader, baseDirectory, result.source);
+    config::readSinks(reader, result.sinks);
+    config::readFrames(reader, result.scene.frames);
+    config::readAnnotations(reader, baseDirectory, result.scene.annotations);
+    const bool cameraRead = config::readCamera(reader, baseDirectory, result, keys);
+    reader.finish();
+    auto graph = config::checkFrames(reader, result);
+    if (graph && cameraRead)
+        config::checkCamera(reader, result, *graph, keys);
+    if (!found.empty())
+        return config::summarize(found, problems);
+    return result;
+}
+
+Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigProblem> &problems)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        problems = {ConfigProblem{path, 0, 0, "", std::string("cannot open the config file: ") + std::strerror(errno)}};
+        return makeError(ErrorCode::ConfigError, problems.front().format());
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string base = std::filesystem::path(path).parent_path().string();
+    return loadConfigText(text.str(), path, base.empty() ? "." : base, problems);
+}
+
+} // namespace overlayd

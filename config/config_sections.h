@@ -1,0 +1,40 @@
+// The readers of each section of the config file, shared by the loader. Private to config/.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "config/daemon_config.h"
+#include "config/toml_reader.h"
+
+namespace overlayd::config {
+
+// Where the camera's parts came from, so that errors found when composing the Camera land on the right key.
+struct CameraKeys {
+    std::string intrinsics = "fov"; // the key of the intrinsics form in [camera]
+    bool hasDistortion = false;
+};
+
+// A relative path resolved against the config file's folder.
+std::string resolvePath(const std::string &baseDirectory, const std::string &path);
+
+void readDaemon(TableReader &root, DaemonSettings &out);
+void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
+void readSinks(TableReader &root, std::vector<SinkOptions> &out);
+
+// The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
+bool readPose(TableReader &camera, Pose &out);
+// Intrinsics, near/far, depth range, distortion and calibration of [camera].
+void readIntrinsics(TableReader &camera, const std::string &baseDirectory, CameraSpec &out, CameraKeys &keys);
+void readViewport(TableReader &viewport, ViewportSpec &out);
+
+// A rotation as [w, x, y, z] under `quaternionKey`, or yaw/pitch/roll in degrees (Rz Ry Rx).
+std::optional<glm::dquat> readRotation(TableReader &table, std::string_view quaternionKey);
+
+void readFrames(TableReader &root, std::vector<FrameSpec> &out);
+void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out);
+void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, Shape &out);
+Shape readFrustumShape(TableReader &table, const std::string &baseDirectory);
+std::optional<Style> readStyle(TableReader &style, const Style &base);
+
+} // namespace overlayd::config

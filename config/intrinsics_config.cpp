@@ -1,0 +1,220 @@
+// [camera] intrinsics: field of view, frustum, pinhole (or a calibration file), seed 000 window, orthographic;
+// near/far, depth range and lens distortion.
+#include "config/config_sections.h"
+
+#include <array>
+
+#include "config/calibration.h"
+
+namespace overlayd::config {
+
+namespace {
+
+struct IntrinsicsFormInfo {
+    std::string_view key;
+    IntrinsicsForm form;
+};
+constexpr IntrinsicsFormInfo kIntrinsicsForms[] = {
+    {"fov", IntrinsicsForm::FieldOfView},           {"frustum", IntrinsicsForm::Frustum},
+    {"pinhole", IntrinsicsForm::Pinhole},           {"window", IntrinsicsForm::Window},
+    {"orthographic", IntrinsicsForm::Orthographic},
+};
+
+std::optional<Calibration> readCalibration(TableReader &camera, const std::string &baseDirectory)
+{
+    const auto path = camera.string("calibration");
+    if (!path)
+        return std::nullopt;
+    auto calibration = loadCalibration(resolvePath(baseDirectory, *path));
+    if (!calibration) {
+        camera.problem("calibration", calibration.error().message);
+        return std::nullopt;
+    }
+    return calibration.value();
+}
+
+// The key of the one intrinsics form given, "" for none (the default field of view), nullopt for several.
+std::optional<std::string_view> chooseForm(TableReader &camera, bool calibrated)
+{
+    std::vector<std::string_view> given;
+    for (const IntrinsicsFormInfo &info : kIntrinsicsForms)
+        if (camera.has(info.key))
+            given.push_back(info.key);
+    if (calibrated && (given.empty() || given.front() != "pinhole"))
+        given.insert(given.begin(), "pinhole");
+    if (given.size() > 1) {
+        camera.problem(given[1], "two intrinsics forms given ('" + std::string(given[0]) + "' and '" +
+                                     std::string(given[1]) + "'" + (calibrated ? ", calibration is pinhole" : "") +
+                                     "); give one");
+        return std::nullopt;
+    }
+    return given.empty() ? std::string_view() : given.front();
+}
+
+void readBounds(TableReader &table, FrustumBounds &out, bool required)
+{
+    const std::array<std::pair<std::string_view, double *>, 4> sides{
+        {{"left", &out.left}, {"right", &out.right}, {"bottom", &out.bottom}, {"top", &out.top}}};
+    for (const auto &[key, value] : sides) {
+        if (required && !table.has(key))
+            table.problem(key, "missing: left, right, bottom and top are all required");
+        if (auto v = table.number(key))
+            *value = *v;
+    }
+}
+
+void readPinhole(TableReader &camera, bool calibrated, PinholeIntrinsics &k)
+{
+    auto table = camera.table("pinhole");
+    if (!table)
+        return;
+    const std::array<std::pair<std::string_view, double *>, 4> entries{
+        {{"fx", &k.fx}, {"fy", &k.fy}, {"cx", &k.cx}, {"cy", &k.cy}}};
+    for (const auto &[key, value] : entries) {
+        if (!calibrated && !table->has(key))
+            table->problem(key, "missing: fx, fy, cx and cy are required without a calibration file");
+        if (auto v = key[0] == 'f' ? table->positive(key) : table->number(key))
+            *value = *v;
+    }
+    if (auto skew = table->number("skew"))
+        k.skew = *skew;
+    if (auto width = table->integer("width", 1, 65536))
+        k.width = int(*width);
+    if (auto height = table->integer("height", 1, 65536))
+        k.height = int(*height);
+    table->finish();
+}
+
+void readForm(TableReader &camera, std::string_view key, CameraSpec &out)
+{
+    if (key == "fov") {
+        if (auto fov = camera.positive("fov", 180.0))
+            out.fovDeg = *fov;
+        if (auto axis = camera.choice<FovAxis>("fov_axis",
+                                               {{"vertical", FovAxis::Vertical}, {"horizontal", FovAxis::Horizontal}}))
+            out.fovAxis = *axis;
+    } else if (key == "frustum" || key == "orthographic") {
+        auto table = camera.table(key);
+        if (!table)
+            return;
+        const bool seed000 = key == "orthographic" && (table->has("width") || table->has("height"));
+        if (seed000) {
+            out.form = IntrinsicsForm::Seed000Orthographic;
+            out.orthoSize = {table->positive("width").value_or(2.0), table->positive("height").value_or(2.0)};
+        }
+        readBounds(*table, out.bounds, !seed000);
+        table->finish();
+    } else if (key == "window") {
+        auto table = camera.table("window");
+        if (!table)
+            return;
+        for (std::string_view required : {"focal", "half_width", "half_height"})
+            if (!table->has(required))
+                table->problem(required, "missing: the seed 000 window needs focal, half_width and half_height");
+        out.window.focal = table->positive("focal").value_or(1.0);
+        out.window.centre = table->vec2("centre").value_or(glm::dvec2(0.0));
+        out.window.halfWidth = table->positive("half_width").value_or(1.0);
+        out.window.halfHeight = table->positive("half_height").value_or(1.0);
+        table->finish();
+    }
+}
+
+std::optional<double> readFar(TableReader &camera)
+{
+    const toml::node *n = camera.node("far");
+    if (!n)
+        return std::nullopt;
+    const auto *text = n->as_string();
+    if ((text && text->get() == "inf") || (n->is_floating_point() && *n->value<double>() == kInfiniteFar))
+        return kInfiniteFar;
+    if (text) {
+        camera.problem("far", "expected a distance in metres or \"inf\", got '" + text->get() + "'");
+        return std::nullopt;
+    }
+    return camera.positive("far");
+}
+
+void readDistortion(TableReader &camera, Distortion &out, CameraKeys &keys)
+{
+    auto table = camera.table("distortion");
+    if (!table)
+        return;
+    keys.hasDistortion = true;
+    if (auto model = table->choice<DistortionModel>("model", {{"none", DistortionModel::None},
+                                                              {"plumb_bob", DistortionModel::RadialTangential},
+                                                              {"rational_polynomial", DistortionModel::Rational},
+                                                              {"equidistant", DistortionModel::Fisheye}})) {
+        if (*model != out.model && !table->has("coefficients") && *model != DistortionModel::None)
+            table->problem("coefficients", "missing: a distortion model needs its coefficients");
+        out = Distortion{*model, {}};
+    }
+    if (auto coefficients = table->numbers("coefficients")) {
+        const size_t count = size_t(coefficientCount(out.model));
+        if (coefficients->size() > count || (count == 0 && !coefficients->empty()))
+            table->problem("coefficients", "model takes " + std::to_string(count) + " coefficients, got " +
+                                               std::to_string(coefficients->size()));
+        for (size_t i = 0; i < std::min(count, coefficients->size()); ++i)
+            out.coeffs[i] = (*coefficients)[i];
+        for (size_t i = coefficients->size(); i < out.coeffs.size(); ++i)
+            out.coeffs[i] = 0.0;
+    }
+    table->finish();
+}
+
+} // namespace
+
+void readIntrinsics(TableReader &camera, const std::string &baseDirectory, CameraSpec &out, CameraKeys &keys)
+{
+    const std::optional<Calibration> calibration = readCalibration(camera, baseDirectory);
+    if (calibration) {
+        out.pinhole = calibration->pinhole;
+        out.distortion = calibration->distortion;
+    }
+    const bool calibrated = camera.has("calibration");
+    const auto form = chooseForm(camera, calibrated);
+    if (form && form->empty())
+        readForm(camera, "fov", out); // the default field of view; fov_axis may still be given
+    else
+        camera.node("fov_axis");
+    if (form && !form->empty()) {
+        keys.intrinsics = calibrated && !camera.has("pinhole") ? "calibration" : std::string(*form);
+        for (const IntrinsicsFormInfo &info : kIntrinsicsForms)
+            if (info.key == *form)
+                out.form = info.form;
+        if (*form == "pinhole")
+            readPinhole(camera, calibrated, out.pinhole);
+        else
+            readForm(camera, *form, out);
+    }
+    if (auto near = camera.positive("near"))
+        out.near = *near;
+    if (auto far = readFar(camera))
+        out.far = *far;
+    if (auto depth = camera.choice<DepthRange>("depth_range",
+                                               {{"-1..1", DepthRange::MinusOneToOne}, {"0..1", DepthRange::ZeroToOne}}))
+        out.depth = *depth;
+    readDistortion(camera, out.distortion, keys);
+}
+
+void readViewport(TableReader &viewport, ViewportSpec &out)
+{
+    if (auto origin =
+            viewport.choice<Origin>("origin", {{"top-left", Origin::TopLeft}, {"bottom-left", Origin::BottomLeft}}))
+        out.origin = *origin;
+    if (auto aspect = viewport.positive("pixel_aspect", 100.0))
+        out.pixelAspect = *aspect;
+    for (std::string_view key : {"window", "scissor"}) {
+        const auto rect = viewport.numbers(key);
+        if (!rect)
+            continue;
+        if (rect->size() != 4 || (*rect)[2] <= 0 || (*rect)[3] <= 0 || (*rect)[2] > 65536 || (*rect)[3] > 65536) {
+            viewport.problem(key, "expected [x, y, width, height] in pixels with a positive size");
+            continue;
+        }
+        const PixelRect r{int((*rect)[0]), int((*rect)[1]), int((*rect)[2]), int((*rect)[3])};
+        (key == "window" ? out.window : out.scissor) = r;
+    }
+    viewport.finish();
+}
+
+} // namespace overlayd::config

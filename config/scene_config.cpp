@@ -1,0 +1,116 @@
+// [[frame]] scene-graph frames and [[annotation]] entries with their style.
+#include "config/config_sections.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace overlayd::config {
+
+namespace {
+
+std::optional<glm::dvec3> readScale(TableReader &frame)
+{
+    const toml::node *n = frame.node("scale");
+    if (!n)
+        return glm::dvec3(1.0);
+    std::optional<glm::dvec3> scale;
+    if (n->is_array())
+        scale = frame.vec3("scale");
+    else if (auto uniform = frame.number("scale"))
+        scale = glm::dvec3(*uniform);
+    if (scale && (scale->x == 0.0 || scale->y == 0.0 || scale->z == 0.0)) {
+        frame.problem("scale", "a frame's scale must not be zero on any axis");
+        return std::nullopt;
+    }
+    return scale;
+}
+
+} // namespace
+
+std::optional<glm::dquat> readRotation(TableReader &table, std::string_view quaternionKey)
+{
+    const bool angles = table.has("yaw") || table.has("pitch") || table.has("roll");
+    if (table.has(quaternionKey)) {
+        if (angles)
+            table.problem(quaternionKey, "give the rotation as a quaternion or as yaw/pitch/roll, not both");
+        return table.quaternion(quaternionKey);
+    }
+    const auto yaw = table.number("yaw", -360, 360), pitch = table.number("pitch", -360, 360),
+               roll = table.number("roll", -360, 360);
+    if ((table.has("yaw") && !yaw) || (table.has("pitch") && !pitch) || (table.has("roll") && !roll))
+        return std::nullopt;
+    // The same convention as poses: Rz(yaw) Ry(pitch) Rx(roll), degrees.
+    return glm::angleAxis(glm::radians(yaw.value_or(0.0)), glm::dvec3(0, 0, 1)) *
+           glm::angleAxis(glm::radians(pitch.value_or(0.0)), glm::dvec3(0, 1, 0)) *
+           glm::angleAxis(glm::radians(roll.value_or(0.0)), glm::dvec3(1, 0, 0));
+}
+
+void readFrames(TableReader &root, std::vector<FrameSpec> &out)
+{
+    for (TableReader &frame : root.tables("frame")) {
+        FrameSpec spec;
+        if (auto name = frame.string("name"))
+            spec.name = *name;
+        else if (!frame.has("name"))
+            frame.problem("name", "missing: every frame needs a name");
+        spec.parent = frame.string("parent").value_or(SceneGraph::kWorld);
+        if (auto translation = frame.vec3("translation"))
+            spec.transform.translation = *translation;
+        if (auto rotation = readRotation(frame, "rotation"))
+            spec.transform.rotation = *rotation;
+        if (auto scale = readScale(frame))
+            spec.transform.scale = *scale;
+        frame.finish();
+        out.push_back(std::move(spec));
+    }
+}
+
+std::optional<Style> readStyle(TableReader &style, const Style &base)
+{
+    Style out = base;
+    const size_t before = style.problems().size();
+    if (auto colour = style.colour("colour"))
+        out.colour = *colour;
+    if (auto width = style.positive("width", 1000.0))
+        out.width = *width;
+    if (auto dash = style.numbers("dash")) {
+        double total = 0.0, shortest = 0.0;
+        for (double length : *dash) {
+            total += length;
+            shortest = std::min(shortest, length);
+        }
+        if (!dash->empty() && (shortest < 0.0 || total <= 0.0))
+            style.problem("dash", "dash lengths must be >= 0 pixels and not all zero (use [] for solid)");
+        else
+            out.dash = *dash;
+    }
+    if (auto antialias = style.boolean("antialias"))
+        out.antialias = *antialias;
+    if (auto layer = style.string("layer"))
+        out.layer = *layer;
+    style.finish();
+    return style.problems().size() == before ? std::optional(out) : std::nullopt;
+}
+
+void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out)
+{
+    size_t index = 0;
+    for (TableReader &table : root.tables("annotation")) {
+        Annotation annotation;
+        annotation.name = table.string("name").value_or("annotation " + std::to_string(index++));
+        if (auto frame = table.string("frame"))
+            annotation.frame = *frame;
+        if (auto style = table.table("style"))
+            annotation.style = readStyle(*style, Style{}).value_or(Style{});
+        const auto type = table.string("type");
+        if (type)
+            readShape(table, *type, baseDirectory, annotation.shape);
+        else if (!table.has("type"))
+            table.problem("type", "missing: axes | grid | polyline | markers | box | arc | label | horizon | "
+                                  "guide-lines | frustum | text | crosshair | rect");
+        table.finish();
+        out.push_back(std::move(annotation));
+    }
+}
+
+} // namespace overlayd::config

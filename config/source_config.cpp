@@ -1,0 +1,179 @@
+// [daemon], [source] (with its synthetic, replay and v4l2 sub-tables) and [[sink]].
+#include "config/config_sections.h"
+
+#include <filesystem>
+
+#include "drivers/frame.h"
+#include "drivers/pixel_format.h"
+
+namespace overlayd::config {
+
+namespace {
+
+void readPixelFormat(TableReader &source, std::string &out)
+{
+    const auto name = source.string("format");
+    if (!name)
+        return;
+    if (pixelFormatFromName(*name)) {
+        out = *name;
+        return;
+    }
+    std::vector<std::string> names;
+    std::string list;
+    for (const PixelFormatInfo &info : pixelFormats()) {
+        names.emplace_back(info.name);
+        list += (list.empty() ? "" : ", ") + std::string(info.name);
+    }
+    std::string message = "unknown pixel format '" + *name + "' (supported: " + list + ")";
+    if (const std::string guess = closestMatch(*name, names); !guess.empty())
+        message += "; did you mean '" + guess + "'?";
+    source.problem("format", std::move(message));
+}
+
+void readSynthetic(TableReader &synthetic, SyntheticOptions &out)
+{
+    if (auto pattern = synthetic.choice<SyntheticPattern>(
+            "pattern", {{"colour-bars", SyntheticPattern::ColourBars},
+                        {"checkerboard", SyntheticPattern::Checkerboard},
+                        {"moving-gradient", SyntheticPattern::MovingGradient},
+                        {"noise", SyntheticPattern::Noise},
+                        {"checkerboard-scene", SyntheticPattern::CheckerboardScene}}))
+        out.pattern = *pattern;
+    if (auto seed = synthetic.integer("seed", 0, INT64_MAX))
+        out.seed = uint64_t(*seed);
+    if (auto px = synthetic.integer("checker_px", 1, kMaxFrameDimension))
+        out.checkerPx = unsigned(*px);
+    if (auto metres = synthetic.positive("checker_metres", 1e6))
+        out.checkerMetres = *metres;
+    if (auto stall = synthetic.integer("stall_after_frames", 0, INT64_MAX))
+        out.stallAfterFrames = uint64_t(*stall);
+    synthetic.finish();
+}
+
+void readReplay(TableReader &replay, const std::string &baseDirectory, ReplayOptions &out)
+{
+    if (auto path = replay.string("path"))
+        out.path = resolvePath(baseDirectory, *path);
+    else if (!replay.has("path"))
+        replay.problem("path", "missing: a replay source needs the file to read");
+    if (auto format = replay.choice<ReplayFormat>("format", {{"auto", ReplayFormat::Auto},
+                                                             {"y4m", ReplayFormat::Y4m},
+                                                             {"raw", ReplayFormat::Raw},
+                                                             {"images", ReplayFormat::Images}}))
+        out.format = *format;
+    if (auto loop = replay.boolean("loop"))
+        out.loop = *loop;
+    if (auto first = replay.integer("first_index", 0, 1000000000))
+        out.firstIndex = unsigned(*first);
+    replay.finish();
+}
+
+void readV4l2(TableReader &v4l2, V4l2CaptureOptions &out)
+{
+    if (auto device = v4l2.string("device"))
+        out.device = *device;
+    if (auto buffers = v4l2.integer("buffers", 1, 32))
+        out.bufferCount = unsigned(*buffers);
+    if (auto timeout = v4l2.positive("no_signal_timeout", 3600.0))
+        out.noSignalTimeoutSec = *timeout;
+    v4l2.finish();
+}
+
+void readStream(TableReader &source, SourceOptions &out)
+{
+    readPixelFormat(source, out.pixelFormat);
+    if (auto width = source.integer("width", 1, kMaxFrameDimension))
+        out.width = unsigned(*width);
+    if (auto height = source.integer("height", 1, kMaxFrameDimension))
+        out.height = unsigned(*height);
+    if (auto fps = source.positive("fps", 1000.0))
+        out.fps = *fps;
+    if (auto colorimetry =
+            source.choice<Colorimetry>("colorimetry", {{"bt601-limited", {YcbcrMatrix::Bt601, ColourRange::Limited}},
+                                                       {"bt601-full", {YcbcrMatrix::Bt601, ColourRange::Full}},
+                                                       {"bt709-limited", {YcbcrMatrix::Bt709, ColourRange::Limited}},
+                                                       {"bt709-full", {YcbcrMatrix::Bt709, ColourRange::Full}}}))
+        out.colorimetry = *colorimetry;
+}
+
+} // namespace
+
+std::string resolvePath(const std::string &baseDirectory, const std::string &path)
+{
+    if (path.empty() || path == "-" || baseDirectory.empty() || std::filesystem::path(path).is_absolute())
+        return path;
+    return (std::filesystem::path(baseDirectory) / path).lexically_normal().string();
+}
+
+void readDaemon(TableReader &root, DaemonSettings &out)
+{
+    auto daemon = root.table("daemon");
+    if (!daemon)
+        return;
+    if (auto level = daemon->choice<LogLevel>("log_level", {{"debug", LogLevel::Debug},
+                                                            {"info", LogLevel::Info},
+                                                            {"notice", LogLevel::Notice},
+                                                            {"warning", LogLevel::Warning},
+                                                            {"error", LogLevel::Error}}))
+        out.logLevel = *level;
+    if (auto interval = daemon->number("stats_interval", 0.0, 86400.0))
+        out.statsIntervalSec = *interval;
+    daemon->finish();
+}
+
+void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out)
+{
+    auto source = root.table("source");
+    if (!source)
+        return;
+    if (auto kind = source->choice<SourceKind>(
+            "kind", {{"synthetic", SourceKind::Synthetic}, {"replay", SourceKind::Replay}, {"v4l2", SourceKind::V4l2}}))
+        out.kind = *kind;
+    readStream(*source, out);
+    if (auto synthetic = source->table("synthetic"))
+        readSynthetic(*synthetic, out.synthetic);
+    if (auto replay = source->table("replay"))
+        readReplay(*replay, baseDirectory, out.replay);
+    else if (out.kind == SourceKind::Replay)
+        source->problem("replay", "missing: kind = \"replay\" needs a [source.replay] table with its path");
+    if (auto v4l2 = source->table("v4l2"))
+        readV4l2(*v4l2, out.v4l2);
+    source->finish();
+}
+
+// Output paths stay as written (relative to the daemon's working directory, where a user looks for them); only
+// inputs (replay files, calibrations) resolve against the config file's folder.
+void readSinks(TableReader &root, std::vector<SinkOptions> &out)
+{
+    for (TableReader &sink : root.tables("sink")) {
+        SinkOptions options;
+        if (auto kind = sink.choice<SinkKind>("kind", {{"y4m", SinkKind::Y4m},
+                                                       {"raw", SinkKind::Raw},
+                                                       {"snapshot", SinkKind::Snapshot},
+                                                       {"null", SinkKind::Null},
+                                                       {"v4l2", SinkKind::V4l2Output}}))
+            options.kind = *kind;
+        else if (!sink.has("kind"))
+            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2");
+        if (auto path = sink.string("path"))
+            options.path = *path;
+        else if (!sink.has("path") && options.kind != SinkKind::Null && sink.has("kind"))
+            sink.problem("path", "missing: this sink writes to a path");
+        if (auto every = sink.integer("every", 1, 1000000))
+            options.every = unsigned(*every);
+        if (auto quality = sink.integer("jpeg_quality", 1, 100))
+            options.jpegQuality = unsigned(*quality);
+        if (auto depth = sink.integer("queue_depth", 1, 64))
+            options.queueDepth = unsigned(*depth);
+        if (auto drop = sink.choice<DropPolicy>(
+                "drop", {{"oldest", DropPolicy::DropOldest}, {"newest", DropPolicy::DropNewest}}))
+            options.dropPolicy = *drop;
+        if (auto buffers = sink.integer("buffers", 1, 32))
+            options.bufferCount = unsigned(*buffers);
+        sink.finish();
+        out.push_back(std::move(options));
+    }
+}
+
+} // namespace overlayd::config

@@ -1,0 +1,80 @@
+// The command line, declared once with CLI11; its exceptions stay inside this file.
+#include "daemon/cli.h"
+
+#include <CLI/CLI.hpp>
+
+#include "daemon/logger.h"
+
+namespace overlayd {
+
+namespace {
+
+constexpr const char *kVersion = "overlayd 0.1.0";
+
+// `overlayd --config F` and `overlayd F`-less invocations mean `run`: insert it unless a subcommand or a
+// help/version flag is already there.
+std::vector<std::string> withDefaultSubcommand(int argc, const char *const *argv)
+{
+    std::vector<std::string> args(argv + 1, argv + argc);
+    for (const std::string &arg : args) {
+        if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" || arg == "--help" ||
+            arg == "-h" || arg == "--version")
+            return args;
+    }
+    args.insert(args.begin(), "run");
+    return args;
+}
+
+} // namespace
+
+CommandLine parseCommandLine(int argc, const char *const *argv)
+{
+    CommandLine line;
+    std::string logLevel;
+    CLI::App app{"overlayd: projects 3D annotations onto camera frames and writes the overlaid stream", "overlayd"};
+    app.set_version_flag("--version", kVersion);
+    app.require_subcommand(1);
+    app.fallthrough(); // before add_subcommand: subcommands copy it, so --log-level works after them too
+    app.add_option("--log-level", logLevel, "debug | info | notice | warning | error (overrides daemon.log_level)")
+        ->check(CLI::IsMember({"debug", "info", "notice", "warning", "error"}));
+
+    CLI::App *run = app.add_subcommand("run", "run the pipeline until SIGTERM/SIGINT; SIGHUP reloads (default)");
+    run->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
+    run->add_option("--frames", line.frames, "stop cleanly after N source frames (default: never)");
+
+    CLI::App *check = app.add_subcommand("check-config", "validate a config file and print every problem");
+    check->add_option("file", line.configPath, "the TOML config file")->required();
+
+    CLI::App *project = app.add_subcommand("project", "print where world points land in the configured camera");
+    project->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
+    project->add_flag("--json", line.json, "one JSON array, one object per point");
+    project->add_option("coordinates", line.coordinates, "X Y Z [X Y Z ...] in metres (use -- before negatives)")
+        ->required();
+
+    CLI::App *render = app.add_subcommand("render", "run N frames unpaced into a file (.y4m, .yuv/.raw, %04d.png)");
+    render->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
+    render->add_option("--frames", line.frames, "how many frames")->required()->check(CLI::PositiveNumber);
+    render->add_option("--output,-o", line.output, "output path; the extension picks the format")->required();
+
+    const std::vector<std::string> args = withDefaultSubcommand(argc, argv);
+    std::vector<std::string> reversed(args.rbegin(), args.rend()); // CLI11 parses a vector back to front
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError &error) {
+        line.command = Command::Exit;
+        line.exitStatus = app.exit(error);
+        return line;
+    }
+    if (!logLevel.empty()) {
+        LogLevel level{};
+        parseLogLevel(logLevel, level);
+        line.logLevel = level;
+    }
+    line.command = check->parsed()     ? Command::CheckConfig
+                   : project->parsed() ? Command::Project
+                   : render->parsed()  ? Command::Render
+                                       : Command::Run;
+    return line;
+}
+
+} // namespace overlayd

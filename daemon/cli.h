@@ -1,0 +1,29 @@
+// The command line of `overlayd`: subcommands run (the default), check-config, project and render.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/daemon_config.h"
+
+namespace overlayd {
+
+enum class Command { Run, CheckConfig, Project, Render, Exit };
+
+struct CommandLine {
+    Command command = Command::Run;
+    int exitStatus = 0; // Command::Exit: --help, --version or a usage error (message already printed)
+    std::string configPath;
+    std::optional<LogLevel> logLevel;
+    uint64_t frames = 0;             // run: stop after N frames (0: never); render: how many
+    std::string output;              // render
+    bool json = false;               // project
+    std::vector<double> coordinates; // project: X Y Z ...
+};
+
+// Parses argv with CLI11; prints help, version and usage errors itself. Never throws.
+CommandLine parseCommandLine(int argc, const char *const *argv);
+
+} // namespace overlayd

@@ -1,0 +1,40 @@
+// The subcommands of `overlayd`, each returning the process exit status, and the helpers tests check directly.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "config/daemon_config.h"
+#include "daemon/daemon.h"
+#include "daemon/logger.h"
+#include "projection/camera.h"
+
+namespace overlayd {
+
+// Exit statuses (CLI11 uses its own codes, 100 and up, for command-line errors).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;     // a runtime failure: source, sink, I/O
+inline constexpr int kExitConfigError = 2; // the config file does not validate
+
+int checkConfigCommand(const std::string &path);
+int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger);
+int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output, Logger &logger);
+int runCommand(const DaemonOptions &options, Logger &logger);
+
+// Loads a config, logging every problem as "file:line:column: key: message".
+Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger);
+
+// `render --output PATH`: .y4m -> Y4M, .yuv/.raw -> raw frames, a %d pattern or .png/.jpg -> image snapshots.
+Result<SinkOptions> sinkForOutput(const std::string &path);
+
+// `project --json`: [{"world":[x,y,z],"pixel":[u,v] or null,"depth":d or null,"visible":bool}, ...]; numbers are
+// printed in their shortest exact (round-trip) form.
+std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points);
+// The same for people, one line per point.
+std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points);
+
+} // namespace overlayd

@@ -1,0 +1,92 @@
+// The daemon's event loop: epoll over owned file descriptors, with timerfd and signalfd wrappers.
+#pragma once
+
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <utility>
+
+#include "projection/result.h"
+
+namespace overlayd {
+
+// Owns one file descriptor; closes it on destruction. Move-only.
+class ScopedFd
+{
+public:
+    ScopedFd() = default;
+    explicit ScopedFd(int fd) : fd_(fd) {}
+    ScopedFd(ScopedFd &&other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+    ScopedFd &operator=(ScopedFd &&other) noexcept;
+    ScopedFd(const ScopedFd &) = delete;
+    ScopedFd &operator=(const ScopedFd &) = delete;
+    ~ScopedFd();
+
+    int get() const { return fd_; }
+    bool valid() const { return fd_ >= 0; }
+    [[nodiscard]] int release() { return std::exchange(fd_, -1); }
+
+private:
+    int fd_ = -1;
+};
+
+// A CLOCK_MONOTONIC timerfd. Not armed until arm() is called.
+class Timer
+{
+public:
+    static Result<Timer> create();
+
+    // First expiry after `first`, then every `period` (zero: one-shot).
+    Status arm(std::chrono::nanoseconds first, std::chrono::nanoseconds period = {});
+    void disarm();
+    // Reads and returns the number of expirations since the last read (0 if none: spurious wake-up).
+    uint64_t consume();
+    int fd() const { return fd_.get(); }
+
+private:
+    explicit Timer(ScopedFd fd) : fd_(std::move(fd)) {}
+    ScopedFd fd_;
+};
+
+// SIGTERM, SIGINT and SIGHUP through a signalfd: they are blocked for the whole process (before any thread starts)
+// and read in the loop, so nothing runs in signal context.
+class SignalReader
+{
+public:
+    static Result<SignalReader> create();
+    // The next pending signal number, or 0 when none is pending.
+    int read();
+    int fd() const { return fd_.get(); }
+
+private:
+    explicit SignalReader(ScopedFd fd) : fd_(std::move(fd)) {}
+    ScopedFd fd_;
+};
+
+class EventLoop
+{
+public:
+    using Handler = std::function<void()>;
+
+    static Result<EventLoop> create();
+
+    // Calls handler whenever fd is readable. The fd stays owned by the caller and must be removed before closing.
+    Status add(int fd, Handler handler);
+    void remove(int fd);
+    // Waits for events up to timeout (negative: forever) and runs their handlers.
+    Status runOnce(int timeoutMs = -1);
+    // Runs until stop() is called from a handler.
+    Status run();
+    void stop() { stopped_ = true; }
+    bool stopped() const { return stopped_; }
+
+private:
+    explicit EventLoop(ScopedFd epoll) : epoll_(std::move(epoll)) {}
+    ScopedFd epoll_;
+    std::map<int, Handler> handlers_;
+    bool stopped_ = false;
+};
+
+} // namespace overlayd

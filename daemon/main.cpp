@@ -1,0 +1,35 @@
+// overlayd: the camera-overlay daemon and its tools. Exceptions are start-up failures only, caught here once.
+#include <cstdio>
+#include <exception>
+
+#include "daemon/cli.h"
+#include "daemon/commands.h"
+#include "daemon/logger.h"
+
+int main(int argc, char **argv)
+{
+    using namespace overlayd;
+    try {
+        const CommandLine line = parseCommandLine(argc, argv);
+        if (line.command == Command::Exit)
+            return line.exitStatus;
+        Logger logger = Logger::forStderr();
+        if (line.logLevel)
+            logger.setLevel(*line.logLevel);
+        switch (line.command) {
+        case Command::CheckConfig:
+            return checkConfigCommand(line.configPath);
+        case Command::Project:
+            return projectCommand(line.configPath, line.json, line.coordinates, logger);
+        case Command::Render:
+            return renderCommand(line.configPath, line.frames, line.output, logger);
+        case Command::Run:
+        case Command::Exit:
+            break;
+        }
+        return runCommand(DaemonOptions{line.configPath, line.logLevel, line.frames}, logger);
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "overlayd: fatal: %s\n", error.what());
+        return kExitFailure;
+    }
+}

@@ -1,0 +1,116 @@
+// Pipeline: the per-frame path and its statistics.
+#include "daemon/pipeline.h"
+
+#include <cstdio>
+
+namespace overlayd {
+
+namespace {
+
+double millis(std::chrono::nanoseconds total, uint64_t count)
+{
+    return count ? std::chrono::duration<double, std::milli>(total).count() / double(count) : 0.0;
+}
+
+std::string fixed(double value, int decimals)
+{
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+    return text;
+}
+
+SinkCounters operator-(const SinkCounters &a, const SinkCounters &b)
+{
+    return {a.written - b.written, a.dropped - b.dropped, a.failed - b.failed, a.writeTime - b.writeTime};
+}
+
+} // namespace
+
+std::string PipelineStats::describe() const
+{
+    const double seconds = std::chrono::duration<double>(period).count();
+    const auto rate = [seconds](uint64_t frames) {
+        return seconds > 0 ? double(frames) / seconds : 0.0;
+    };
+    std::string text = cat("in ", fixed(rate(framesIn), 1), " fps, blend ", fixed(millis(blendTime, framesIn), 2),
+                           " ms, queue ", fixed(millis(pushTime, framesIn), 2), " ms");
+    for (const Sink &sink : sinks)
+        text += cat("; ", sink.name, ": out ", fixed(rate(sink.counters.written), 1), " fps, ", sink.counters.dropped,
+                    " dropped, ", sink.counters.failed, " failed, write ",
+                    fixed(millis(sink.counters.writeTime, sink.counters.written + sink.counters.failed), 2), " ms");
+    return text;
+}
+
+void Pipeline::setSinks(std::vector<std::unique_ptr<SinkWorker>> sinks)
+{
+    closeSinks();
+    for (const auto &sink : sinks_)
+        retiredDrops_ += sink->counters().dropped;
+    sinks_ = std::move(sinks);
+    lastCounters_.assign(sinks_.size(), SinkCounters{});
+}
+
+Status Pipeline::openSinks(const StreamFormat &format)
+{
+    format_ = format;
+    Status result = Ok{};
+    for (auto &sink : sinks_) {
+        if (auto opened = sink->open(format); !opened) {
+            logger_.error(cat(sink->describe(), ": cannot open for ", format.describe(), ": ", opened.error().message));
+            if (result)
+                result = opened;
+        }
+    }
+    return result;
+}
+
+void Pipeline::closeSinks()
+{
+    for (auto &sink : sinks_)
+        if (auto closed = sink->close(); !closed)
+            logger_.error(cat(sink->describe(), ": ", closed.error().message));
+}
+
+void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
+{
+    const auto start = std::chrono::steady_clock::now();
+    if (renderer_) {
+        if (auto blended = renderer_->blend(frame, metadata, format_.fps); !blended)
+            logger_.error(cat("overlay: ", blended.error().message));
+    }
+    const auto blended = std::chrono::steady_clock::now();
+    pushToSinks(frame, metadata);
+    blendTime_ += blended - start;
+    pushTime_ += std::chrono::steady_clock::now() - blended;
+    ++framesIn_;
+    ++framesInTotal_;
+}
+
+void Pipeline::pushToSinks(const FrameView &frame, const FrameMetadata &metadata)
+{
+    for (auto &sink : sinks_)
+        sink->push(frame, metadata);
+}
+
+PipelineStats Pipeline::takeStats()
+{
+    const auto now = std::chrono::steady_clock::now();
+    PipelineStats stats;
+    stats.period = now - lastStats_;
+    stats.framesIn = framesIn_;
+    stats.blendTime = blendTime_;
+    stats.pushTime = pushTime_;
+    stats.totalDrops = retiredDrops_;
+    for (size_t i = 0; i < sinks_.size(); ++i) {
+        const SinkCounters counters = sinks_[i]->counters();
+        stats.sinks.push_back({sinks_[i]->describe(), counters - lastCounters_[i]});
+        stats.totalDrops += counters.dropped;
+        lastCounters_[i] = counters;
+    }
+    lastStats_ = now;
+    framesIn_ = 0;
+    blendTime_ = pushTime_ = {};
+    return stats;
+}
+
+} // namespace overlayd

@@ -1,0 +1,127 @@
+// SinkWorker: the queue, the drop policy and the worker thread.
+#include "daemon/sink_worker.h"
+
+#include <algorithm>
+
+namespace overlayd {
+
+SinkWorker::SinkWorker(std::unique_ptr<FrameSink> sink, const SinkOptions &options, Logger &logger, bool lossless)
+    : sink_(std::move(sink)), options_(options), logger_(logger), lossless_(lossless)
+{}
+
+SinkWorker::~SinkWorker()
+{
+    if (auto status = close(); !status)
+        logger_.error(cat(describe(), ": ", status.error().message));
+}
+
+Status SinkWorker::open(const StreamFormat &format)
+{
+    if (auto closed = close(); !closed)
+        return closed;
+    std::vector<Slot> slots;
+    const unsigned count = std::max(1u, options_.queueDepth) + 1;
+    for (unsigned i = 0; i < count; ++i) {
+        auto buffer = FrameBuffer::allocate(format);
+        if (!buffer)
+            return buffer.error();
+        slots.push_back(Slot{std::move(*buffer), {}});
+    }
+    if (auto opened = sink_->open(format); !opened)
+        return opened;
+    slots_ = std::move(slots);
+    queued_.clear();
+    free_.clear();
+    for (size_t i = 0; i < slots_.size(); ++i)
+        free_.push_back(i);
+    stopping_ = false;
+    thread_ = std::thread(&SinkWorker::threadMain, this);
+    return Ok{};
+}
+
+std::optional<size_t> SinkWorker::takeFreeSlot(std::unique_lock<std::mutex> &lock)
+{
+    if (lossless_)
+        slotFree_.wait(lock, [this] { return !free_.empty(); });
+    if (!free_.empty()) {
+        const size_t slot = free_.back();
+        free_.pop_back();
+        return slot;
+    }
+    // Every slot is queued or being written: the policy decides which frame is lost.
+    ++counters_.dropped;
+    if (options_.dropPolicy == DropPolicy::DropNewest || queued_.empty())
+        return std::nullopt;
+    const size_t oldest = queued_.front();
+    queued_.pop_front();
+    return oldest;
+}
+
+void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
+{
+    if (!isOpen())
+        return;
+    std::unique_lock lock(mutex_);
+    const std::optional<size_t> slot = takeFreeSlot(lock);
+    if (!slot)
+        return;
+    // The copy runs unlocked: the worker never touches a slot that is neither queued nor being written.
+    lock.unlock();
+    Slot &target = slots_[*slot];
+    const Status copied = target.buffer.copyFrom(frame);
+    target.metadata = metadata;
+    lock.lock();
+    if (!copied) {
+        free_.push_back(*slot);
+        ++counters_.failed;
+        lock.unlock();
+        logger_.error(cat(describe(), ": ", copied.error().message));
+        return;
+    }
+    queued_.push_back(*slot);
+    wake_.notify_one();
+}
+
+void SinkWorker::threadMain()
+{
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        wake_.wait(lock, [this] { return stopping_ || !queued_.empty(); });
+        if (queued_.empty())
+            return; // stopping, and everything queued was written
+        const size_t slot = queued_.front();
+        queued_.pop_front();
+        lock.unlock();
+        const auto start = std::chrono::steady_clock::now();
+        const Status written = sink_->write(slots_[slot].buffer.view(), slots_[slot].metadata);
+        const auto elapsed = std::chrono::steady_clock::now() - start;
+        if (!written)
+            logger_.error(cat(describe(), ": ", written.error().message));
+        lock.lock();
+        counters_.writeTime += elapsed;
+        ++(written ? counters_.written : counters_.failed);
+        free_.push_back(slot);
+        slotFree_.notify_one();
+    }
+}
+
+Status SinkWorker::close()
+{
+    if (!thread_.joinable())
+        return Ok{};
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+    return sink_->close();
+}
+
+SinkCounters SinkWorker::counters() const
+{
+    std::lock_guard lock(mutex_);
+    return counters_;
+}
+
+} // namespace overlayd

@@ -1,0 +1,34 @@
+// StageFactories: how the daemon builds its source, sinks and overlay from a config. The real ones call the
+// drivers' and overlay's factories; tests substitute fakes.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "config/daemon_config.h"
+#include "drivers/frame_sink.h"
+#include "drivers/frame_source.h"
+#include "overlay/overlay_renderer.h"
+
+namespace overlayd {
+
+struct StageFactories {
+    std::function<Result<std::unique_ptr<FrameSource>>(const DaemonConfig &)> source;
+    std::function<Result<std::unique_ptr<FrameSink>>(const SinkOptions &)> sink;
+    // May return a null renderer: nothing to draw.
+    std::function<Result<std::unique_ptr<OverlayRenderer>>(const DaemonConfig &, const StreamFormat &)> renderer;
+};
+
+// makeSource (with the synthetic scene's camera built for the configured size), makeSink, and
+// CameraSpec::build + OverlayRenderer::create for the negotiated stream.
+StageFactories defaultStageFactories();
+
+// Whether a reload must re-open the source / the sinks: only when what they were built from changed.
+bool sameSourceOptions(const SourceOptions &a, const SourceOptions &b);
+bool sameSinkOptions(const std::vector<SinkOptions> &a, const std::vector<SinkOptions> &b);
+// Whether the source draws through [camera] (the synthetic checkerboard scene) and that camera changed, so that a
+// reload must re-open the source although its own options are the same.
+bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b);
+
+} // namespace overlayd

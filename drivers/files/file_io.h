@@ -1,0 +1,30 @@
+// Owned stdio files and the whole-or-nothing reads and writes the replay sources and file sinks need.
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "projection/result.h"
+
+namespace overlayd {
+
+struct FileCloser {
+    void operator()(std::FILE *file) const { std::fclose(file); }
+};
+using UniqueFile = std::unique_ptr<std::FILE, FileCloser>;
+
+// NotFound when the file does not exist, Io for any other failure (errno's text in the message).
+Result<UniqueFile> openForReading(const std::string &path);
+// Creates missing parent folders; append keeps what the file holds.
+Result<UniqueFile> openForWriting(const std::string &path, bool append);
+
+// How many of `size` bytes were read before end of file (a short count is a truncated file, not an error);
+// Io when the read itself fails.
+Result<size_t> readUpTo(std::FILE *file, void *data, size_t size, const std::string &path);
+Status writeAll(std::FILE *file, const void *data, size_t size, const std::string &path);
+
+// Writes a whole file under a temporary name and renames it over `path`, so a viewer never sees half an image.
+Status replaceFile(const std::string &path, const void *data, size_t size);
+
+} // namespace overlayd

@@ -1,0 +1,89 @@
+// The raw sink (rows packed, planes in the table's order: the layout raw replay reads) and the null sink.
+#include "drivers/files/file_sinks.h"
+
+#include "drivers/files/file_io.h"
+
+namespace overlayd {
+
+namespace {
+
+class RawSink : public FrameSink
+{
+public:
+    explicit RawSink(const SinkOptions &options) : path_(options.path) {}
+
+    Status open(const StreamFormat &) override
+    {
+        // The first open truncates; a re-open (format change) keeps appending to the same file.
+        auto file = openForWriting(path_, opened_);
+        if (!file)
+            return file.error();
+        file_ = std::move(*file);
+        opened_ = true;
+        return Ok{};
+    }
+
+    Status write(const FrameView &frame, const FrameMetadata &) override
+    {
+        if (!file_)
+            return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
+        if (auto checked = checkFrame(frame); !checked)
+            return checked;
+        const PixelFormatInfo &format = *frame.format;
+        for (unsigned p = 0; p < format.numPlanes; ++p) {
+            const size_t rowBytes = format.minStride(p, frame.width);
+            for (unsigned y = 0; y < format.planeHeight(p, frame.height); ++y) {
+                const uint8_t *row = frame.planes[p].data + size_t(y) * frame.planes[p].stride;
+                if (auto status = writeAll(file_.get(), row, rowBytes, path_); !status)
+                    return status;
+            }
+        }
+        return Ok{};
+    }
+
+    Status close() override
+    {
+        if (file_ && std::fclose(file_.release()) != 0)
+            return makeError(ErrorCode::Io, path_ + ": write failed on close");
+        return Ok{};
+    }
+
+    std::string describe() const override { return "raw " + path_; }
+
+private:
+    std::string path_;
+    UniqueFile file_;
+    bool opened_ = false;
+};
+
+class NullSink : public FrameSink
+{
+public:
+    Status open(const StreamFormat &) override { return Ok{}; }
+    Status write(const FrameView &, const FrameMetadata &) override
+    {
+        ++frames_;
+        return Ok{};
+    }
+    Status close() override { return Ok{}; }
+    std::string describe() const override { return "null (" + std::to_string(frames_) + " frames)"; }
+
+private:
+    uint64_t frames_ = 0;
+};
+
+} // namespace
+
+Result<std::unique_ptr<FrameSink>> makeRawSink(const SinkOptions &options)
+{
+    if (options.path.empty())
+        return makeError(ErrorCode::InvalidArgument, "the raw sink needs a path");
+    return std::unique_ptr<FrameSink>(std::make_unique<RawSink>(options));
+}
+
+Result<std::unique_ptr<FrameSink>> makeNullSink(const SinkOptions &)
+{
+    return std::unique_ptr<FrameSink>(std::make_unique<NullSink>());
+}
+
+} // namespace overlayd

@@ -1,0 +1,105 @@
+// Image-sequence replay: PNG/JPEG files decoded by OpenCV and converted to the configured pixel format. The first
+// image sets the frame size; the sequence ends at the first missing number.
+#include "drivers/files/replay_base.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "drivers/convert/frame_convert.h"
+#include "drivers/files/path_pattern.h"
+
+namespace overlayd {
+
+namespace {
+
+class ImageSource : public ReplaySource
+{
+public:
+    using ReplaySource::ReplaySource;
+
+protected:
+    Result<StreamFormat> open() override;
+    void close() override {}
+    Status read(uint64_t index, FrameBuffer &buffer) override;
+    Status rewind() override { return Ok{}; }
+    const char *kind() const override { return "image"; }
+
+private:
+    // RGB pixels of one file; EndOfStream when it does not exist.
+    Result<RgbImage> decode(uint64_t index) const;
+    std::string pathOf(uint64_t index) const;
+};
+
+std::string ImageSource::pathOf(uint64_t index) const
+{
+    auto path = formatIndex(options_.replay.path, options_.replay.firstIndex + index);
+    return path ? *path : options_.replay.path; // checked by the factory
+}
+
+Result<RgbImage> ImageSource::decode(uint64_t index) const
+{
+    const std::string path = pathOf(index);
+    // Without %d the "sequence" is one image.
+    std::error_code error;
+    if ((index > 0 && !hasIndexPattern(options_.replay.path)) || !std::filesystem::exists(path, error))
+        return makeError(ErrorCode::EndOfStream, path + ": no such image (end of the sequence)");
+    cv::Mat bgr;
+    try {
+        bgr = cv::imread(path, cv::IMREAD_COLOR);
+    } catch (const cv::Exception &exception) {
+        return malformed(index, path + " does not decode: " + exception.what());
+    }
+    if (bgr.empty() || bgr.type() != CV_8UC3)
+        return malformed(index, path + " does not decode as a PNG/JPEG image");
+    RgbImage image = RgbImage::allocate(unsigned(bgr.cols), unsigned(bgr.rows));
+    for (unsigned y = 0; y < image.height; ++y) {
+        const uint8_t *src = bgr.ptr<uint8_t>(int(y));
+        uint8_t *dst = image.row(y);
+        for (unsigned x = 0; x < image.width; ++x, src += 3, dst += 3)
+            dst[0] = src[2], dst[1] = src[1], dst[2] = src[0];
+    }
+    return image;
+}
+
+Result<StreamFormat> ImageSource::open()
+{
+    auto first = decode(0);
+    if (!first && first.error().code == ErrorCode::EndOfStream)
+        return makeError(ErrorCode::NotFound, pathOf(0) + ": the image sequence's first file does not exist");
+    if (!first)
+        return first.error();
+    if (first->width > kMaxFrameDimension || first->height > kMaxFrameDimension)
+        return malformed(0, "image too large");
+    return StreamFormat{pixelFormatFromName(options_.pixelFormat),    first->width, first->height, 0,
+                        options_.colorimetry.value_or(Colorimetry{}), options_.fps};
+}
+
+Status ImageSource::read(uint64_t index, FrameBuffer &buffer)
+{
+    auto image = decode(index);
+    if (!image)
+        return image.error();
+    if (image->width != format_.width || image->height != format_.height)
+        return malformed(index, pathOf(index) + " is " + std::to_string(image->width) + "x" +
+                                    std::to_string(image->height) + ", the sequence is " +
+                                    std::to_string(format_.width) + "x" + std::to_string(format_.height));
+    return rgbToFrame(*image, format_.colorimetry, buffer.view());
+}
+
+} // namespace
+
+Result<std::unique_ptr<FrameSource>> makeImageSource(const SourceOptions &options)
+{
+    if (!pixelFormatFromName(options.pixelFormat))
+        return makeError(ErrorCode::InvalidArgument, "unknown pixel format '" + options.pixelFormat + "'");
+    if (!(options.fps > 0.0 && std::isfinite(options.fps)))
+        return makeError(ErrorCode::InvalidArgument,
+                         "image replay needs fps > 0 (got " + std::to_string(options.fps) + ")");
+    if (auto path = formatIndex(options.replay.path, 0); !path)
+        return path.error();
+    return std::unique_ptr<FrameSource>(std::make_unique<ImageSource>(options));
+}
+
+} // namespace overlayd

@@ -1,0 +1,95 @@
+// Snapshot sink: one PNG or JPEG (by extension) per `every` frames, numbered by the frame's sequence number when
+// the path holds %d, else the same file replaced atomically each time.
+#include "drivers/files/file_sinks.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "drivers/convert/frame_convert.h"
+#include "drivers/files/file_io.h"
+#include "drivers/files/path_pattern.h"
+
+namespace overlayd {
+
+namespace {
+
+class SnapshotSink : public FrameSink
+{
+public:
+    SnapshotSink(const SinkOptions &options, std::string extension)
+        : options_(options), extension_(std::move(extension))
+    {}
+
+    Status open(const StreamFormat &) override { return Ok{}; }
+    Status write(const FrameView &frame, const FrameMetadata &metadata) override;
+    Status close() override { return Ok{}; }
+    std::string describe() const override
+    {
+        return "snapshot " + options_.path + " every " + std::to_string(options_.every) + " frames";
+    }
+
+private:
+    Result<std::vector<uint8_t>> encode(const FrameView &frame, Colorimetry colorimetry) const;
+
+    SinkOptions options_;
+    std::string extension_;
+    uint64_t received_ = 0;
+};
+
+Result<std::vector<uint8_t>> SnapshotSink::encode(const FrameView &frame, Colorimetry colorimetry) const
+{
+    auto rgb = frameToRgb(frame, colorimetry);
+    if (!rgb)
+        return rgb.error();
+    std::vector<uint8_t> bytes;
+    try {
+        const cv::Mat image(int(rgb->height), int(rgb->width), CV_8UC3, rgb->rgb.data());
+        cv::Mat bgr;
+        cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
+        std::vector<int> parameters;
+        if (extension_ != ".png")
+            parameters = {cv::IMWRITE_JPEG_QUALITY, int(options_.jpegQuality)};
+        if (!cv::imencode(extension_, bgr, bytes, parameters))
+            return makeError(ErrorCode::Io, options_.path + ": image encoding failed");
+    } catch (const cv::Exception &error) {
+        return makeError(ErrorCode::Io, options_.path + ": image encoding failed: " + error.what());
+    }
+    return bytes;
+}
+
+Status SnapshotSink::write(const FrameView &frame, const FrameMetadata &metadata)
+{
+    if (received_++ % options_.every != 0)
+        return Ok{};
+    auto path = formatIndex(options_.path, metadata.sequence);
+    if (!path)
+        return path.error();
+    auto bytes = encode(frame, metadata.colorimetry);
+    if (!bytes)
+        return bytes.error();
+    return replaceFile(*path, bytes->data(), bytes->size());
+}
+
+} // namespace
+
+Result<std::unique_ptr<FrameSink>> makeSnapshotSink(const SinkOptions &options)
+{
+    const std::string extension = lowerExtension(options.path);
+    if (extension != ".png" && extension != ".jpg" && extension != ".jpeg")
+        return makeError(ErrorCode::InvalidArgument,
+                         "snapshot path '" + options.path + "' must end in .png, .jpg or .jpeg");
+    if (options.every == 0)
+        return makeError(ErrorCode::InvalidArgument, "snapshot every must be >= 1");
+    if (options.jpegQuality < 1 || options.jpegQuality > 100)
+        return makeError(ErrorCode::InvalidArgument,
+                         "jpeg_quality must be in 1..100 (got " + std::to_string(options.jpegQuality) + ")");
+    if (auto path = formatIndex(options.path, 0); !path)
+        return path.error();
+    return std::unique_ptr<FrameSink>(std::make_unique<SnapshotSink>(options, extension));
+}
+
+} // namespace overlayd

@@ -1,0 +1,109 @@
+// Y4M sink: planar 8-bit Y'CbCr after a FRAME line; formats that are not planar are unpacked (NV12 -> I420
+// planes, YUYV -> 4:2:2 planes) and RGB is encoded at 4:4:4, so that every format writes a file ffmpeg reads.
+#include "drivers/files/file_sinks.h"
+
+#include "drivers/convert/frame_convert.h"
+#include "drivers/files/file_io.h"
+#include "drivers/files/y4m_header.h"
+
+namespace overlayd {
+
+namespace {
+
+constexpr std::string_view kFrameLine = "FRAME\n";
+
+class Y4mSink : public FrameSink
+{
+public:
+    explicit Y4mSink(const SinkOptions &options) : path_(options.path) {}
+
+    Status open(const StreamFormat &format) override;
+    Status write(const FrameView &frame, const FrameMetadata &metadata) override;
+    Status close() override;
+    std::string describe() const override { return "Y4M " + (toStdout() ? std::string("stdout") : path_); }
+
+private:
+    bool toStdout() const { return path_ == "-"; }
+    std::FILE *file() const { return toStdout() ? stdout : file_.get(); }
+
+    std::string path_;
+    UniqueFile file_;
+    bool open_ = false;
+    std::string header_; // the header written, if any: a re-open with the same stream appends
+    Colorimetry colorimetry_{};
+};
+
+Status Y4mSink::open(const StreamFormat &format)
+{
+    if (!format.format)
+        return makeError(ErrorCode::InvalidArgument, "Y4M sink needs a pixel format");
+    Y4mHeader header{
+        format.width, format.height, 30, 1, Y4mChroma::C420, y4mChromaTagFor(*format.format), format.colorimetry.range};
+    fpsToRatio(format.fps, header.fpsNum, header.fpsDen);
+    const std::string line = formatY4mHeader(header);
+    const bool append = line == header_;
+    if (toStdout() && !header_.empty() && !append)
+        return makeError(ErrorCode::Unsupported, "a Y4M stream on stdout cannot change format (" +
+                                                     header_.substr(0, header_.size() - 1) + " -> " +
+                                                     format.describe() + ")");
+    if (!toStdout()) {
+        auto file = openForWriting(path_, append);
+        if (!file)
+            return file.error();
+        file_ = std::move(*file);
+    }
+    colorimetry_ = format.colorimetry;
+    open_ = true;
+    if (append)
+        return Ok{};
+    header_ = line;
+    return writeAll(file(), line.data(), line.size(), path_);
+}
+
+Status Y4mSink::write(const FrameView &frame, const FrameMetadata &)
+{
+    if (!open_)
+        return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
+    auto samples = frameToYcbcr(frame, colorimetry_);
+    if (!samples)
+        return samples.error();
+    if (auto status = writeAll(file(), kFrameLine.data(), kFrameLine.size(), path_); !status)
+        return status;
+    for (const std::vector<uint8_t> *plane : {&samples->y, &samples->cb, &samples->cr}) {
+        if (auto status = writeAll(file(), plane->data(), plane->size(), path_); !status)
+            return status;
+    }
+    return Ok{};
+}
+
+Status Y4mSink::close()
+{
+    if (!open_)
+        return Ok{};
+    open_ = false;
+    if (toStdout())
+        return std::fflush(stdout) == 0 ? Status(Ok{}) : makeError(ErrorCode::Io, "stdout: flush failed");
+    if (std::fclose(file_.release()) != 0)
+        return makeError(ErrorCode::Io, path_ + ": write failed on close");
+    return Ok{};
+}
+
+} // namespace
+
+const char *y4mChromaTagFor(const PixelFormatInfo &format)
+{
+    if (format.encoding == ColourEncoding::Rgb)
+        return "444";
+    if (format.cbOffset == kNoComponent)
+        return "mono";
+    return format.vSubSampling == 2 ? "420jpeg" : "422";
+}
+
+Result<std::unique_ptr<FrameSink>> makeY4mSink(const SinkOptions &options)
+{
+    if (options.path.empty())
+        return makeError(ErrorCode::InvalidArgument, "the Y4M sink needs a path (or \"-\" for stdout)");
+    return std::unique_ptr<FrameSink>(std::make_unique<Y4mSink>(options));
+}
+
+} // namespace overlayd

@@ -1,0 +1,151 @@
+// Ray tracing of the checker ground. Unprojecting through a distorting lens is iterative and costs over a
+// microsecond. So 4x4 blocks are tried first from their four corners; in blocks that hold an edge, each pixel's
+// corners are traced, and pixels whose corners fall in different squares are supersampled from the corners (or
+// traced sample by sample where the horizon crosses them).
+#include "drivers/synthetic/checker_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "drivers/synthetic/scene_tracer.h"
+
+namespace overlayd {
+
+namespace {
+
+using scene::colourOf;
+using scene::Hit;
+using scene::SceneTracer;
+using scene::Square;
+
+constexpr unsigned kBlock = 4; // pixels per side of the blocks tried as one colour first
+
+// The corners of one pixel: top-left, top-right, bottom-left, bottom-right.
+struct PixelCorners {
+    const Hit &tl, &tr, &bl, &br;
+
+    bool allGround() const { return tl.ground && tr.ground && bl.ground && br.ground; }
+    // Inside a pixel whose corners all see the ground, the pixel -> ground map is smooth (a homography bent
+    // slightly by the lens), so bilinear interpolation of the corners' hits places the sub-samples to far below
+    // a pixel; pixels touching the horizon are traced sample by sample instead.
+    Hit interpolate(double fx, double fy) const
+    {
+        const glm::dvec2 top = tl.point + fx * (tr.point - tl.point), bottom = bl.point + fx * (br.point - bl.point);
+        return {true, top + fy * (bottom - top)};
+    }
+};
+
+void supersample(const SceneTracer &tracer, const PixelCorners &corners, unsigned x, unsigned y, uint8_t *px)
+{
+    constexpr unsigned n = kSceneSupersampling;
+    const bool interpolate = corners.allGround();
+    unsigned sum[3] = {0, 0, 0};
+    for (unsigned j = 0; j < n; ++j) {
+        for (unsigned i = 0; i < n; ++i) {
+            const double fx = (i + 0.5) / n, fy = (j + 0.5) / n;
+            const Hit hit = interpolate ? corners.interpolate(fx, fy) : tracer.trace(x + fx - 0.5, y + fy - 0.5);
+            const uint8_t *c = colourOf(tracer.square(hit));
+            sum[0] += c[0], sum[1] += c[1], sum[2] += c[2];
+        }
+    }
+    for (unsigned k = 0; k < 3; ++k)
+        px[k] = uint8_t((sum[k] + n * n / 2) / (n * n));
+}
+
+// Corner hits of a band of kBlock pixel rows, traced on demand: rows [y0, y0 + kBlock] of corners, x in [0, width].
+class CornerBand
+{
+public:
+    CornerBand(const SceneTracer &tracer, unsigned width) : tracer_(tracer)
+    {
+        for (auto &row : hits_)
+            row.resize(width + 1);
+        for (auto &row : known_)
+            row.assign(width + 1, false);
+    }
+
+    // Moves to the band starting at corner row y0; the previous band's last row becomes this band's first.
+    void advance(unsigned y0)
+    {
+        std::swap(hits_[0], hits_[kBlock]);
+        std::swap(known_[0], known_[kBlock]);
+        for (unsigned r = 1; r <= kBlock; ++r)
+            std::fill(known_[r].begin(), known_[r].end(), false);
+        y0_ = y0;
+    }
+
+    const Hit &at(unsigned x, unsigned y)
+    {
+        const unsigned r = y - y0_;
+        if (!known_[r][x]) {
+            hits_[r][x] = tracer_.trace(x - 0.5, y - 0.5);
+            known_[r][x] = true;
+        }
+        return hits_[r][x];
+    }
+
+private:
+    const SceneTracer &tracer_;
+    unsigned y0_ = 0;
+    std::array<std::vector<Hit>, kBlock + 1> hits_;
+    std::array<std::vector<bool>, kBlock + 1> known_;
+};
+
+void fill(RgbImage &image, unsigned x0, unsigned x1, unsigned y0, unsigned y1, const uint8_t *colour)
+{
+    for (unsigned y = y0; y < y1; ++y) {
+        uint8_t *px = image.row(y) + 3 * x0;
+        for (unsigned x = x0; x < x1; ++x, px += 3)
+            px[0] = colour[0], px[1] = colour[1], px[2] = colour[2];
+    }
+}
+
+void renderPixel(const SceneTracer &tracer, CornerBand &band, unsigned x, unsigned y, uint8_t *px)
+{
+    const PixelCorners corners{band.at(x, y), band.at(x + 1, y), band.at(x, y + 1), band.at(x + 1, y + 1)};
+    const Square square = tracer.square(corners.tl);
+    if (square == tracer.square(corners.tr) && square == tracer.square(corners.bl) &&
+        square == tracer.square(corners.br)) {
+        const uint8_t *c = colourOf(square);
+        px[0] = c[0], px[1] = c[1], px[2] = c[2];
+    } else {
+        supersample(tracer, corners, x, y, px);
+    }
+}
+
+// A block whose four corners see the same square is that square throughout: a square is convex and the block's
+// footprint on the ground is (to far below a pixel, even through a lens) the quadrilateral of its corners.
+void renderBlock(const SceneTracer &tracer, CornerBand &band, RgbImage &image, unsigned x0, unsigned x1, unsigned y0,
+                 unsigned y1)
+{
+    const Square square = tracer.square(band.at(x0, y0));
+    if (square == tracer.square(band.at(x1, y0)) && square == tracer.square(band.at(x0, y1)) &&
+        square == tracer.square(band.at(x1, y1))) {
+        fill(image, x0, x1, y0, y1, colourOf(square));
+        return;
+    }
+    for (unsigned y = y0; y < y1; ++y) {
+        for (unsigned x = x0; x < x1; ++x)
+            renderPixel(tracer, band, x, y, image.row(y) + 3 * x);
+    }
+}
+
+} // namespace
+
+RgbImage renderCheckerScene(const Camera &camera, unsigned width, unsigned height, double squareMetres)
+{
+    const SceneTracer tracer(camera, squareMetres);
+    RgbImage image = RgbImage::allocate(width, height);
+    CornerBand band(tracer, width);
+    for (unsigned y0 = 0; y0 < height; y0 += kBlock) {
+        band.advance(y0);
+        const unsigned y1 = std::min(y0 + kBlock, height);
+        for (unsigned x0 = 0; x0 < width; x0 += kBlock)
+            renderBlock(tracer, band, image, x0, std::min(x0 + kBlock, width), y0, y1);
+    }
+    return image;
+}
+
+} // namespace overlayd

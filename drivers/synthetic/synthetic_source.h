@@ -1,0 +1,14 @@
+// The synthetic source: deterministic patterns in any format and size, and the checkerboard-ground scene.
+#pragma once
+
+#include <memory>
+
+#include "drivers/source_options.h"
+#include "projection/result.h"
+
+namespace overlayd {
+
+// Validates the options (size, fps, format, the scene's camera) before anything is allocated.
+Result<std::unique_ptr<FrameSource>> makeSyntheticSource(const SourceOptions &options);
+
+} // namespace overlayd

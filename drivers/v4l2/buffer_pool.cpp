@@ -1,0 +1,135 @@
+// BufferPool: REQBUFS/QUERYBUF/mmap at creation, QBUF/DQBUF while streaming.
+#include "drivers/v4l2/buffer_pool.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <string>
+
+#include "drivers/v4l2/frame_split.h"
+
+namespace overlayd::v4l2 {
+
+namespace {
+
+// Fills the plane array the multi-planar API needs; the single-planar API ignores it.
+void prepare(v4l2_buffer &buffer, std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes, uint32_t type, unsigned index)
+{
+    buffer = {};
+    planes = {};
+    buffer.type = type;
+    buffer.memory = V4L2_MEMORY_MMAP;
+    buffer.index = index;
+    if (isMultiPlanar(type)) {
+        buffer.m.planes = planes.data();
+        buffer.length = VIDEO_MAX_PLANES;
+    }
+}
+
+} // namespace
+
+Result<std::unique_ptr<BufferPool>> BufferPool::create(const VideoDevice &device, unsigned count,
+                                                       const DeviceFormat &format, const PixelFormatInfo *info)
+{
+    v4l2_requestbuffers request{};
+    request.count = count;
+    request.type = device.bufferType();
+    request.memory = V4L2_MEMORY_MMAP;
+    if (const int r = device.ioctl(VIDIOC_REQBUFS, &request); r < 0)
+        return ioctlError(device.describe() + ": VIDIOC_REQBUFS " + std::to_string(count) + " MMAP buffers", r);
+    std::unique_ptr<BufferPool> pool(new BufferPool(device));
+    pool->buffers_.resize(request.count);
+    if (request.count < 2)
+        return makeError(ErrorCode::Io, device.describe() + " granted " + std::to_string(request.count) +
+                                            " buffers; streaming needs at least 2");
+    for (unsigned i = 0; i < request.count; ++i) {
+        if (auto mapped = pool->mapBuffer(i, format, info); !mapped)
+            return mapped.error();
+    }
+    return pool;
+}
+
+Status BufferPool::mapBuffer(unsigned index, const DeviceFormat &format, const PixelFormatInfo *info)
+{
+    v4l2_buffer buffer;
+    std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
+    prepare(buffer, planes, device_.bufferType(), index);
+    if (const int r = device_.ioctl(VIDIOC_QUERYBUF, &buffer); r < 0)
+        return ioctlError(device_.describe() + ": VIDIOC_QUERYBUF " + std::to_string(index), r);
+    const bool mplane = isMultiPlanar(device_.bufferType());
+    const unsigned count = mplane ? std::min<unsigned>(buffer.length, 3) : 1;
+    std::vector<PlaneMemory> memory;
+    for (unsigned p = 0; p < count; ++p) {
+        const size_t length = mplane ? planes[p].length : buffer.length;
+        const uint32_t offset = mplane ? planes[p].m.mem_offset : buffer.m.offset;
+        auto mapped = MappedBuffer::map(device_.syscalls(), device_.fd(), length, offset);
+        if (!mapped)
+            return mapped.error();
+        memory.push_back({mapped->data(), mapped->length()});
+        buffers_[index].planes.push_back(std::move(mapped.value()));
+    }
+    if (!info)
+        return Ok{};
+    auto view = splitFrame(*info, format, memory);
+    if (!view)
+        return view.error();
+    buffers_[index].view = *view;
+    return Ok{};
+}
+
+BufferPool::~BufferPool()
+{
+    buffers_.clear();
+    v4l2_requestbuffers request{};
+    request.type = device_.bufferType();
+    request.memory = V4L2_MEMORY_MMAP;
+    (void)device_.ioctl(VIDIOC_REQBUFS, &request); // nothing to do if the device is already gone
+}
+
+PlaneMemory BufferPool::memory(unsigned index, unsigned plane) const
+{
+    const MappedBuffer &mapped = buffers_[index].planes[plane];
+    return {mapped.data(), mapped.length()};
+}
+
+Status BufferPool::queue(unsigned index, const std::array<uint32_t, 3> &bytesUsed)
+{
+    v4l2_buffer buffer;
+    std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
+    prepare(buffer, planes, device_.bufferType(), index);
+    if (isMultiPlanar(device_.bufferType())) {
+        buffer.length = unsigned(buffers_[index].planes.size());
+        for (unsigned p = 0; p < buffer.length; ++p)
+            planes[p].bytesused = bytesUsed[p];
+    } else {
+        buffer.bytesused = bytesUsed[0];
+    }
+    if (const int r = device_.ioctl(VIDIOC_QBUF, &buffer); r < 0)
+        return ioctlError(device_.describe() + ": VIDIOC_QBUF " + std::to_string(index), r);
+    ++queued_;
+    return Ok{};
+}
+
+int BufferPool::dequeue(Dequeued &out)
+{
+    v4l2_buffer buffer;
+    std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
+    prepare(buffer, planes, device_.bufferType(), 0);
+    if (const int r = device_.ioctl(VIDIOC_DQBUF, &buffer); r < 0)
+        return r;
+    if (buffer.index >= buffers_.size())
+        return -EINVAL;
+    --queued_;
+    out = {buffer.index,
+           buffer.sequence,
+           buffer.flags,
+           std::chrono::seconds(buffer.timestamp.tv_sec) + std::chrono::microseconds(buffer.timestamp.tv_usec),
+           {}};
+    const bool mplane = isMultiPlanar(device_.bufferType());
+    for (unsigned p = 0; p < (mplane ? std::min<unsigned>(buffer.length, 3) : 1); ++p) {
+        out.bytesUsed[p] = mplane ? planes[p].bytesused : buffer.bytesused;
+        out.dataOffset[p] = mplane ? planes[p].data_offset : 0;
+    }
+    return 0;
+}
+
+} // namespace overlayd::v4l2

@@ -1,0 +1,16 @@
+// The decoded format of an MJPEG stream.
+#include "drivers/v4l2/mjpeg_decoder.h"
+
+#include <linux/videodev2.h>
+
+namespace overlayd::v4l2 {
+
+const PixelFormatInfo &mjpegOutputFormat(const PixelFormatInfo *requested)
+{
+    // YUYV keeps 4:2:2 cameras' chroma; everything else gets the smaller I420.
+    if (requested && requested->fourcc == V4L2_PIX_FMT_YUYV)
+        return *requested;
+    return *pixelFormatFromFourcc(V4L2_PIX_FMT_YUV420);
+}
+
+} // namespace overlayd::v4l2

@@ -1,0 +1,174 @@
+// SceneRenderer: renders world layers on scene/camera/format changes and token text on text changes; the frame
+// path is the blend of what is cached.
+#include "overlay/scene_renderer.h"
+
+#include <algorithm>
+
+#include "overlay/shape_builder.h"
+#include "overlay/text_tokens.h"
+
+namespace overlayd {
+
+SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera,
+                             const StreamFormat &format)
+    : scene_(scene), graph_(std::move(graph)), camera_(camera), format_(format), colorimetry_(format.colorimetry),
+      rasterizer_(text_)
+{
+    for (size_t i = 0; i < scene_.annotations.size(); ++i) {
+        const Annotation &annotation = scene_.annotations[i];
+        const size_t layer = layerIndex(annotation.style.layer);
+        const auto *text = std::get_if<ScreenTextShape>(&annotation.shape);
+        if (text && hasTokens(text->text))
+            texts_.push_back(TextSlot{i, layer, {}, {}, false, std::nullopt});
+        else
+            layers_[layer].annotations.push_back(i);
+    }
+}
+
+size_t SceneRenderer::layerIndex(const std::string &name)
+{
+    for (size_t i = 0; i < layers_.size(); ++i) {
+        if (layers_[i].name == name)
+            return i;
+    }
+    layers_.push_back(Layer{name, true, OverlayLayer(format_.width, format_.height), std::nullopt, {}});
+    return layers_.size() - 1;
+}
+
+LayerRect SceneRenderer::scissor() const
+{
+    const PixelRect r = camera_.viewport().scissorTopLeft();
+    return {r.x, r.y, r.x + r.width, r.y + r.height};
+}
+
+Status SceneRenderer::renderWorld()
+{
+    for (Layer &layer : layers_) {
+        layer.pixels.clearCovered();
+        for (size_t index : layer.annotations) {
+            const Annotation &annotation = scene_.annotations[index];
+            const Result<glm::dmat4> worldFromFrame =
+                isScreenText(annotation) ? Result<glm::dmat4>(glm::dmat4(1.0)) : graph_.worldMatrix(annotation.frame);
+            const glm::dmat4 matrix = worldFromFrame ? *worldFromFrame : glm::dmat4(1.0); // screen items: no frame
+            drawList_.clear();
+            buildPrimitives(annotation, matrix, camera_, drawList_);
+            rasterizer_.draw(drawList_, layer.pixels, {0, 0}, scissor());
+        }
+        layer.pixels.updateSpans();
+    }
+    for (TextSlot &slot : texts_)
+        slot.rendered = false; // the viewport may have moved them
+    return convertAll();
+}
+
+Status SceneRenderer::convertAll()
+{
+    for (Layer &layer : layers_) {
+        if (layer.native) {
+            if (Status status = layer.native->update(layer.pixels, colorimetry_); !status)
+                return status;
+            continue;
+        }
+        auto native = NativeLayer::convert(layer.pixels, *format_.format, colorimetry_);
+        if (!native)
+            return native.error();
+        layer.native = std::move(*native);
+    }
+    return Ok{};
+}
+
+// The text's box, widened to whole macropixels, becomes a layer of its own placed on the frame.
+Status SceneRenderer::renderText(TextSlot &slot)
+{
+    Annotation annotation = scene_.annotations[slot.annotation];
+    std::get<ScreenTextShape>(annotation.shape).text = slot.scratch;
+    drawList_.clear();
+    buildPrimitives(annotation, glm::dmat4(1.0), camera_, drawList_);
+    slot.shown = slot.scratch;
+    slot.rendered = true;
+    slot.native.reset();
+    if (drawList_.texts.empty())
+        return Ok{};
+    const LayerRect box = rasterizer_.textBox(drawList_.texts.front()).intersect(scissor());
+    const int h = format_.format->hSubSampling, v = format_.format->vSubSampling;
+    const int width = int(format_.width), height = int(format_.height);
+    const int x0 = std::max(box.x0, 0) / h * h, y0 = std::max(box.y0, 0) / v * v;
+    const int x1 = std::min((std::min(box.x1, width) + h - 1) / h * h, width);
+    const int y1 = std::min((std::min(box.y1, height) + v - 1) / v * v, height);
+    if (x0 >= x1 || y0 >= y1)
+        return Ok{};
+    OverlayLayer pixels(unsigned(x1 - x0), unsigned(y1 - y0));
+    rasterizer_.draw(drawList_, pixels, {x0, y0}, scissor());
+    pixels.updateSpans();
+    auto native = NativeLayer::convert(pixels, *format_.format, colorimetry_,
+                                       {unsigned(x0), unsigned(y0), format_.width, format_.height});
+    if (!native)
+        return native.error();
+    slot.native = std::move(*native);
+    return Ok{};
+}
+
+Status SceneRenderer::setCamera(const Camera &camera)
+{
+    if (camera.viewport().frameWidth() != int(format_.width) || camera.viewport().frameHeight() != int(format_.height))
+        return makeError(ErrorCode::InvalidArgument, "the camera's viewport is not the stream's " +
+                                                         std::to_string(format_.width) + "x" +
+                                                         std::to_string(format_.height));
+    camera_ = camera;
+    return renderWorld();
+}
+
+Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
+{
+    for (Layer &layer : layers_) {
+        if (layer.name == name) {
+            layer.enabled = enabled;
+            return Ok{};
+        }
+    }
+    return makeError(ErrorCode::InvalidArgument, "no overlay layer named \"" + std::string(name) + "\"");
+}
+
+std::vector<std::string> SceneRenderer::layerNames() const
+{
+    std::vector<std::string> names;
+    for (const Layer &layer : layers_)
+        names.push_back(layer.name);
+    return names;
+}
+
+const OverlayLayer *SceneRenderer::layerPixels(std::string_view name) const
+{
+    for (const Layer &layer : layers_) {
+        if (layer.name == name)
+            return &layer.pixels;
+    }
+    return nullptr;
+}
+
+Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
+{
+    for (const Layer &layer : layers_) {
+        if (!layer.enabled || !layer.native)
+            continue;
+        if (Status status = layer.native->blend(frame); !status)
+            return status;
+    }
+    for (TextSlot &slot : texts_) {
+        if (!layers_[slot.layer].enabled)
+            continue;
+        expandTokens(std::get<ScreenTextShape>(scene_.annotations[slot.annotation].shape).text, metadata, fps,
+                     slot.scratch);
+        if (!slot.rendered || slot.scratch != slot.shown) {
+            if (Status status = renderText(slot); !status)
+                return status;
+        }
+        if (slot.native) {
+            if (Status status = slot.native->blend(frame); !status)
+                return status;
+        }
+    }
+    return Ok{};
+}
+
+} // namespace overlayd

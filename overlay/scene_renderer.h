@@ -1,0 +1,68 @@
+// SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One full-frame OverlayLayer per named layer
+// (so switching a layer off costs nothing and re-projects nothing), plus one small layer per screen text with
+// tokens, re-rendered only when its expanded string changes.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "overlay/native_layer.h"
+#include "overlay/overlay_renderer.h"
+#include "overlay/rasterizer.h"
+#include "overlay/text_renderer.h"
+
+namespace overlayd {
+
+class SceneRenderer final : public OverlayRenderer
+{
+public:
+    SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera, const StreamFormat &format);
+
+    Status setCamera(const Camera &camera) override;
+    Status setLayerEnabled(std::string_view layer, bool enabled) override;
+    std::vector<std::string> layerNames() const override;
+    Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) override;
+
+    // Re-projects and re-rasterizes every world layer (called by create and setCamera).
+    Status renderWorld();
+    // The RGBA layer of a named layer, for tests and previews; nullptr for an unknown name.
+    const OverlayLayer *layerPixels(std::string_view name) const;
+
+private:
+    struct Layer {
+        std::string name;
+        bool enabled = true;
+        OverlayLayer pixels;
+        std::optional<NativeLayer> native;
+        std::vector<size_t> annotations; // indices into scene_.annotations, in drawing order
+    };
+    struct TextSlot {
+        size_t annotation = 0;
+        size_t layer = 0;
+        std::string shown, scratch; // the expanded text on the layer, and the next frame's
+        bool rendered = false;
+        std::optional<NativeLayer> native;
+    };
+
+    Status renderText(TextSlot &slot);
+    Status convertAll();
+    size_t layerIndex(const std::string &name);
+    LayerRect scissor() const;
+
+    OverlayScene scene_;
+    SceneGraph graph_;
+    Camera camera_;
+    StreamFormat format_;
+    // From the stream format, not from each frame's metadata (sources that do not fill it in would flip the
+    // conversion back and forth); a renegotiated stream gets a new renderer.
+    Colorimetry colorimetry_;
+    TextRenderer text_;
+    Rasterizer rasterizer_;
+    std::vector<Layer> layers_;
+    std::vector<TextSlot> texts_;
+    DrawList drawList_; // scratch
+};
+
+} // namespace overlayd

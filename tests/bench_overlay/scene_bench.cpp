@@ -1,0 +1,267 @@
+// The overlay's Speed section: a ground grid of 40 lines 2 px wide, an axes triad 3 px wide and 3 text labels seen by
+// a pitched-down camera, at 1280x720 and 1920x1080 in YUYV and NV12:
+//   static       per-frame blend of the unchanged overlay;
+//   dynamic      the pose changes every frame: re-project, re-rasterize, convert, blend;
+//   opencv_naive native -> BGR (cvtColor), cv::line LINE_AA + cv::putText, BGR -> native (what most users write);
+//   memcpy       one frame copy over a ring of frames larger than the caches (cold), the floor.
+// Ratios are printed at the end from the same run; targets: static/memcpy <= 0.5, opencv_naive/static >= 25,
+// dynamic/memcpy <= 2.
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "overlay/overlay_renderer.h"
+
+namespace overlayd {
+namespace {
+
+constexpr size_t kRingBytes = size_t(96) << 20;
+
+Camera benchCamera(unsigned width, unsigned height, double yawDeg)
+{
+    const PinholeIntrinsics k{0.8 * width, 0.8 * width, (width - 1) / 2.0, (height - 1) / 2.0,
+                              0.0,         int(width),  int(height)};
+    const auto projection = Projection::pinhole(k, 0.1, 200.0, DepthRange::MinusOneToOne);
+    const auto pose = poseFromYawPitchRoll({-6.0, 0.0, 2.5}, yawDeg, 22.0, 0.0);
+    const auto viewport = Viewport::create(ViewportSpec{int(width), int(height)});
+    return *Camera::create(*pose, *projection, Distortion{}, *viewport);
+}
+
+Annotation item(const std::string &name, Shape shape, Rgba colour, double width)
+{
+    Annotation a{name, SceneGraph::kWorld, Style{}, std::move(shape)};
+    a.style.colour = colour;
+    a.style.width = width;
+    return a;
+}
+
+// 20 + 20 grid lines 0.5 m apart, axes 1.5 m, three labels.
+OverlayScene benchScene()
+{
+    OverlayScene scene;
+    GridShape grid;
+    grid.spacing = 0.5;
+    grid.extentU = grid.extentV = 4.75;
+    grid.origin = {0.25, 0.25, 0.0}; // 20 lines per direction, none through the origin
+    scene.annotations.push_back(item("grid", grid, Rgba{230, 230, 230, 255}, 2.0));
+    scene.annotations.push_back(item("axes", AxesShape{1.5}, kWhite, 3.0));
+    const char *labels[] = {"origin", "corner A", "corner B"};
+    const glm::dvec3 anchors[] = {{0, 0, 0}, {4.75, 4.75, 0}, {4.75, -4.75, 0}};
+    for (int i = 0; i < 3; ++i)
+        scene.annotations.push_back(item(labels[i], LabelShape{anchors[i], labels[i], {4, 4}, 20.0}, kWhite, 2.0));
+    return scene;
+}
+
+struct Ring {
+    FrameLayout layout;
+    std::vector<uint8_t> bytes;
+    size_t count;
+
+    Ring(const PixelFormatInfo &format, unsigned width, unsigned height)
+        : layout(*makeFrameLayout(format, width, height)), count(kRingBytes / layout.totalSize + 1)
+    {
+        bytes.assign(layout.totalSize * count, 0x80);
+    }
+    uint8_t *frame(size_t i) { return bytes.data() + (i % count) * layout.totalSize; }
+};
+
+StreamFormat streamFormat(const char *name, unsigned width, unsigned height)
+{
+    StreamFormat format;
+    format.format = pixelFormatFromName(name);
+    format.width = width;
+    format.height = height;
+    return format;
+}
+
+void staticBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    auto renderer =
+        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
+    if (!renderer) {
+        state.SkipWithError(renderer.error().message.c_str());
+        return;
+    }
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    size_t i = 0;
+    for (auto _ : state)
+        benchmark::DoNotOptimize((*renderer)->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
+}
+
+void dynamicBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    auto renderer =
+        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
+    if (!renderer) {
+        state.SkipWithError(renderer.error().message.c_str());
+        return;
+    }
+    std::vector<Camera> cameras; // made beforehand: the camera's own set-up is not the overlay's cost
+    for (int k = 0; k < 64; ++k)
+        cameras.push_back(benchCamera(width, height, 0.1 * (k % 16) - 0.8));
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize((*renderer)->setCamera(cameras[i % cameras.size()]).ok());
+        benchmark::DoNotOptimize((*renderer)->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
+    }
+}
+
+// What users write: projectPoints on the grid's end points (no near-plane clipping), cv::line and cv::putText on a
+// BGR copy, and the conversion back (OpenCV has no BGR -> YUYV/NV12, so chroma is repacked by hand from 4:4:4/I420).
+void toNative(const cv::Mat &bgr, const char *formatName, uint8_t *out, cv::Mat &scratch)
+{
+    const int w = bgr.cols, h = bgr.rows;
+    if (std::strcmp(formatName, "NV12") == 0) {
+        cv::cvtColor(bgr, scratch, cv::COLOR_BGR2YUV_I420);
+        std::memcpy(out, scratch.data, size_t(w) * h);
+        const uint8_t *u = scratch.data + size_t(w) * h, *v = u + size_t(w) * h / 4;
+        uint8_t *uv = out + size_t(w) * h;
+        for (size_t k = 0; k < size_t(w) * h / 4; ++k)
+            uv[2 * k] = u[k], uv[2 * k + 1] = v[k];
+        return;
+    }
+    cv::cvtColor(bgr, scratch, cv::COLOR_BGR2YUV);
+    for (int y = 0; y < h; ++y) {
+        const uint8_t *s = scratch.ptr(y);
+        uint8_t *d = out + size_t(y) * w * 2;
+        for (int x = 0; x < w; x += 2, s += 6, d += 4)
+            d[0] = s[0], d[1] = uint8_t((s[1] + s[4] + 1) / 2), d[2] = s[3], d[3] = uint8_t((s[2] + s[5] + 1) / 2);
+    }
+}
+
+void opencvNaiveBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    const Camera camera = benchCamera(width, height, 0.0);
+    const cv::Matx33d K(0.8 * width, 0, (width - 1) / 2.0, 0, 0.8 * width, (height - 1) / 2.0, 0, 0, 1);
+    // The same camera's extrinsics in OpenCV's optical frame.
+    const glm::dmat4 view = camera.view();
+    cv::Matx33d R;
+    cv::Vec3d t;
+    for (int r = 0; r < 3; ++r) {
+        const double sign = r == 0 ? 1.0 : -1.0;
+        for (int c = 0; c < 3; ++c)
+            R(r, c) = sign * view[c][r];
+        t[r] = sign * view[3][r];
+    }
+    cv::Vec3d rvec;
+    cv::Rodrigues(R, rvec);
+    std::vector<cv::Point3d> ends;
+    for (int k = 0; k < 20; ++k) {
+        const double c = -4.75 + 0.5 * k;
+        ends.insert(ends.end(), {{c, -4.75, 0}, {c, 4.75, 0}, {-4.75, c, 0}, {4.75, c, 0}});
+    }
+    ends.insert(ends.end(), {{0, 0, 0}, {1.5, 0, 0}, {0, 1.5, 0}, {0, 0, 1.5}, {4.75, 4.75, 0}, {4.75, -4.75, 0}});
+    const bool nv12 = std::strcmp(formatName, "NV12") == 0;
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    cv::Mat bgr, scratch;
+    std::vector<cv::Point2d> px;
+    size_t i = 0;
+    for (auto _ : state) {
+        uint8_t *frame = ring.frame(i++);
+        const cv::Mat native(int(nv12 ? height * 3 / 2 : height), int(nv12 ? width : width), nv12 ? CV_8UC1 : CV_8UC2,
+                             frame);
+        cv::cvtColor(native, bgr, nv12 ? cv::COLOR_YUV2BGR_NV12 : cv::COLOR_YUV2BGR_YUYV);
+        cv::projectPoints(ends, rvec, t, K, cv::noArray(), px);
+        for (int k = 0; k < 80; k += 2)
+            cv::line(bgr, px[k], px[k + 1], cv::Scalar(230, 230, 230), 2, cv::LINE_AA);
+        const cv::Scalar axisColours[] = {{0, 0, 255}, {0, 255, 0}, {255, 0, 0}};
+        for (int a = 0; a < 3; ++a)
+            cv::line(bgr, px[80], px[81 + a], axisColours[a], 3, cv::LINE_AA);
+        const char *labels[] = {"origin", "corner A", "corner B"};
+        const int anchor[] = {80, 84, 85};
+        for (int l = 0; l < 3; ++l)
+            cv::putText(bgr, labels[l], px[anchor[l]] + cv::Point2d(4, 20), cv::FONT_HERSHEY_SIMPLEX, 0.7,
+                        cv::Scalar::all(255), 2, cv::LINE_AA);
+        toNative(bgr, formatName, frame, scratch);
+        benchmark::ClobberMemory();
+    }
+}
+
+void memcpyBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    size_t i = 0;
+    for (auto _ : state) {
+        std::memcpy(ring.frame(i + ring.count / 2), ring.frame(i), ring.layout.totalSize);
+        benchmark::ClobberMemory();
+        ++i;
+    }
+}
+
+// Prints the ratios once every run is in: only same-run ratios mean much on a shared machine. CPU time, not wall
+// time: on a loaded machine wall time counts the time other processes held the core (all four cases are single
+// threaded and memory- or compute-bound, so on an idle machine the two agree).
+class RatioReporter : public benchmark::ConsoleReporter
+{
+public:
+    void ReportRuns(const std::vector<Run> &runs) override
+    {
+        for (const Run &run : runs) {
+            const std::string name = run.benchmark_name();
+            const bool aggregate = run.run_type == Run::RT_Aggregate;
+            if (!aggregate || run.aggregate_name == "median")
+                seconds_[name.substr(0, name.find('_', name.find('/')))] = run.GetAdjustedCPUTime();
+        }
+        ConsoleReporter::ReportRuns(runs);
+    }
+    void Finalize() override
+    {
+        ConsoleReporter::Finalize();
+        std::printf("\n%-22s %14s %18s %15s\n", "case", "static/memcpy", "naive/static", "dynamic/memcpy");
+        for (const auto &[name, time] : seconds_) {
+            if (name.rfind("memcpy/", 0) != 0)
+                continue;
+            const std::string which = name.substr(7);
+            const double copy = time, fixed = get("static/" + which), naive = get("opencv_naive/" + which),
+                         dynamic = get("dynamic/" + which);
+            std::printf("%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2)\n", which.c_str(), fixed / copy, naive / fixed,
+                        dynamic / copy);
+        }
+    }
+
+private:
+    double get(const std::string &name) const
+    {
+        const auto it = seconds_.find(name);
+        return it == seconds_.end() ? 0.0 : it->second;
+    }
+    std::map<std::string, double> seconds_;
+};
+
+} // namespace
+} // namespace overlayd
+
+int main(int argc, char **argv)
+{
+    using namespace overlayd;
+    struct Case {
+        const char *format;
+        unsigned width, height;
+    };
+    for (const Case &c :
+         {Case{"YUYV", 1280, 720}, Case{"NV12", 1280, 720}, Case{"YUYV", 1920, 1080}, Case{"NV12", 1920, 1080}}) {
+        const std::string name = std::string(c.format) + "/" + std::to_string(c.width) + "x" + std::to_string(c.height);
+        benchmark::RegisterBenchmark(("memcpy/" + name).c_str(), memcpyBench, c.format, c.width, c.height)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("static/" + name).c_str(), staticBench, c.format, c.width, c.height)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("dynamic/" + name).c_str(), dynamicBench, c.format, c.width, c.height)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("opencv_naive/" + name).c_str(), opencvNaiveBench, c.format, c.width, c.height)
+            ->Unit(benchmark::kMillisecond);
+    }
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv))
+        return 1;
+    RatioReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::Shutdown();
+    return 0;
+}

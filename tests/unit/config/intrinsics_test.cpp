@@ -1,0 +1,172 @@
+// Every intrinsics form, near/far, depth range, distortion and viewport of [camera]/[viewport], against pixels
+// computed by hand from the forms' definitions or by cv::projectPoints / cv::fisheye::projectPoints.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "config_test_util.h"
+
+namespace overlayd::test {
+namespace {
+
+// The camera's optical frame is the world's (x right, y down, z forward), so hand computations use X/Z, Y/Z.
+const std::string kHeader = "[source]\nwidth = 1280\nheight = 720\n";
+const std::string kIdentityPose = "[camera]\nrvec = [0, 0, 0]\ntvec = [0, 0, 0]\n";
+
+Camera buildCamera(const std::string &toml)
+{
+    const DaemonConfig config = loadValid(toml);
+    auto camera = config.camera.build(1280, 720);
+    EXPECT_TRUE(camera.ok()) << (camera ? "" : camera.error().message);
+    return camera.value();
+}
+
+void expectPixel(const Camera &camera, const glm::dvec3 &world, double u, double v, double tolerance = 1e-9)
+{
+    const ProjectedPoint p = camera.project(world);
+    ASSERT_NE(p.status, PointStatus::Clipped);
+    EXPECT_NEAR(p.pixel.x, u, tolerance);
+    EXPECT_NEAR(p.pixel.y, v, tolerance);
+}
+
+TEST(Intrinsics, VerticalFieldOfView)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose + "fov = 60\nfov_axis = \"vertical\"\n");
+    const double f = 360.0 / std::tan(M_PI / 6); // half the height over tan(half the vertical fov)
+    expectPixel(camera, {1, -0.5, 4}, 639.5 + f * 0.25, 359.5 - f * 0.125);
+}
+
+TEST(Intrinsics, HorizontalFieldOfView)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose + "fov = 90\nfov_axis = \"horizontal\"\n");
+    expectPixel(camera, {1, 0.5, 4}, 639.5 + 640 * 0.25, 359.5 + 640 * 0.125);
+}
+
+TEST(Intrinsics, DefaultFieldOfViewHonoursItsAxis)
+{
+    // No fov: 60 degrees, here across the width.
+    const Camera camera = buildCamera(kHeader + kIdentityPose + "fov_axis = \"horizontal\"\n");
+    const double f = 640.0 / std::tan(M_PI / 6);
+    expectPixel(camera, {1, 0.5, 4}, 639.5 + f * 0.25, 359.5 + f * 0.125);
+}
+
+TEST(Intrinsics, OffAxisFrustum)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose +
+                                      "near = 0.1\nfar = 50\n[camera.frustum]\nleft = -0.2\nright = 0.1\n"
+                                      "bottom = -0.05\ntop = 0.1\n");
+    // glFrustum: x_ndc = (2 n x/(-z) - (r + l)) / (r - l) in the internal frame (x = X, y = -Y, -z = Z).
+    const double X = 0.3, Y = -0.2, Z = 2.0;
+    const double xNdc = (2 * 0.1 * X / Z + 0.1) / 0.3, yNdc = (2 * 0.1 * -Y / Z - 0.05) / 0.15;
+    expectPixel(camera, {X, Y, Z}, (xNdc + 1) * 640 - 0.5, (1 - yNdc) * 360 - 0.5);
+}
+
+TEST(Intrinsics, PinholeForAnotherImageSizeIsScaled)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose +
+                                      "[camera.pinhole]\nfx = 400\nfy = 410\ncx = 300\ncy = 200\n"
+                                      "width = 640\nheight = 360\n");
+    // Twice the size: f doubles, and pixel centres map as u' = 2 (u + 0.5) - 0.5.
+    const cv::Matx33d k(800, 0, 600.5, 0, 820, 400.5, 0, 0, 1);
+    const std::vector<cv::Point3d> world{{0.5, -0.25, 3}, {-1, 0.4, 2}};
+    const auto expected = opencvProject(world, cv::Matx33d::eye(), {0, 0, 0}, k, {});
+    for (size_t i = 0; i < world.size(); ++i)
+        expectPixel(camera, {world[i].x, world[i].y, world[i].z}, expected[i].x, expected[i].y);
+    ASSERT_TRUE(camera.projection().pinholeIntrinsics().has_value());
+    EXPECT_DOUBLE_EQ(camera.projection().pinholeIntrinsics()->cx, 600.5);
+}
+
+TEST(Intrinsics, Seed000WindowModel)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose +
+                                      "near = 0.5\nfar = 100\n[camera.window]\nfocal = 2\ncentre = [0.2, 0.1]\n"
+                                      "half_width = 1\nhalf_height = 0.5\n");
+    // The window at distance `focal`, centred at (0.2, 0.1) in the internal frame, spans NDC [-1, 1].
+    const double X = 0.4, Y = -0.3, Z = 2.5;
+    const double xNdc = (X / Z * 2 - 0.2) / 1.0, yNdc = (-Y / Z * 2 - 0.1) / 0.5;
+    expectPixel(camera, {X, Y, Z}, (xNdc + 1) * 640 - 0.5, (1 - yNdc) * 360 - 0.5);
+}
+
+const std::string kTopDown = "[camera]\neye = [0, 0, 50]\ntarget = [0, 0, 0]\nup = [0, 1, 0]\nnear = 1\nfar = 100\n";
+
+TEST(Intrinsics, OrthographicBox)
+{
+    const Camera camera =
+        buildCamera(kHeader + kTopDown + "[camera.orthographic]\nleft = -10\nright = 10\nbottom = -5\ntop = 5\n");
+    expectPixel(camera, {3, 2, 0}, (3 + 10) / 20.0 * 1280 - 0.5, (5 - 2) / 10.0 * 720 - 0.5);
+    expectPixel(camera, {3, 2, 30}, (3 + 10) / 20.0 * 1280 - 0.5, (5 - 2) / 10.0 * 720 - 0.5);
+}
+
+TEST(Intrinsics, Seed000Orthographic)
+{
+    const Camera camera = buildCamera(kHeader + kTopDown + "[camera.orthographic]\nwidth = 20\nheight = 10\n");
+    expectPixel(camera, {-4, -1, 0}, (-4 + 10) / 20.0 * 1280 - 0.5, (5 + 1) / 10.0 * 720 - 0.5);
+}
+
+TEST(Intrinsics, DepthRangeAndFarPlane)
+{
+    const std::string base = kHeader + kIdentityPose + "fov = 60\nnear = 0.5\n";
+    const Camera zeroToOne = buildCamera(base + "far = 10\ndepth_range = \"0..1\"\n");
+    EXPECT_NEAR(zeroToOne.project(glm::dvec3(0, 0, 0.5)).depth, 0.0, 1e-12);
+    EXPECT_NEAR(zeroToOne.project(glm::dvec3(0, 0, 10)).depth, 1.0, 1e-12);
+    EXPECT_EQ(zeroToOne.project(glm::dvec3(0, 0, 11)).status, PointStatus::Clipped);
+    const Camera minusOne = buildCamera(base + "far = 10\ndepth_range = \"-1..1\"\n");
+    EXPECT_NEAR(minusOne.project(glm::dvec3(0, 0, 0.5)).depth, -1.0, 1e-12);
+    const Camera infinite = buildCamera(base + "far = \"inf\"\n");
+    EXPECT_FALSE(infinite.projection().hasFarPlane());
+    EXPECT_EQ(infinite.project(glm::dvec3(0, 0, 1e9)).status, PointStatus::Visible);
+}
+
+TEST(Intrinsics, PlumbBobDistortionMatchesOpenCv)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose +
+                                      "[camera.pinhole]\nfx = 700\nfy = 690\ncx = 630\ncy = 350\n"
+                                      "[camera.distortion]\nmodel = \"plumb_bob\"\n"
+                                      "coefficients = [-0.2, 0.05, 0.001, -0.002, 0.01]\n");
+    const cv::Matx33d k(700, 0, 630, 0, 690, 350, 0, 0, 1);
+    const std::vector<cv::Point3d> world{{0.3, -0.2, 2}, {-0.5, 0.25, 1.5}, {0, 0, 1}};
+    const auto expected = opencvProject(world, cv::Matx33d::eye(), {0, 0, 0}, k, {-0.2, 0.05, 0.001, -0.002, 0.01});
+    for (size_t i = 0; i < world.size(); ++i)
+        expectPixel(camera, {world[i].x, world[i].y, world[i].z}, expected[i].x, expected[i].y, 1e-6);
+}
+
+TEST(Intrinsics, EquidistantDistortionMatchesOpenCvFisheye)
+{
+    const Camera camera = buildCamera(kHeader + kIdentityPose +
+                                      "[camera.pinhole]\nfx = 500\nfy = 500\ncx = 639.5\ncy = 359.5\n"
+                                      "[camera.distortion]\nmodel = \"equidistant\"\n"
+                                      "coefficients = [0.05, -0.01, 0.002, -0.0005]\n");
+    const std::vector<cv::Point3d> world{{0.8, -0.4, 1.5}, {-0.3, 0.6, 1}};
+    std::vector<cv::Point2d> expected;
+    cv::fisheye::projectPoints(world, expected, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0),
+                               cv::Matx33d(500, 0, 639.5, 0, 500, 359.5, 0, 0, 1),
+                               cv::Vec4d(0.05, -0.01, 0.002, -0.0005));
+    for (size_t i = 0; i < world.size(); ++i)
+        expectPixel(camera, {world[i].x, world[i].y, world[i].z}, expected[i].x, expected[i].y, 1e-6);
+}
+
+TEST(Viewport, BottomLeftOriginFlipsRows)
+{
+    const std::string camera = kIdentityPose + "fov = 90\nfov_axis = \"horizontal\"\n";
+    const Camera top = buildCamera(kHeader + camera);
+    const Camera bottom = buildCamera(kHeader + camera + "[viewport]\norigin = \"bottom-left\"\n");
+    const glm::dvec3 world(0.4, 0.3, 2);
+    // Hand: u = 639.5 + 640 * 0.2, v (top-left) = 359.5 + 640 * 0.15; bottom-left counts rows from the bottom.
+    expectPixel(top, world, 767.5, 455.5);
+    expectPixel(bottom, world, 767.5, 719 - 455.5);
+}
+
+TEST(Viewport, WindowScissorAndPinholeWithoutImageSize)
+{
+    // A pinhole without width/height refers to the viewport window, which starts at (100, 50).
+    const Camera camera = buildCamera(kHeader + kIdentityPose +
+                                      "[camera.pinhole]\nfx = 300\nfy = 300\ncx = 319.5\ncy = 179.5\n"
+                                      "[viewport]\nwindow = [100, 50, 640, 360]\nscissor = [100, 50, 320, 360]\n");
+    expectPixel(camera, {0.5, 0.2, 2}, 100 + 319.5 + 75, 50 + 179.5 + 30);
+    EXPECT_EQ(camera.viewport().scissor(), (PixelRect{100, 50, 320, 360}));
+    EXPECT_EQ(camera.project(glm::dvec3(0.5, 0.2, 2)).status, PointStatus::Outside);
+}
+
+} // namespace
+} // namespace overlayd::test

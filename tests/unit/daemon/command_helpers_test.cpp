@@ -1,0 +1,56 @@
+// The `project --json` format (hand-written expected text) and render's choice of sink from the output path.
+#include "daemon/commands.h"
+
+#include <gtest/gtest.h>
+
+namespace overlayd {
+namespace {
+
+TEST(ProjectionsJson, MatchesThePinnedFormat)
+{
+    const std::vector<glm::dvec3> world{{0, 0, 0}, {1.5, -2, 0.25}, {0, 0, -5}};
+    std::vector<ProjectedPoint> points(3);
+    points[0] = {{639.5, 359.5}, 0.5, PointStatus::Visible};
+    points[1] = {{-20.25, 100}, 0.75, PointStatus::Outside};
+    points[2] = {{0, 0}, 0, PointStatus::Clipped};
+    EXPECT_EQ(projectionsJson(world, points),
+              "[{\"world\":[0,0,0],\"pixel\":[639.5,359.5],\"depth\":0.5,\"visible\":true},\n"
+              " {\"world\":[1.5,-2,0.25],\"pixel\":[-20.25,100],\"depth\":0.75,\"visible\":false},\n"
+              " {\"world\":[0,0,-5],\"pixel\":null,\"depth\":null,\"visible\":false}]\n");
+}
+
+TEST(ProjectionsJson, NumbersRoundTripExactly)
+{
+    const double awkward = 0.1 + 0.2; // 0.30000000000000004: printing with %g would lose it
+    std::vector<ProjectedPoint> points{{{awkward, 1.0 / 3.0}, awkward, PointStatus::Visible}};
+    const std::string json = projectionsJson({{awkward, 0, 0}}, points);
+    EXPECT_NE(json.find("\"pixel\":[0.30000000000000004,0.3333333333333333]"), std::string::npos) << json;
+}
+
+TEST(ProjectionsText, SaysWhatHappenedToEachPoint)
+{
+    std::vector<ProjectedPoint> points(2);
+    points[0] = {{10, 20}, 0.5, PointStatus::Visible};
+    points[1] = {{0, 0}, 0, PointStatus::Clipped};
+    EXPECT_EQ(projectionsText({{1, 2, 3}, {0, 0, -1}}, points),
+              "(1, 2, 3) -> pixel (10.000, 20.000), depth 0.500000, visible\n"
+              "(0, 0, -1) -> clipped (behind the camera, beyond the far plane or outside the lens's field)\n");
+}
+
+TEST(SinkForOutput, ExtensionPicksTheSink)
+{
+    EXPECT_EQ(sinkForOutput("out/a.y4m")->kind, SinkKind::Y4m);
+    EXPECT_EQ(sinkForOutput("a.yuv")->kind, SinkKind::Raw);
+    EXPECT_EQ(sinkForOutput("a.raw")->kind, SinkKind::Raw);
+    const auto images = sinkForOutput("frames/%04d.png");
+    ASSERT_TRUE(images.ok());
+    EXPECT_EQ(images->kind, SinkKind::Snapshot);
+    EXPECT_EQ(images->every, 1u);
+    EXPECT_EQ(images->path, "frames/%04d.png");
+    const auto unknown = sinkForOutput("out/a.mp4");
+    ASSERT_FALSE(unknown.ok());
+    EXPECT_NE(unknown.error().message.find("a.mp4"), std::string::npos);
+}
+
+} // namespace
+} // namespace overlayd

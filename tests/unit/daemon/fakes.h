@@ -1,0 +1,101 @@
+// Fakes of the pipeline's stages for the daemon's unit tests: a scripted source, a recording (optionally slow)
+// sink, a renderer that marks frames, and a notifier that records what systemd would have been told.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "daemon/stages.h"
+#include "daemon/systemd_notify.h"
+#include "drivers/frame_buffer.h"
+#include "overlay/overlay_renderer.h"
+
+namespace overlayd::test {
+
+StreamFormat greyFormat(unsigned width = 64, unsigned height = 48, double fps = 30.0);
+
+// Delivers frames whose first byte is the frame's sequence number (mod 256), unless the script says otherwise.
+class FakeSource : public FrameSource
+{
+public:
+    struct Shared {
+        std::deque<Error> script; // consumed one per nextFrame(); empty: a frame
+        int starts = 0, stops = 0;
+        std::deque<Error> startErrors; // consumed one per start()
+    };
+    FakeSource(std::shared_ptr<Shared> shared, StreamFormat format);
+    Result<StreamFormat> start() override;
+    void stop() override { ++shared_->stops; }
+    int eventFd() const override { return -1; }
+    Result<FrameLease> nextFrame() override;
+    std::string describe() const override { return "fake source"; }
+
+private:
+    std::shared_ptr<Shared> shared_;
+    StreamFormat format_;
+    std::optional<FrameBuffer> buffer_;
+    uint64_t sequence_ = 0;
+};
+
+// Records the first byte and sequence of each written frame; while `gate` is closed, write() blocks (a slow sink).
+class RecordingSink : public FrameSink
+{
+public:
+    struct Shared {
+        std::mutex mutex;
+        std::condition_variable changed;
+        bool gateOpen = true;
+        std::vector<uint8_t> firstBytes;
+        std::vector<uint8_t> lastBytes; // where MarkingRenderer writes
+        std::vector<uint8_t> maxima;    // the brightest byte of plane 0
+        std::vector<uint64_t> sequences;
+        int opens = 0, closes = 0;
+        int entered = 0; // write() calls begun (a blocked one included)
+        void waitEntered(int count);
+        void setGate(bool open);
+        size_t written();
+    };
+    RecordingSink(std::shared_ptr<Shared> shared, std::string name) : shared_(std::move(shared)), name_(name) {}
+    Status open(const StreamFormat &) override;
+    Status write(const FrameView &frame, const FrameMetadata &metadata) override;
+    Status close() override;
+    std::string describe() const override { return name_; }
+
+private:
+    std::shared_ptr<Shared> shared_;
+    std::string name_;
+};
+
+// Sets the frame's last byte to `mark`, so tests can tell which renderer blended a frame.
+class MarkingRenderer : public OverlayRenderer
+{
+public:
+    explicit MarkingRenderer(uint8_t mark) : mark_(mark) {}
+    Status setCamera(const Camera &) override { return Ok{}; }
+    Status setLayerEnabled(std::string_view, bool) override { return Ok{}; }
+    std::vector<std::string> layerNames() const override { return {}; }
+    Status blend(const FrameView &frame, const FrameMetadata &, double) override;
+
+private:
+    uint8_t mark_;
+};
+
+class RecordingNotifier : public SystemdNotifier
+{
+public:
+    void ready() override { events.push_back("READY"); }
+    void reloading() override { events.push_back("RELOADING"); }
+    void stopping() override { events.push_back("STOPPING"); }
+    void status(std::string_view line) override { events.push_back("STATUS=" + std::string(line)); }
+    void watchdog() override { events.push_back("WATCHDOG"); }
+    int count(const std::string &event) const;
+    std::string lastStatus() const;
+    std::vector<std::string> events;
+};
+
+} // namespace overlayd::test

@@ -1,0 +1,87 @@
+// The fake V4L2 kernel: the seam's calls (open, close, ioctl, mmap, munmap, poll) over the fake devices.
+#include "fake_v4l2.h"
+
+#include <cerrno>
+
+namespace overlayd::v4l2::test {
+
+FakeDevice &FakeSyscalls::add(const std::string &path, const std::vector<std::string> &aliases)
+{
+    auto device = std::make_shared<FakeDevice>();
+    devices_[path] = device;
+    present_[path] = true;
+    nodes_.push_back(path);
+    for (const std::string &alias : aliases) {
+        devices_[alias] = device;
+        present_[alias] = true;
+    }
+    return *device;
+}
+
+int FakeSyscalls::open(const std::string &path, int)
+{
+    auto found = devices_.find(path);
+    if (found == devices_.end())
+        return -ENOENT;
+    if (!present_[path])
+        return -ENODEV;
+    fds_[nextFd_] = found->second;
+    return nextFd_++;
+}
+
+int FakeSyscalls::close(int fd)
+{
+    return fds_.erase(fd) ? 0 : -EBADF;
+}
+
+int FakeSyscalls::ioctl(int fd, unsigned long request, void *argument)
+{
+    auto found = fds_.find(fd);
+    return found == fds_.end() ? -EBADF : found->second->ioctl(request, argument);
+}
+
+int FakeSyscalls::mmap(size_t length, int, int, int fd, off_t offset, void **address)
+{
+    auto found = fds_.find(fd);
+    if (found == fds_.end())
+        return -EBADF;
+    FakeDevice &device = *found->second;
+    const unsigned index = unsigned(offset >> 12) / 4, plane = unsigned(offset >> 12) % 4;
+    if (offset % 4096 != 0 || index >= device.buffers.size() || plane >= device.buffers[index].planes.size() ||
+        length != device.buffers[index].planes[plane].size())
+        return -EINVAL;
+    *address = device.buffers[index].planes[plane].data();
+    maps_[*address] = found->second;
+    ++device.mapped;
+    ++mappings_;
+    return 0;
+}
+
+int FakeSyscalls::munmap(void *address, size_t)
+{
+    auto found = maps_.find(address);
+    if (found == maps_.end())
+        return -EINVAL;
+    --found->second->mapped;
+    --mappings_;
+    maps_.erase(found);
+    return 0;
+}
+
+int FakeSyscalls::poll(pollfd *fds, nfds_t count, int)
+{
+    int ready = 0;
+    for (nfds_t i = 0; i < count; ++i) {
+        auto found = fds_.find(fds[i].fd);
+        fds[i].revents = found == fds_.end() ? POLLNVAL : found->second->pollEvents;
+        ready += fds[i].revents != 0;
+    }
+    return ready;
+}
+
+std::vector<std::string> FakeSyscalls::videoDevices()
+{
+    return nodes_;
+}
+
+} // namespace overlayd::v4l2::test

@@ -1,0 +1,53 @@
+# Loopback proof: overlayd captures vivid instance 0 (black pattern) and writes the overlaid stream to instance
+# 1's HDMI output, which vivid loops back (loop_video=1) to instance 1's HDMI capture input. v4l2-ctl reads the
+# looped frames: the axes must be where `overlayd project` puts them, so the overlay went through a real kernel
+# output driver. v4l2-compliance then streams the same looped node as an independent client.
+. /vm/lib.sh
+
+have_overlayd || { fail loopback "no overlayd binary was staged (build the overlayd target)"; exit 0; }
+vivid_load n_devs=2 node_types=0x1,0x101 multiplanar=1,1 || { fail loopback "modprobe vivid failed"; exit 0; }
+SRC=$(node vivid-000-vid-cap) CAP=$(node vivid-001-vid-cap) OUT=$(node vivid-001-vid-out)
+W=1280 H=720
+black_pattern "$SRC"
+# HDMI in and out: same type, size, fourcc and field, as vivid's loop requires; no OSD text on the looped frames.
+v4l2-ctl -d "$CAP" -i 3 >/dev/null && v4l2-ctl -d "$OUT" -o 1 >/dev/null
+v4l2-ctl -d "$CAP" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
+v4l2-ctl -d "$CAP" -c loop_video=1 -c osd_text_mode=2
+config_for loopback.toml /tmp/loop.toml "device=\"$SRC\"" "path=\"$OUT\""
+overlayd run --config /tmp/loop.toml >/tmp/loop-run.log 2>&1 &
+pid=$!
+
+# overlayd needs a few seconds to start streaming under TCG: read the loop until the overlay shows, 6 tries.
+points=$(axes_points /tmp/loop.toml)
+PIXEL="yuyv_pixel /tmp/loop.yuv 3 $W $H"
+for try in 1 2 3 4 5 6; do
+    sleep 2
+    v4l2-ctl -d "$CAP" --stream-mmap=4 --stream-count=4 --stream-to=/tmp/loop.yuv >/dev/null 2>&1
+    axes_check "$points" && break
+done
+ok=$?
+kill -0 $pid 2>/dev/null || ok=1
+verdict loopback-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, try $try, looped frame:$summary"
+cp /tmp/loop.yuv "$ART/loopback-${W}x$H.yuyv" 2>/dev/null
+
+# v4l2-compliance as an independent client of the frames we write: its streaming tests (MMAP with select and
+# epoll: sequence numbers, timestamps, field, bytesused) on the looped capture node while overlayd feeds the
+# output. Only those lines decide: the rest of its report is about vivid (v4l-utils 1.22 disagrees with kernel 6.1
+# on some format descriptions) and is printed for information. It runs last: its control tests press vivid's
+# "Disconnect" button, after which the output node returns ENODEV.
+timeout 120 v4l2-compliance -d "$CAP" -s 10 >/tmp/compliance.log 2>&1
+streaming=$(tr '\r' '\n' </tmp/compliance.log | grep -o 'test MMAP.*: [A-Z]*')
+[ -n "$streaming" ] && ! echo "$streaming" | grep -v -q ': OK'
+verdict loopback-compliance $? "v4l2-compliance -s on $CAP while overlayd writes $OUT: $(echo "$streaming" |
+    tr '\n' ';') (all of its report: $(grep '^Total' /tmp/compliance.log | tail -1))"
+grep -E 'fail:' /tmp/compliance.log | sort | uniq -c | head -5
+
+kill -TERM $pid 2>/dev/null
+(sleep 20 && kill -KILL $pid 2>/dev/null) &
+wait $pid
+rc=$?
+[ $rc = 0 ]
+verdict loopback-exit $rc "overlayd run exited with $rc after SIGTERM"
+tail -5 /tmp/loop-run.log
+rmmod vivid
+exit 0

@@ -1,0 +1,119 @@
+# Helpers for the guest checks (busybox sh): result lines, vivid set-up, overlayd, and pixel reads from Y4M and
+# raw YUYV files. Every check prints "PASS <name>: ..." or "FAIL <name>: ..."; the host counts those lines.
+
+ART=/mnt/out # artifacts the host verifies independently (ffprobe) or a person can look at
+
+pass() { echo "PASS $1: $2"; }
+fail() { echo "FAIL $1: $2"; }
+# verdict NAME OK DETAIL: OK is a shell status (0 = pass)
+verdict() { if [ "$2" = 0 ]; then pass "$1" "$3"; else fail "$1" "$3"; fi; }
+uptime_s() { cut -d' ' -f1 /proc/uptime; }
+
+have_overlayd() { [ -x /usr/bin/overlayd ]; }
+
+# vivid_load ARGS...: a fresh vivid (controls back to their defaults) with the given module parameters.
+vivid_load() {
+    rmmod vivid 2>/dev/null
+    modprobe vivid "$@" || return 1
+    for _ in 1 2 3 4 5 6 7 8 9 10; do [ -e /dev/video0 ] && return 0; sleep 0.2; done
+    return 1
+}
+
+# node NAME: the /dev/video* whose sysfs name is NAME (vivid-000-vid-cap, vivid-001-vid-out, ...)
+node() {
+    for n in /sys/class/video4linux/video*; do
+        [ "$(cat "$n/name")" = "$1" ] && echo "/dev/${n##*/}" && return 0
+    done
+    return 1
+}
+
+# config_for TEMPLATE OUT key=value...: copies a test config, replacing the first `key = ...` line of each key.
+config_for() {
+    _template=$1 _out=$2
+    shift 2
+    awk -v pairs="$*" 'BEGIN { n = split(pairs, kv, " "); for (i = 1; i <= n; i++) { split(kv[i], p, "="); want[p[1]] = p[2] } }
+        { key = $1 } $2 == "=" && (key in want) && !(key in done) { print key " = " want[key]; done[key] = 1; next } { print }' \
+        "/vm/configs/$_template" >"$_out"
+}
+
+# axes_points CONFIG: three lines "u v" (rounded pixel, top-left origin, or "none" if not visible) where the points
+# 0.6 m along X, Y and Z land according to `overlayd project`. One process for the three: under TCG every overlayd
+# start costs seconds (it links ~150 libraries).
+axes_points() {
+    overlayd project --config "$1" 0.6 0 0 0 0.6 0 0 0 0.6 2>/dev/null |
+        sed -n 's/.*pixel (\([-0-9.]*\), \([-0-9.]*\)),.*, visible$/\1 \2/p; t; s/.*->.*/none/p' |
+        awk '$1 == "none" { print; next } { printf "%d %d\n", $1 + 0.5, $2 + 0.5 }'
+}
+
+bytes_at() { od -An -tu1 -j "$2" -N "$3" "$1" | tr -s ' \n' '  ' | sed 's/^ //; s/ $//'; }
+
+# y4m_geometry FILE: "W H CHROMA HEADERBYTES FRAMEBYTES" from the stream header.
+y4m_geometry() {
+    head -n1 "$1" | awk '{
+        for (i = 2; i <= NF; i++) {
+            if ($i ~ /^W/) w = substr($i, 2); if ($i ~ /^H/) h = substr($i, 2); if ($i ~ /^C/) c = substr($i, 2)
+        }
+        if (c == "") c = "420jpeg"
+        cw = int((w + 1) / 2); ch = (c ~ /^420/) ? int((h + 1) / 2) : h
+        if (c == "444") { cw = w; ch = h }
+        if (c == "mono") { cw = 0; ch = 0 }
+        printf "%d %d %s %d %d\n", w, h, c, length($0) + 1, w * h + 2 * cw * ch
+    }'
+}
+
+# y4m_pixel FILE K X Y: "Y Cb Cr" of pixel (X, Y) in frame K (0-based).
+y4m_pixel() {
+    set -- "$1" "$2" "$3" "$4" $(y4m_geometry "$1")
+    f=$1 k=$2 x=$3 y=$4 w=$5 h=$6 c=$7 hdr=$8 fb=$9
+    base=$((hdr + k * (fb + 6) + 6))
+    case $c in 444) cx=$x cy=$y cw=$w ch=$h ;; 422) cx=$((x / 2)) cy=$y cw=$(((w + 1) / 2)) ch=$h ;;
+    *) cx=$((x / 2)) cy=$((y / 2)) cw=$(((w + 1) / 2)) ch=$(((h + 1) / 2)) ;; esac
+    echo "$(bytes_at "$f" $((base + y * w + x)) 1) $(bytes_at "$f" $((base + w * h + cy * cw + cx)) 1)" \
+        "$(bytes_at "$f" $((base + w * h + cw * ch + cy * cw + cx)) 1)"
+}
+
+# yuyv_pixel FILE K W H X Y: "Y Cb Cr" of a pixel of frame K in a file of packed YUYV frames (stride 2W).
+yuyv_pixel() {
+    set -- $(bytes_at "$1" $(($2 * $3 * $4 * 2 + $6 * $3 * 2 + ($5 / 2) * 4)) 4) "$5"
+    if [ $(($5 % 2)) = 0 ]; then echo "$1 $2 $4"; else echo "$3 $2 $4"; fi
+}
+
+# near "A B C" "A' B' C'" TOL: every component within TOL
+near() {
+    echo "$1 $2" | awk -v t="$3" '{ for (i = 1; i <= 3; i++) { d = $i - $(i + 3); if (d < -t || d > t) exit 1 } }'
+}
+
+# The axis colours of the test configs in BT.601 limited range, computed by hand from Y = 16 + 219 (0.299 R +
+# 0.587 G + 0.114 B) / 255, Cb = 128 + 224 (B - Y') / (1.772 * 255), Cr = 128 + 224 (R - Y') / (1.402 * 255).
+RED_YCC="81 90 240"
+GREEN_YCC="145 54 34"
+BLUE_YCC="41 240 110"
+BLACK_YCC="16 128 128"
+NOSIGNAL_YCC="57 128 128" # the NO SIGNAL frame's grey 48, 48, 48
+
+# axes_check "POINTS": the axis colours at the three axes_points lines, and black (the source pattern) at the
+# top-left corner. $PIXEL is a command that, given "X Y", prints "Y Cb Cr". Sets $summary; returns non-zero on
+# any mismatch (or if the points are not three visible ones).
+axes_check() {
+    summary='' _r=0
+    [ "$(echo "$1" | grep -c '^[0-9]* [0-9]*$')" = 3 ] || { summary="projected points: $1" && return 1; }
+    axis_probe "$(echo "$1" | sed -n 1p)" "$RED_YCC" X || _r=1
+    axis_probe "$(echo "$1" | sed -n 2p)" "$GREEN_YCC" Y || _r=1
+    axis_probe "$(echo "$1" | sed -n 3p)" "$BLUE_YCC" Z || _r=1
+    _got=$($PIXEL 3 3)
+    summary="$summary corner=($_got)"
+    near "$_got" "$BLACK_YCC" 12 || _r=1
+    return $_r
+}
+
+axis_probe() { # "U V" WANT NAME
+    _got=$($PIXEL $1)
+    summary="$summary $3@${1% *},${1#* }=($_got)"
+    near "$_got" "$2" 12
+}
+
+# black_pattern DEVICE: vivid's "100% Black" test pattern and no OSD text, so that only overlay pixels have colour.
+black_pattern() {
+    black=$(v4l2-ctl -d "$1" --list-ctrls-menus | sed -n 's/^[[:space:]]*\([0-9]*\): 100% Black.*/\1/p' | head -1)
+    v4l2-ctl -d "$1" -c "test_pattern=${black:-5}" -c osd_text_mode=2
+}

@@ -1,0 +1,57 @@
+# The guest's initramfs, in concatenated cpio archives (the kernel unpacks them in order): a base with busybox
+# and the kernel modules, cached per kernel version, and a per-run archive with the V4L2 tools, overlayd, all
+# their libraries, the guest /init and the checks. overlayd's ~150 libraries (OpenCV's closure, 190 MB) are in
+# the initramfs rather than on the 9p share: under TCG, loading them over 9p took a minute per process.
+# shellcheck shell=bash
+
+VM_GUEST_MODULES="vivid vimc gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci"
+
+vmBaseInitramfs() {
+    local out=$VM_KCACHE/base.cpio root=$VM_KCACHE/base-root kimg=$VM_KCACHE/kimg
+    [ -s "$out" ] && [ "$out" -nt "$VM_KCACHE/extra" ] && return 0
+    vmUnpackModules "$kimg"
+    rm -rf "$root" && mkdir -p "$root"/usr/{bin,sbin,lib64,lib/x86_64-linux-gnu} "$root"/{proc,sys,dev,tmp,run,etc,mnt}
+    ln -s usr/bin "$root/bin" && ln -s usr/sbin "$root/sbin" && ln -s usr/lib "$root/lib" && ln -s usr/lib64 "$root/lib64"
+    cp /bin/busybox "$root/usr/bin/busybox"
+    local applet ko rel
+    for applet in $(/bin/busybox --list-full); do [ -e "$root/$applet" ] || ln -s /usr/bin/busybox "$root/$applet"; done
+    local mods=$kimg/lib/modules/$VM_KVER
+    mkdir -p "$mods/extra"
+    cp "$VM_KCACHE"/extra/*.ko "$mods/extra/" 2>/dev/null || true # a failed module build is reported elsewhere
+    depmod -b "$kimg" "$VM_KVER"
+    for m in $VM_GUEST_MODULES; do
+        modprobe -d "$kimg" -S "$VM_KVER" --show-depends "$m" 2>/dev/null | awk '$1 == "insmod" { print $2 }'
+    done | sort -u | while read -r ko; do
+        rel=${ko#"$kimg"/}
+        install -D -m644 "$ko" "$root/usr/$rel"
+    done
+    cp "$mods"/modules.{order,builtin,builtin.modinfo} "$root/usr/lib/modules/$VM_KVER/"
+    depmod -b "$root" "$VM_KVER"
+    (cd "$root" && find . -print0 | cpio --null -o -H newc --quiet) >"$out.tmp" && mv "$out.tmp" "$out"
+    rm -rf "$root" "$kimg"
+}
+
+# $1: work folder. Writes $1/initramfs.cpio = base + tools + guest scripts and configs.
+vmRunInitramfs() {
+    local work=$1 root=$1/run-root
+    rm -rf "$root" && mkdir -p "$root/vm"
+    vmCopyWithLibraries "$root" /usr/bin/v4l2-ctl /usr/bin/v4l2-compliance /usr/bin/media-ctl
+    cp -a "$work/sysroot/." "$root/"
+    install -m755 "$VM_HERE/guest/init" "$root/init"
+    cp -r "$VM_HERE/guest/lib.sh" "$VM_HERE/guest/checks" "$VM_HERE/configs" "$root/vm/"
+    (cd "$root" && find . -print0 | cpio --null -o -H newc --quiet) >"$work/run.cpio"
+    cat "$VM_KCACHE/base.cpio" "$work/run.cpio" >"$work/initramfs.cpio"
+    rm -rf "$root" "$work/run.cpio"
+}
+
+# The overlayd binary (without debug info: 39 MB -> 2 MB) and its ldd closure under $1/sysroot, kept between runs
+# so that unchanged libraries are not copied again. A missing binary leaves no overlayd in the guest: its checks
+# then fail, loudly.
+vmStageOverlayd() {
+    local work=$1 binary=$2
+    mkdir -p "$work/sysroot/usr/bin"
+    rm -f "$work/sysroot/usr/bin/overlayd"
+    [ -x "$binary" ] || return 0
+    strip --strip-debug -o "$work/sysroot/usr/bin/overlayd" "$binary"
+    vmCopyLibraries "$work/sysroot" "$binary"
+}

@@ -1,0 +1,45 @@
+# The verdict: the guest's PASS/FAIL lines, host-side checks of what the guest produced (ffprobe reads the Y4M
+# files as an independent client), and the harness's own failures (module build, a guest that never finished).
+# shellcheck shell=bash
+
+vmHostCheck() { # NAME STATUS DETAIL
+    if [ "$2" = 0 ]; then echo "PASS $1: $3"; else echo "FAIL $1: $3"; fi
+}
+
+# ffprobe must agree with the name the guest gave the file: capture-<api>-<format>-<W>x<H>.y4m, 3 frames.
+vmFfprobeArtifacts() {
+    local file name size fmt want got
+    for file in "$VM_WORK"/share/out/capture-*.y4m; do
+        [ -e "$file" ] || continue
+        name=$(basename "$file" .y4m)
+        size=${name##*-} fmt=$(echo "$name" | cut -d- -f3)
+        case $fmt in YUYV) want=yuv422p ;; NV12) want=yuv420p ;; *) want=yuv444p ;; esac
+        got=$(ffprobe -v error -count_frames -select_streams v:0 \
+            -show_entries stream=width,height,pix_fmt,nb_read_frames -of csv=p=0 "$file" 2>&1 | head -1)
+        [ "$got" = "${size%x*},${size#*x},$want,3" ]
+        vmHostCheck "ffprobe-$name" $? "ffprobe reads $got (want ${size%x*},${size#*x},$want,3)"
+    done
+}
+
+# Prints the summary; returns 0 if every check passed and the guest finished.
+vmReport() {
+    local log=$1 boot_status=$2 overlayd=$3 lines
+    lines=$(
+        grep -a -E '^(PASS|FAIL) ' "$log" | tr -d '\r'
+        [ "$VM_MODULES_OK" = 1 ] || vmHostCheck host-module-build 1 "out-of-tree modules did not build (see above)"
+        [ -x "$overlayd" ] || vmHostCheck host-overlayd 1 "no overlayd binary at $overlayd (build the overlayd target)"
+        grep -a -q '== VM DONE' "$log" ||
+            vmHostCheck guest-finished 1 "the guest did not finish (QEMU status $boot_status); see $log"
+        vmFfprobeArtifacts
+    )
+    echo "$lines"
+    local failed passed
+    failed=$(echo "$lines" | grep -c '^FAIL ' || true)
+    passed=$(echo "$lines" | grep -c '^PASS ' || true)
+    if [ "$failed" != 0 ] || [ "$passed" = 0 ]; then
+        echo "VM TIER FAILED: $failed of $((passed + failed)) checks failed"
+        [ "$passed" = 0 ] && tail -40 "$log"
+        return 1
+    fi
+    echo "VM TIER PASSED: $passed checks"
+}
