@@ -22,7 +22,9 @@ inline constexpr int kExitConfigError = 2; // the config file does not validate
 
 int checkConfigCommand(const std::string &path);
 int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger);
-int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output, Logger &logger);
+// logLevel (from --log-level) overrides the config's daemon.log_level.
+int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,
+                  std::optional<LogLevel> logLevel, Logger &logger);
 int runCommand(const DaemonOptions &options, Logger &logger);
 
 // Loads a config, logging every problem as "file:line:column: key: message".

@@ -73,6 +73,7 @@ private:
     double pacingFps() const;
     void armStats();
     void updateStatus();
+    void reportStall();
     std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);
     void applyLogLevel();
     void shutdown();
@@ -100,6 +101,7 @@ private:
     std::optional<NoSignalFrame> noSignal_;
     uint64_t noSignalSequence_ = 0;
     uint64_t framesSincePet_ = 0;
+    unsigned idleWatchdogTicks_ = 0; // watchdog ticks in a row without a frame while streaming (for STATUS=)
     bool readySent_ = false;
     uint64_t totalDrops_ = 0;
 };

@@ -2,6 +2,7 @@
 #include "daemon/daemon.h"
 
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 
 namespace overlayd {
@@ -76,7 +77,27 @@ void Daemon::onWatchdog()
     // deliberate reconnect is in progress (the NO SIGNAL frames prove the loop itself is alive).
     if (framesSincePet_ > 0 || state_ == State::Waiting)
         notifier_.watchdog();
+    reportStall();
     framesSincePet_ = 0;
+}
+
+// A stalled stream stops the watchdog; STATUS= says why, so `systemctl status` does not keep claiming "streaming".
+void Daemon::reportStall()
+{
+    const bool stalled = state_ == State::Streaming && framesSincePet_ == 0;
+    if (!stalled) {
+        if (idleWatchdogTicks_ > 0)
+            updateStatus();
+        idleWatchdogTicks_ = 0;
+        return;
+    }
+    ++idleWatchdogTicks_;
+    const auto interval = notifier_.watchdogInterval().value_or(std::chrono::microseconds(0));
+    const double idleSec = double(idleWatchdogTicks_) * double(interval.count()) * 1e-6;
+    char line[160];
+    std::snprintf(line, sizeof(line), "stalled: no frame from %s for %.1f s",
+                  source_ ? source_->describe().c_str() : "the source", idleSec);
+    notifier_.status(line);
 }
 
 void Daemon::updateStatus()

@@ -52,6 +52,11 @@ void Daemon::scheduleRetry()
     const auto delay = backoff_.next();
     (void)retry_->arm(delay);
     logger_.debug(cat("retrying the source in ", seconds(delay)));
+    // Before the first frame systemd is still waiting for READY=1: a camera that is late at boot must not fail the
+    // unit's start-up timeout, so ask for time until the retry plus a margin.
+    if (!readySent_)
+        notifier_.extendTimeout(std::chrono::duration_cast<std::chrono::microseconds>(delay) +
+                                std::chrono::seconds(10));
     updateStatus();
     if (state_ == State::Waiting)
         notifier_.status(

@@ -22,7 +22,7 @@ int main(int argc, char **argv)
         case Command::Project:
             return projectCommand(line.configPath, line.json, line.coordinates, logger);
         case Command::Render:
-            return renderCommand(line.configPath, line.frames, line.output, logger);
+            return renderCommand(line.configPath, line.frames, line.output, line.logLevel, logger);
         case Command::Run:
         case Command::Exit:
             break;

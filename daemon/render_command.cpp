@@ -75,7 +75,8 @@ Result<SinkOptions> sinkForOutput(const std::string &path)
     return sink;
 }
 
-int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output, Logger &logger)
+int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,
+                  std::optional<LogLevel> logLevel, Logger &logger)
 {
     auto sinkOptions = sinkForOutput(output);
     if (!sinkOptions) {
@@ -85,6 +86,7 @@ int renderCommand(const std::string &configPath, uint64_t frames, const std::str
     auto config = loadConfigLogged(configPath, logger);
     if (!config)
         return kExitConfigError;
+    logger.setLevel(logLevel.value_or(config->daemon.logLevel));
     const StageFactories factories = defaultStageFactories();
     auto sink = factories.sink(*sinkOptions);
     auto source = sink ? factories.source(*config) : Result<std::unique_ptr<FrameSource>>(sink.error());

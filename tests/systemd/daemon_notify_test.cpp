@@ -144,6 +144,8 @@ TEST_F(DaemonNotifyTest, NoReadyBeforeTheFirstFrame)
     auto waiting = collect(3s);
     EXPECT_EQ(count(waiting, "READY"), 0u) << "READY=1 without a single frame";
     EXPECT_GE(count(waiting, "STATUS"), 1u) << "a STATUS line should say what the daemon waits for";
+    EXPECT_GE(count(waiting, "EXTEND_TIMEOUT_USEC"), 1u)
+        << "a camera late at boot must not run into the unit's start-up timeout";
     EXPECT_TRUE(daemon_->running()) << "a missing camera is retried, not fatal";
     stopCleanly();
 }
@@ -202,6 +204,13 @@ TEST_F(DaemonNotifyTest, WatchdogStopsWhenThePipelineStalls)
     ASSERT_TRUE(quiet) << "still petting the watchdog 10 s after READY, with a source that stalls after 30 frames";
     EXPECT_EQ(count(collect(2s), "WATCHDOG"), 0u) << "the watchdog was petted again with the source still stalled";
     EXPECT_TRUE(daemon_->running()) << "the daemon stays up; it is systemd's watchdog that restarts it";
+    bool statusSaysStalled = false;
+    for (const auto &d : history_) {
+        const auto fields = d.fields();
+        if (auto it = fields.find("STATUS"); it != fields.end() && it->second.find("stalled") != std::string::npos)
+            statusSaysStalled = true;
+    }
+    EXPECT_TRUE(statusSaysStalled) << "STATUS= still claims streaming while no frame arrives";
     stopCleanly();
 }
 
