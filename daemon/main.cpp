@@ -1,4 +1,5 @@
 // overlayd: the camera-overlay daemon and its tools. Exceptions are start-up failures only, caught here once.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
@@ -9,6 +10,9 @@
 int main(int argc, char **argv)
 {
     using namespace overlayd;
+    // A sink whose reader went away (`overlayd run | ffplay -`, ffplay closed) must fail as an I/O error on that
+    // sink, not kill the daemon and every other sink with it.
+    std::signal(SIGPIPE, SIG_IGN);
     try {
         const CommandLine line = parseCommandLine(argc, argv);
         if (line.command == Command::Exit)
