@@ -1,8 +1,11 @@
 // The command line: subcommands, the default `run`, options that fall through, and usage errors.
 #include "daemon/cli.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -11,8 +14,8 @@ namespace overlayd {
 namespace {
 
 struct CliTest : ::testing::Test {
-    // CLI11 checks that --config files exist.
-    std::string config = ::testing::TempDir() + "cli_test.toml";
+    // CLI11 checks that --config files exist. CTest runs each test in its own process, in parallel: one file each.
+    std::string config = ::testing::TempDir() + "cli_test_" + std::to_string(getpid()) + ".toml";
     void SetUp() override { std::ofstream(config) << "\n"; }
     void TearDown() override { std::remove(config.c_str()); }
 
