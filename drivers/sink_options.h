@@ -21,12 +21,12 @@ enum class DropPolicy { DropOldest, DropNewest };
 
 struct SinkOptions {
     SinkKind kind = SinkKind::Null;
-    std::string path;           // file, "-" for stdout, or device
-    unsigned every = 1;         // Snapshot: one image per `every` frames
-    unsigned jpegQuality = 90;  // Snapshot .jpg
-    unsigned queueDepth = 4;    // frames waiting for this sink before the drop policy applies
+    std::string path;          // file, "-" for stdout, or device
+    unsigned every = 1;        // Snapshot: one image per `every` frames
+    unsigned jpegQuality = 90; // Snapshot .jpg
+    unsigned queueDepth = 4;   // frames waiting for this sink before the drop policy applies
     DropPolicy dropPolicy = DropPolicy::DropOldest;
-    unsigned bufferCount = 4;   // V4l2Output
+    unsigned bufferCount = 4; // V4l2Output
 };
 
 Result<std::unique_ptr<FrameSink>> makeSink(const SinkOptions &options);

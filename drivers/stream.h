@@ -28,8 +28,8 @@ struct StreamFormat {
 };
 
 struct FrameMetadata {
-    uint64_t sequence = 0;                        // counts from 0; a gap means the source dropped frames
-    std::chrono::nanoseconds timestamp{0};        // CLOCK_MONOTONIC, when the frame was captured or made
+    uint64_t sequence = 0;                             // counts from 0; a gap means the source dropped frames
+    std::chrono::nanoseconds timestamp{0};             // CLOCK_MONOTONIC, when the frame was captured or made
     std::chrono::system_clock::time_point wallClock{}; // for timestamp text on the overlay
     Colorimetry colorimetry{};
 };

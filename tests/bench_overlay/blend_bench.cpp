@@ -13,13 +13,16 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "cold_frames.h"
 #include "overlay/native_layer.h"
 
 namespace overlayd {
 namespace {
 
+using bench::memcpyBench;
+using bench::Ring;
+
 constexpr double kCoverage = 0.095;
-constexpr size_t kRingBytes = size_t(96) << 20;
 
 std::unique_ptr<OverlayLayer> gridLayer(unsigned width, unsigned height)
 {
@@ -42,19 +45,6 @@ std::unique_ptr<OverlayLayer> gridLayer(unsigned width, unsigned height)
     return layer;
 }
 
-struct Ring {
-    FrameLayout layout;
-    std::vector<uint8_t> bytes;
-    size_t count;
-
-    Ring(const PixelFormatInfo &format, unsigned width, unsigned height)
-        : layout(*makeFrameLayout(format, width, height)), count(kRingBytes / layout.totalSize + 1)
-    {
-        bytes.assign(layout.totalSize * count, 0x80);
-    }
-    uint8_t *frame(size_t i) { return bytes.data() + (i % count) * layout.totalSize; }
-};
-
 void blendBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
 {
     const PixelFormatInfo &format = *pixelFormatFromName(formatName);
@@ -69,17 +59,6 @@ void blendBench(benchmark::State &state, const char *formatName, unsigned width,
     state.counters["coverage_%"] = 100.0 * layer->coveredPixels() / (width * height);
     state.counters["touched_bytes"] = native->touchedBytes();
     state.counters["runs"] = native->runs().size();
-}
-
-void memcpyBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
-{
-    Ring ring(*pixelFormatFromName(formatName), width, height);
-    size_t i = 0;
-    for (auto _ : state) {
-        std::memcpy(ring.frame(i + ring.count / 2), ring.frame(i), ring.layout.totalSize);
-        benchmark::ClobberMemory();
-        ++i;
-    }
 }
 
 // The cost paid when the overlay changes: converting the layer to the frame's format.

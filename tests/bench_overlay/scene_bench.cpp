@@ -16,12 +16,14 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "cold_frames.h"
 #include "overlay/overlay_renderer.h"
 
 namespace overlayd {
 namespace {
 
-constexpr size_t kRingBytes = size_t(96) << 20;
+using bench::memcpyBench;
+using bench::Ring;
 
 Camera benchCamera(unsigned width, unsigned height, double yawDeg)
 {
@@ -57,19 +59,6 @@ OverlayScene benchScene()
         scene.annotations.push_back(item(labels[i], LabelShape{anchors[i], labels[i], {4, 4}, 20.0}, kWhite, 2.0));
     return scene;
 }
-
-struct Ring {
-    FrameLayout layout;
-    std::vector<uint8_t> bytes;
-    size_t count;
-
-    Ring(const PixelFormatInfo &format, unsigned width, unsigned height)
-        : layout(*makeFrameLayout(format, width, height)), count(kRingBytes / layout.totalSize + 1)
-    {
-        bytes.assign(layout.totalSize * count, 0x80);
-    }
-    uint8_t *frame(size_t i) { return bytes.data() + (i % count) * layout.totalSize; }
-};
 
 StreamFormat streamFormat(const char *name, unsigned width, unsigned height)
 {
@@ -181,17 +170,6 @@ void opencvNaiveBench(benchmark::State &state, const char *formatName, unsigned 
                         cv::Scalar::all(255), 2, cv::LINE_AA);
         toNative(bgr, formatName, frame, scratch);
         benchmark::ClobberMemory();
-    }
-}
-
-void memcpyBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
-{
-    Ring ring(*pixelFormatFromName(formatName), width, height);
-    size_t i = 0;
-    for (auto _ : state) {
-        std::memcpy(ring.frame(i + ring.count / 2), ring.frame(i), ring.layout.totalSize);
-        benchmark::ClobberMemory();
-        ++i;
     }
 }
 
