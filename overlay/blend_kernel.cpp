@@ -1,4 +1,5 @@
-// The blend loops, written so that the compiler vectorizes them (16-bit lanes); built with -O3 for that reason.
+// The blend loops: short runs (the common case: a few pixels of a thin line) as one 16-byte vector operation with
+// a lane mask, long runs as plain loops the compiler vectorizes (16-bit lanes); built with -O3 for that reason.
 #include "overlay/blend_kernel.h"
 
 namespace overlayd {
@@ -13,6 +14,29 @@ inline void blendInline(uint8_t *__restrict dst, const uint8_t *__restrict value
         const uint16_t x = uint16_t(dst[i] * inverseAlpha[i] + 128);
         dst[i] = uint8_t(values[i] + ((x + (x >> 8)) >> 8));
     }
+}
+
+using Bytes16 = uint8_t __attribute__((vector_size(16)));
+using Words16 = uint16_t __attribute__((vector_size(32)));
+
+Bytes16 load16(const uint8_t *p)
+{
+    Bytes16 v;
+    __builtin_memcpy(&v, p, 16);
+    return v;
+}
+
+// The first `count` (< 16) bytes of dst blended, the other 16 - count lanes written back as they were. Reads 16
+// bytes at each pointer: the caller guarantees they exist (the layer pads its arrays, the frame check is per run).
+inline void blendMasked16(uint8_t *dst, const uint8_t *values, const uint8_t *inverseAlpha, unsigned count)
+{
+    static constexpr Bytes16 kLane = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const Bytes16 in = load16(dst);
+    const Words16 x =
+        __builtin_convertvector(in, Words16) * __builtin_convertvector(load16(inverseAlpha), Words16) + 128;
+    const Bytes16 out = load16(values) + __builtin_convertvector((x + (x >> 8)) >> 8, Bytes16);
+    const Bytes16 result = kLane < uint8_t(count) ? out : in;
+    __builtin_memcpy(dst, &result, 16);
 }
 
 uint8_t *address(const FrameView &frame, const NativeRun &run)
@@ -39,7 +63,12 @@ void blendRuns(const FrameView &frame, std::span<const NativeRun> runs, const ui
         if (i + kPrefetchAhead < runs.size())
             __builtin_prefetch(address(frame, runs[i + kPrefetchAhead]), 1);
         const NativeRun &run = runs[i];
-        blendInline(address(frame, run), values + run.dataOffset, inverseAlpha + run.dataOffset, run.length);
+        uint8_t *dst = address(frame, run);
+        const PlaneView &plane = frame.planes[run.plane];
+        if (run.length < 16 && dst + 16 <= plane.data + plane.size)
+            blendMasked16(dst, values + run.dataOffset, inverseAlpha + run.dataOffset, run.length);
+        else
+            blendInline(dst, values + run.dataOffset, inverseAlpha + run.dataOffset, run.length);
     }
 }
 

@@ -21,6 +21,10 @@ struct NativeRun {
 void blendBytes(uint8_t *__restrict dst, const uint8_t *__restrict values, const uint8_t *__restrict inverseAlpha,
                 size_t count);
 
+// blendRuns reads up to this many bytes of values and inverseAlpha past a run's start (short runs are one
+// masked vector operation), so the arrays extend this far beyond their last run.
+inline constexpr size_t kBlendReadAhead = 16;
+
 // blendBytes over every run; the frame must already be checked against the runs' format and size.
 void blendRuns(const FrameView &frame, std::span<const NativeRun> runs, const uint8_t *values,
                const uint8_t *inverseAlpha);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "overlay/coverage_sink.h"
 #include "overlay/overlay_layer.h"
 
 namespace overlayd {
@@ -21,5 +22,23 @@ struct LayerRect {
 // rounded so that colour 255 at opacity a stores exactly a.
 void compositeCoverage(const uint8_t *coverage, size_t coverageStride, const LayerRect &rect, Rgba colour,
                        OverlayLayer &layer);
+
+// The cached path's sink: each item composited over the layer as it arrives (sink pixels are layer pixels).
+class LayerCoverageSink final : public CoverageSink
+{
+public:
+    explicit LayerCoverageSink(OverlayLayer &layer) : layer_(layer) {}
+
+    void begin(Rgba colour) override { colour_ = colour; }
+    void row(int y, int x0, const uint8_t *coverage, int count) override
+    {
+        compositeCoverage(coverage, 0, {x0, y, x0 + count, y + 1}, colour_, layer_);
+    }
+    void end() override {}
+
+private:
+    OverlayLayer &layer_;
+    Rgba colour_{};
+};
 
 } // namespace overlayd

@@ -54,11 +54,13 @@ Status NativeLayer::update(const OverlayLayer &layer, Colorimetry colorimetry)
     values_.clear();
     inverseAlpha_.clear();
     // Covered pixels times bytes per pixel, plus whole macropixels at span ends: enough for one allocation.
-    const size_t estimate = layer.coveredPixels() * (format_->bitsPerPixel + 7) / 8 * 3 / 2 + 64;
+    const size_t estimate = layer.coveredPixels() * (format_->bitsPerPixel + 7) / 8 * 3 / 2 + 64 + kBlendReadAhead;
     values_.reserve(estimate);
     inverseAlpha_.reserve(estimate);
     runs_.reserve(layer.spans().size() * 2);
     layerConverter(format_->layout)(layer, *format_, YcbcrEncoder(colorimetry), *this);
+    values_.insert(values_.end(), kBlendReadAhead, 0);
+    inverseAlpha_.insert(inverseAlpha_.end(), kBlendReadAhead, 255);
     return Ok{};
 }
 

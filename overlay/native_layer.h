@@ -42,7 +42,7 @@ public:
 
     const PixelFormatInfo &format() const { return *format_; }
     const std::vector<NativeRun> &runs() const { return runs_; }
-    size_t touchedBytes() const { return values_.size(); }
+    size_t touchedBytes() const { return values_.size() - kBlendReadAhead; }
 
     // Used by the per-layout converters while building the layer.
     void beginRun(unsigned plane, unsigned row, unsigned byteOffset);

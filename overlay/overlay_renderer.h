@@ -26,14 +26,16 @@ public:
     static Result<std::unique_ptr<OverlayRenderer>> create(const OverlayScene &scene, const Camera &camera,
                                                            const StreamFormat &format);
 
-    // The camera moved or changed (dynamic overlays): re-project and re-rasterize before the next blend.
+    // The camera moved or changed (dynamic overlays): the next blend re-projects. A camera that changes before every
+    // frame is drawn straight into each frame; one that then holds still is rendered into the cached layers again.
     virtual Status setCamera(const Camera &camera) = 0;
     // Layers are named by the annotations' styles; an unknown name is an InvalidArgument error.
     virtual Status setLayerEnabled(std::string_view layer, bool enabled) = 0;
     virtual std::vector<std::string> layerNames() const = 0;
 
-    // Frame path (no allocation once the text layers have warmed up, no exceptions): refreshes token text if it
-    // changed and blends every enabled layer into the frame in place. fps feeds the {fps} token.
+    // Frame path (no exceptions; no allocation once the text layers have warmed up and while the camera holds
+    // still): refreshes token text if it changed and blends every enabled layer into the frame in place. fps feeds
+    // the {fps} token.
     virtual Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) = 0;
 };
 

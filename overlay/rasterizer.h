@@ -1,12 +1,16 @@
-// Rasterizer: draws projected primitives into an OverlayLayer with OpenCV, through a coverage mask per item.
+// Rasterizer: turns projected primitives into coverage rows for a CoverageSink -- fills as solid rows, strokes
+// through StrokeRasterizer, text from TextRenderer's cached glyph coverage.
 #pragma once
 
+#include <vector>
+
 #include <glm/vec2.hpp>
-#include <opencv2/core.hpp>
 
 #include "overlay/coverage.h"
+#include "overlay/coverage_sink.h"
 #include "overlay/overlay_layer.h"
 #include "overlay/primitives.h"
+#include "overlay/stroke_raster.h"
 #include "overlay/text_renderer.h"
 
 namespace overlayd {
@@ -16,22 +20,25 @@ class Rasterizer
 public:
     explicit Rasterizer(const TextRenderer &text) : text_(text) {}
 
-    // Draws the list over what the layer holds. Primitives are in frame pixels (memory order); the layer's pixel
-    // (0, 0) is frame pixel `layerOrigin`, and nothing is drawn outside `clip` (frame pixels, e.g. the scissor).
+    // Paints the list item by item (fills, then strokes, then text) through the sink. Primitives are in frame
+    // pixels (memory order); the sink's pixel (0, 0) is frame pixel `sinkOrigin`, and nothing is painted outside
+    // `sinkClip` (sink pixels: the caller intersects the scissor with the sink's bounds).
+    void draw(const DrawList &list, CoverageSink &sink, glm::ivec2 sinkOrigin, const LayerRect &sinkClip);
+    // The same over what a layer holds; `clip` is in frame pixels (e.g. the scissor).
     void draw(const DrawList &list, OverlayLayer &layer, glm::ivec2 layerOrigin, const LayerRect &clip);
 
     // The box a text item occupies, in frame pixels.
     LayerRect textBox(const TextItem &item) const;
 
 private:
-    void drawStroke(const StrokeItem &item, OverlayLayer &layer, glm::ivec2 origin, const LayerRect &clip);
-    void drawText(const TextItem &item, OverlayLayer &layer, glm::ivec2 origin, const LayerRect &clip);
-    void strokePolyline(std::span<const glm::dvec2> line, glm::dvec2 shift, const StrokeStyle &style, cv::Mat &target,
-                        const cv::Scalar &colour);
+    void fill(Rgba colour, const LayerRect &rect, CoverageSink &sink);
+    void drawStroke(const StrokeItem &item, CoverageSink &sink, glm::ivec2 origin, const LayerRect &clip);
+    void drawText(const TextItem &item, CoverageSink &sink, glm::ivec2 origin, const LayerRect &clip);
 
     const TextRenderer &text_;
-    cv::Mat mask_;     // scratch coverage, at least the layer's size; all zero between items
-    Polylines dashed_; // scratch
+    StrokeRasterizer strokes_;
+    Polylines dashed_;           // scratch
+    std::vector<uint8_t> solid_; // a row of full coverage, as wide as the widest fill so far
 };
 
 } // namespace overlayd

@@ -12,7 +12,7 @@ namespace overlayd {
 SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera,
                              const StreamFormat &format)
     : scene_(scene), graph_(std::move(graph)), camera_(camera), format_(format), colorimetry_(format.colorimetry),
-      rasterizer_(text_)
+      rasterizer_(text_), frameSink_(*format.format, format.colorimetry)
 {
     for (size_t i = 0; i < scene_.annotations.size(); ++i) {
         const Annotation &annotation = scene_.annotations[i];
@@ -43,6 +43,7 @@ LayerRect SceneRenderer::scissor() const
 
 Status SceneRenderer::renderWorld()
 {
+    worldStale_ = false;
     for (Layer &layer : layers_) {
         layer.pixels.clearCovered();
         for (size_t index : layer.annotations) {
@@ -115,7 +116,11 @@ Status SceneRenderer::setCamera(const Camera &camera)
                                                          std::to_string(format_.width) + "x" +
                                                          std::to_string(format_.height));
     camera_ = camera;
-    return renderWorld();
+    worldStale_ = true;
+    cameraChangedSinceBlend_ = true;
+    for (TextSlot &slot : texts_)
+        slot.rendered = false; // the viewport may have moved them
+    return Ok{};
 }
 
 Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
@@ -146,14 +151,53 @@ const OverlayLayer *SceneRenderer::layerPixels(std::string_view name) const
     return nullptr;
 }
 
+void SceneRenderer::drawWorldInto(const FrameView &frame)
+{
+    frameSink_.setFrame(frame);
+    const LayerRect clip = scissor().intersect({0, 0, int(format_.width), int(format_.height)});
+    for (const Layer &layer : layers_) {
+        if (!layer.enabled)
+            continue;
+        for (size_t index : layer.annotations) {
+            const Annotation &annotation = scene_.annotations[index];
+            const Result<glm::dmat4> worldFromFrame =
+                isScreenText(annotation) ? Result<glm::dmat4>(glm::dmat4(1.0)) : graph_.worldMatrix(annotation.frame);
+            drawList_.clear();
+            buildPrimitives(annotation, worldFromFrame ? *worldFromFrame : glm::dmat4(1.0), camera_, drawList_);
+            rasterizer_.draw(drawList_, frameSink_, {0, 0}, clip);
+        }
+    }
+}
+
 Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
 {
+    if (!frame.format || frame.format->fourcc != format_.format->fourcc || frame.width != format_.width ||
+        frame.height != format_.height)
+        return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " + format_.describe());
+    if (Status status = checkFrame(frame); !status)
+        return status;
+    movingFrames_ = cameraChangedSinceBlend_ ? movingFrames_ + 1 : 0;
+    cameraChangedSinceBlend_ = false;
+    drewDirectly_ = worldStale_ && movingFrames_ >= 2;
+    if (drewDirectly_) {
+        drawWorldInto(frame);
+        return blendTexts(frame, metadata, fps);
+    }
+    if (worldStale_) {
+        if (Status status = renderWorld(); !status)
+            return status;
+    }
     for (const Layer &layer : layers_) {
         if (!layer.enabled || !layer.native)
             continue;
         if (Status status = layer.native->blend(frame); !status)
             return status;
     }
+    return blendTexts(frame, metadata, fps);
+}
+
+Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &metadata, double fps)
+{
     for (TextSlot &slot : texts_) {
         if (!layers_[slot.layer].enabled)
             continue;

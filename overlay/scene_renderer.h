@@ -1,6 +1,10 @@
 // SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One full-frame OverlayLayer per named layer
 // (so switching a layer off costs nothing and re-projects nothing), plus one small layer per screen text with
 // tokens, re-rendered only when its expanded string changes.
+//
+// A camera that keeps moving (setCamera before two blends in a row) is drawn straight into each frame instead:
+// a cached layer would be redrawn and converted every frame for one use. When the camera holds still for a frame,
+// the layers are rendered once more and the cached blend takes over again.
 #pragma once
 
 #include <memory>
@@ -8,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "overlay/frame_coverage_sink.h"
 #include "overlay/native_layer.h"
 #include "overlay/overlay_renderer.h"
 #include "overlay/rasterizer.h"
@@ -27,6 +32,8 @@ public:
 
     // Re-projects and re-rasterizes every world layer (called by create and setCamera).
     Status renderWorld();
+    // Whether the last blend drew the world straight into the frame (a moving camera), for tests and stats.
+    bool drewDirectly() const { return drewDirectly_; }
     // The RGBA layer of a named layer, for tests and previews; nullptr for an unknown name.
     const OverlayLayer *layerPixels(std::string_view name) const;
 
@@ -47,6 +54,9 @@ private:
     };
 
     Status renderText(TextSlot &slot);
+    // The moving-camera path: every enabled world layer projected and painted into this frame.
+    void drawWorldInto(const FrameView &frame);
+    Status blendTexts(const FrameView &frame, const FrameMetadata &metadata, double fps);
     Status convertAll();
     size_t layerIndex(const std::string &name);
     LayerRect scissor() const;
@@ -62,6 +72,11 @@ private:
     Rasterizer rasterizer_;
     std::vector<Layer> layers_;
     std::vector<TextSlot> texts_;
+    FrameCoverageSink frameSink_;
+    bool worldStale_ = false; // the camera changed since the layers were rendered
+    bool cameraChangedSinceBlend_ = false;
+    unsigned movingFrames_ = 0; // consecutive blends, each preceded by a camera change
+    bool drewDirectly_ = false;
     DrawList drawList_; // scratch
 };
 

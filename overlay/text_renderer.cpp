@@ -48,6 +48,19 @@ TextRenderer::TextRenderer(const std::string &fontPath)
 
 TextRenderer::Box TextRenderer::measure(const std::string &text, double sizePx) const
 {
+    constexpr size_t kMaxCached = 64; // bounded like the coverage cache: token text makes new strings
+    auto key = std::make_pair(text, sizePx);
+    if (const auto it = boxes_.find(key); it != boxes_.end())
+        return it->second;
+    if (boxes_.size() >= kMaxCached)
+        boxes_.clear();
+    const Box box = measureUncached(text, sizePx);
+    boxes_.emplace(std::move(key), box);
+    return box;
+}
+
+TextRenderer::Box TextRenderer::measureUncached(const std::string &text, double sizePx) const
+{
     int baseline = 0;
     cv::Size size;
     if (freeType_)

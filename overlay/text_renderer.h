@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include <opencv2/core.hpp>
 #include <opencv2/freetype.hpp>
@@ -23,6 +24,7 @@ public:
         int width = 0, ascent = 0, descent = 0;
         int height() const { return ascent + descent; }
     };
+    // Cached like render(): a label's box is asked for every frame while the camera moves.
     Box measure(const std::string &text, double sizePx) const;
     // The coverage (0..255) of the text drawn in its box, CV_8UC1 of the box's size. Cached: labels keep their text
     // while the camera moves, and FreeType's rendering is the slow part of a redraw. Read-only.
@@ -34,7 +36,10 @@ private:
     cv::Mat draw(const std::string &text, double sizePx, bool antialias) const;
 
     cv::Ptr<cv::freetype::FreeType2> freeType_;
+    Box measureUncached(const std::string &text, double sizePx) const;
+
     mutable std::map<std::tuple<std::string, double, bool>, cv::Mat> cache_;
+    mutable std::map<std::pair<std::string, double>, Box> boxes_;
 };
 
 } // namespace overlayd

@@ -1,0 +1,28 @@
+// CoverageSink: where rasterized coverage goes, row by row -- an RGBA layer (cached overlays) or straight into a
+// frame in its own pixel format (a moving camera, where a cached layer would be redrawn every frame anyway).
+#pragma once
+
+#include <cstdint>
+
+#include "overlay/overlay_layer.h"
+
+namespace overlayd {
+
+// One item (a stroke, a fill, a text) is painted as begin(colour), then row() calls, then end(). Within an item:
+// rows come in increasing y; several row() calls for one y come in increasing x and never overlap; coverage is
+// 0..255 per pixel (0 is allowed and changes nothing). Coordinates are the sink's own pixels (a layer's or a
+// frame's), already clipped to it by the rasterizer. Items are painted "over" each other in call order.
+class CoverageSink
+{
+public:
+    virtual ~CoverageSink() = default;
+
+    // colour is straight (not premultiplied); the item's opacity at a pixel is colour.a * coverage / 255.
+    virtual void begin(Rgba colour) = 0;
+    // Pixels [x0, x0 + count) of row y take coverage[0 .. count).
+    virtual void row(int y, int x0, const uint8_t *coverage, int count) = 0;
+    // The item is complete: a sink that groups rows (chroma shared by two rows) flushes here.
+    virtual void end() = 0;
+};
+
+} // namespace overlayd

@@ -1,0 +1,92 @@
+// FrameCoverageSink: blends coverage straight into a frame in its own pixel format -- the moving-camera path, with
+// no RGBA layer and no per-frame layer conversion. Chroma-aware like NativeLayer: a subsampled chroma sample takes
+// the coverage-weighted colour of its macropixel.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "drivers/colorimetry.h"
+#include "drivers/frame.h"
+#include "overlay/coverage_sink.h"
+#include "overlay/ycbcr.h"
+
+namespace overlayd {
+
+class FrameCoverageSink final : public CoverageSink
+{
+public:
+    FrameCoverageSink(const PixelFormatInfo &format, Colorimetry colorimetry);
+
+    // The frame painted from now on; the caller has checked it (checkFrame, format and size). Sink pixel (x, y) is
+    // frame pixel (x, y).
+    void setFrame(const FrameView &frame);
+
+    void begin(Rgba colour) override;
+    void row(int y, int x0, const uint8_t *coverage, int count) override;
+    void end() override;
+
+private:
+    // Chroma groups [g0, g1) of the pending chroma row touched by the item.
+    struct Interval {
+        unsigned g0 = 0, g1 = 0;
+    };
+
+    // Where a format keeps its samples, read once from the pixel-format table.
+    struct Layout {
+        bool rgb = false, chroma = false;
+        unsigned lumaStep = 1, lumaOffset = 0; // luma byte of pixel x: x * lumaStep + lumaOffset (plane 0)
+        unsigned chromaStep = 0;               // bytes between chroma groups in the Cb/Cr plane(s)
+        unsigned cbPlane = 0, crPlane = 0, cbOffset = 0, crOffset = 0;
+        unsigned vSub = 1;       // luma rows per chroma row
+        unsigned pixelBytes = 0; // RGB: bytes per pixel
+    };
+
+    // The item's colour at full opacity, per touched byte kind; opacity scales it (premultiplied Y'CbCr and RGB
+    // are linear in alpha for a fixed colour).
+    struct ItemColour {
+        unsigned luma = 0, cb = 0, cr = 0;
+        uint8_t rgb[4] = {};     // per byte of an RGB pixel; an alpha byte composes "over" as 255
+        uint8_t rgbMask[4] = {}; // 0xff for a byte the blend writes, 0 for an X byte
+        uint8_t alpha = 255;
+    };
+
+    static Layout layoutOf(const PixelFormatInfo &format);
+    const uint8_t *opacities(const uint8_t *coverage, unsigned count);
+    void prefetchAhead(int y, int x0, int count);
+    void prefetchRow(int y, int x0, int count);
+    void noteChroma(unsigned y, unsigned x0, unsigned count);
+    void flushChroma();
+    void blendChromaInterval(unsigned chromaRow, Interval interval);
+    const std::vector<Interval> &mergedIntervals();
+
+    // The pixel loops (frame_coverage_sink_kernels.cpp), plain enough for the compiler to vectorize.
+    // pixels: the first byte of pixel x0's bytes; room: visible bytes of the row from there (a short run is one
+    // 16-byte vector operation when they suffice).
+    static void blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count, unsigned value,
+                          size_t room);
+    static void blendRgb(uint8_t *dst, unsigned pixelBytes, const uint8_t *alpha, unsigned count,
+                         const ItemColour &colour);
+    static void accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count);
+    static void blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count, unsigned shift,
+                            const ItemColour &colour);
+
+    const PixelFormatInfo *format_;
+    Colorimetry colorimetry_;
+    FrameView frame_{};
+    size_t rowBytes_ = 0; // visible bytes of a plane-0 row
+    YcbcrEncoder encoder_;
+    Layout layout_;
+    ItemColour colour_;
+
+    // Scratch grown by setFrame and then reused: no allocation per frame.
+    std::vector<uint8_t> alpha_;      // opacity of one row() call's pixels
+    std::vector<uint16_t> alphaSums_; // per chroma group of the pending chroma row; all zero between flushes
+    std::vector<Interval> intervals_; // touched groups, in arrival order
+    std::vector<Interval> merged_;
+    size_t secondRowStart_ = 0; // intervals_ index where the chroma row's second luma row starts
+    int pendingChromaRow_ = -1, lastLumaRow_ = -1;
+    int previousY_ = -1, previousX0_ = 0; // the item's last row start, to guess where its next rows will be
+};
+
+} // namespace overlayd

@@ -1,0 +1,151 @@
+// FrameCoverageSink's pixel loops: the premultiplied "over" of blend_kernel.cpp with the value and 255 - alpha
+// computed from the opacity on the fly, in 16-bit lanes the compiler vectorizes (built with -O3).
+#include "overlay/frame_coverage_sink.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace overlayd {
+
+namespace {
+
+// x / 255 rounded, exactly, for x <= 255 * 255, without a division.
+inline uint8_t div255(uint16_t x)
+{
+    x = uint16_t(x + 128);
+    return uint8_t((x + (x >> 8)) >> 8);
+}
+
+// out = a * value / 255 + in * (255 - a) / 255, each term rounded as the cached path rounds it.
+inline uint8_t over(uint8_t in, unsigned a, unsigned value)
+{
+    return uint8_t(div255(uint16_t(a * value)) + div255(uint16_t(in * (255 - a))));
+}
+
+using Bytes16 = uint8_t __attribute__((vector_size(16)));
+using Words16 = uint16_t __attribute__((vector_size(32)));
+
+// over() on 16 lanes at once; a lane with opacity 0 comes out exactly as it went in.
+inline Bytes16 over16(Bytes16 in, Bytes16 alpha, uint16_t value)
+{
+    const Words16 a = __builtin_convertvector(alpha, Words16);
+    Words16 v = a * value + 128, k = __builtin_convertvector(in, Words16) * (255 - a) + 128;
+    v = (v + (v >> 8)) >> 8;
+    k = (k + (k >> 8)) >> 8;
+    return __builtin_convertvector(v + k, Bytes16);
+}
+
+// A thin line's run of up to 16 (step 1) or 8 (step 2, luma in every other byte) pixels as one vector operation:
+// the bytes between and after the luma samples see opacity 0 and are written back unchanged.
+inline void lumaShort(uint8_t *pixels, unsigned step, unsigned offset, const uint8_t *alpha, unsigned count,
+                      unsigned value)
+{
+    Bytes16 a{}, in;
+    __builtin_memcpy(&a, alpha, count);
+    if (step == 2) {
+        const Bytes16 zero{};
+        a = offset == 0 ? __builtin_shufflevector(a, zero, 0, 16, 1, 16, 2, 16, 3, 16, 4, 16, 5, 16, 6, 16, 7, 16)
+                        : __builtin_shufflevector(a, zero, 16, 0, 16, 1, 16, 2, 16, 3, 16, 4, 16, 5, 16, 6, 16, 7);
+    }
+    __builtin_memcpy(&in, pixels, 16);
+    const Bytes16 out = over16(in, a, uint16_t(value));
+    __builtin_memcpy(pixels, &out, 16);
+}
+
+template<unsigned Step>
+void lumaLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned count, unsigned value)
+{
+    for (unsigned i = 0; i < count; ++i)
+        dst[i * Step] = over(dst[i * Step], alpha[i], value);
+}
+
+template<unsigned Bytes>
+void rgbLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned count, const uint8_t *colour,
+             const uint8_t *mask)
+{
+    uint8_t value[Bytes], keep[Bytes];
+    std::copy_n(colour, Bytes, value);
+    std::copy_n(mask, Bytes, keep);
+    for (unsigned i = 0; i < count; ++i) {
+        for (unsigned k = 0; k < Bytes; ++k) // an X byte sees opacity 0: it keeps its value
+            dst[i * Bytes + k] = over(dst[i * Bytes + k], alpha[i] & keep[k], value[k]);
+    }
+}
+
+// Opacity scaled to a four-pixel sum, rounded half to even as the cached path's lrintf rounds the mean.
+inline unsigned meanAlpha(unsigned sum4)
+{
+    return (sum4 + 1 + ((sum4 >> 2) & 1)) >> 2;
+}
+
+// A code at full opacity scaled to the mean opacity sum4 / 4; never above alpha, so the blend cannot overflow.
+inline unsigned scaled(unsigned sum4, unsigned code, unsigned alpha)
+{
+    return std::min((sum4 * code + 510) / 1020, alpha);
+}
+
+template<unsigned Step>
+void chromaLoop(uint8_t *__restrict cb, uint8_t *__restrict cr, uint16_t *__restrict sums, unsigned count,
+                unsigned shift, unsigned cbCode, unsigned crCode)
+{
+    for (unsigned g = 0; g < count; ++g) {
+        const unsigned sum4 = unsigned(sums[g]) << shift, alpha = meanAlpha(sum4);
+        sums[g] = 0; // ready for the next chroma row
+        const uint16_t keep = uint16_t(255 - alpha);
+        cb[g * Step] = uint8_t(scaled(sum4, cbCode, alpha) + div255(uint16_t(cb[g * Step] * keep)));
+        cr[g * Step] = uint8_t(scaled(sum4, crCode, alpha) + div255(uint16_t(cr[g * Step] * keep)));
+    }
+}
+
+} // namespace
+
+void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count,
+                                  unsigned value, size_t room)
+{
+    const unsigned step = layout.lumaStep;
+    assert(step == 1 || step == 2);
+    if (count * step <= 16 && room >= 16)
+        return lumaShort(pixels, step, layout.lumaOffset, alpha, count, value);
+    uint8_t *dst = pixels + layout.lumaOffset;
+    if (step == 1)
+        lumaLoop<1>(dst, alpha, count, value);
+    else
+        lumaLoop<2>(dst, alpha, count, value);
+}
+
+void FrameCoverageSink::blendRgb(uint8_t *dst, unsigned pixelBytes, const uint8_t *alpha, unsigned count,
+                                 const ItemColour &colour)
+{
+    assert(pixelBytes == 3 || pixelBytes == 4);
+    if (pixelBytes == 3)
+        rgbLoop<3>(dst, alpha, count, colour.rgb, colour.rgbMask);
+    else
+        rgbLoop<4>(dst, alpha, count, colour.rgb, colour.rgbMask);
+}
+
+void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count)
+{
+    unsigned i = 0;
+    if (x0 % 2 == 1) // the first pixel is the second of its group
+        sums[x0 / 2] = uint16_t(sums[x0 / 2] + alpha[i++]);
+    uint16_t *__restrict group = sums + (x0 + i) / 2;
+    const unsigned pairs = (count - i) / 2;
+    for (unsigned p = 0; p < pairs; ++p)
+        group[p] = uint16_t(group[p] + alpha[i + 2 * p] + alpha[i + 2 * p + 1]);
+    if ((count - i) % 2 == 1)
+        group[pairs] = uint16_t(group[pairs] + alpha[count - 1]);
+}
+
+void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count,
+                                    unsigned shift, const ItemColour &colour)
+{
+    // Packed 4:2:2 keeps Cb and Cr in one plane, 2 bytes apart: the loops never write the same byte through both.
+    if (step == 1)
+        chromaLoop<1>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+    else if (step == 2)
+        chromaLoop<2>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+    else
+        chromaLoop<4>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+}
+
+} // namespace overlayd

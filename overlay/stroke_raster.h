@@ -1,0 +1,75 @@
+// StrokeRasterizer: anti-aliased coverage of stroked polylines computed per pixel from its distance to the stroke
+// (no full-frame mask): the cost follows the pixels covered, so a moving camera can redraw every frame.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "overlay/coverage.h"
+#include "overlay/coverage_sink.h"
+#include "projection/polylines.h"
+
+namespace overlayd {
+
+class StrokeRasterizer
+{
+public:
+    // Emits, through sink.row() only (the caller calls begin/end), the coverage of every polyline of `lines`
+    // stroked `width` pixels wide, united (max) over the whole set so that crossings and joints never count
+    // twice. Points are in frame pixels with pixel centres at integers (OpenCV's convention); `origin` is the frame
+    // pixel of the sink's pixel (0, 0); nothing is emitted outside `clip` (sink pixels). Ends are butt, joints
+    // round. antialias off gives coverage 0 or 255.
+    void rasterize(const Polylines &lines, double width, bool antialias, glm::dvec2 origin, const LayerRect &clip,
+                   CoverageSink &sink);
+
+private:
+    // How coverage falls off with the distance d (pixels) from the centre line, in 0..255 units:
+    // clamp(gain * (reach - d), 0, peak); a binary profile is 255 where d <= reach. `extension` is how far a butt
+    // end's coverage reaches past the end point (0.5 px anti-aliased, 0 binary).
+    struct Profile {
+        float gain = 255.0f, peak = 255.0f;
+        double reach = 0.0, extension = 0.0;
+        bool binary = false;
+    };
+    // One segment, clipped, in sink pixels; t runs along it from a (0) to its length, s across it. The x extent
+    // (from a.x) of its body in row y is [tLoX + tSlope * (y - a.y), tHiX + tSlope * (y - a.y)] for the band of t,
+    // intersected with the same for the band of s; round ends add their discs.
+    struct Segment {
+        glm::dvec2 a, b, u;
+        double length;
+        bool roundStart, roundEnd;
+        int top, bottom; // rows it may cover, inside the clip
+        double tLoX, tHiX, tSlope, sLoX, sHiX, sSlope;
+        double bodyY0, bodyY1; // rows of the body when a slab does not depend on x (axis-aligned segments)
+    };
+    // A pixel run [x0, x1] (inclusive, sink pixels) of one segment in the current row.
+    struct Span {
+        int x0, x1;
+        uint32_t segment;
+    };
+
+    void addPolyline(std::span<const glm::dvec2> points, glm::dvec2 origin);
+    void addRun();
+    void addSegment(glm::dvec2 a, glm::dvec2 b, bool roundStart, bool roundEnd);
+    void sweep(CoverageSink &sink);
+    bool rowSpan(const Segment &g, int y, Span &span) const;
+    void emitRow(int y, CoverageSink &sink);
+    // Max-es the segment's coverage of pixels [x0, x0 + count) of row y into out, or writes it when `overwrite`.
+    void paint(const Segment &g, int y, int x0, int count, uint8_t *out, bool overwrite) const;
+    uint8_t coverage(const Segment &g, double t, double s) const;
+
+    Profile profile_;
+    LayerRect clip_;
+    double minX_ = 0, minY_ = 0, maxX_ = 0, maxY_ = 0; // the clip expanded by the reach: segments are cut to it
+    // Scratch reused between calls so that a redraw does not allocate.
+    std::vector<glm::dvec2> run_;
+    std::vector<Segment> segments_;
+    std::vector<uint32_t> active_, idle_;
+    std::vector<Span> spans_;
+    std::vector<uint8_t> row_;
+};
+
+} // namespace overlayd
