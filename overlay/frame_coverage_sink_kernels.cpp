@@ -97,6 +97,86 @@ void chromaLoop(uint8_t *__restrict cb, uint8_t *__restrict cr, uint16_t *__rest
     }
 }
 
+using Words8 = uint16_t __attribute__((vector_size(16)));
+using Longs8 = uint32_t __attribute__((vector_size(32)));
+using Bytes8 = uint8_t __attribute__((vector_size(8)));
+
+// scaled() on 8 lanes without a division: floor(n / 1020) == floor(floor(n / 4) / 255), and floor(y / 255) ==
+// (y + 1 + (y >> 8)) >> 8 for y < 65535 (checked for every sum and code).
+inline Words8 scaled8(Longs8 sum4, unsigned code, Words8 alpha)
+{
+    const Longs8 y = (sum4 * code + 510) >> 2;
+    const Words8 value = __builtin_convertvector((y + 1 + (y >> 8)) >> 8, Words8);
+    return value < alpha ? value : alpha;
+}
+
+inline Words8 keepOf8(Words8 in, Words8 keep)
+{
+    const Words8 x = in * keep + 128;
+    return (x + (x >> 8)) >> 8;
+}
+
+// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step, then chromaLoop's scalar rule.
+void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift, unsigned firstCode,
+                       unsigned secondCode)
+{
+    unsigned g = 0;
+    for (; g + 8 <= count; g += 8) {
+        Words8 sum;
+        __builtin_memcpy(&sum, sums + g, 16);
+        __builtin_memset(sums + g, 0, 16);
+        sum = sum << shift;
+        const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
+        const Longs8 wide = __builtin_convertvector(sum, Longs8);
+        Bytes16 bytes;
+        __builtin_memcpy(&bytes, pairs + 2 * g, 16);
+        const Words8 first =
+            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 2, 4, 6, 8, 10, 12, 14), Words8);
+        const Words8 second =
+            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 1, 3, 5, 7, 9, 11, 13, 15), Words8);
+        const Bytes8 a = __builtin_convertvector(scaled8(wide, firstCode, alpha) + keepOf8(first, keep), Bytes8);
+        const Bytes8 b = __builtin_convertvector(scaled8(wide, secondCode, alpha) + keepOf8(second, keep), Bytes8);
+        bytes = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
+        __builtin_memcpy(pairs + 2 * g, &bytes, 16);
+    }
+    chromaLoop<2>(pairs + 2 * g, pairs + 2 * g + 1, sums + g, count - g, shift, firstCode, secondCode);
+}
+
+using Bytes32 = uint8_t __attribute__((vector_size(32)));
+
+// Packed 4:2:2 (YUYV, UYVY, YVYU): the two chroma bytes of a group are 2 apart, groups 4 apart; eight groups (32
+// bytes) per step, the luma bytes between written back as read. The 32nd byte belongs to the group after the eight,
+// so a step needs one more group in the interval.
+void chromaPacked(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift, unsigned firstCode,
+                  unsigned secondCode)
+{
+    unsigned g = 0;
+    for (; g + 8 < count; g += 8) {
+        Words8 sum;
+        __builtin_memcpy(&sum, sums + g, 16);
+        __builtin_memset(sums + g, 0, 16);
+        sum = sum << shift;
+        const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
+        const Longs8 wide = __builtin_convertvector(sum, Longs8);
+        Bytes32 bytes;
+        __builtin_memcpy(&bytes, pairs + 4 * g, 32);
+        const Words8 first =
+            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 4, 8, 12, 16, 20, 24, 28), Words8);
+        const Words8 second =
+            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 2, 6, 10, 14, 18, 22, 26, 30), Words8);
+        const Bytes8 a = __builtin_convertvector(scaled8(wide, firstCode, alpha) + keepOf8(first, keep), Bytes8);
+        const Bytes8 b = __builtin_convertvector(scaled8(wide, secondCode, alpha) + keepOf8(second, keep), Bytes8);
+        const Bytes16 ab = __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+        const Bytes32 blended = __builtin_shufflevector(ab, ab, 0, 0, 8, 0, 1, 0, 9, 0, 2, 0, 10, 0, 3, 0, 11, 0, 4, 0,
+                                                        12, 0, 5, 0, 13, 0, 6, 0, 14, 0, 7, 0, 15, 0);
+        static constexpr Bytes32 kChroma = {0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0,
+                                            0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0};
+        bytes = (blended & kChroma) | (bytes & ~kChroma);
+        __builtin_memcpy(pairs + 4 * g, &bytes, 32);
+    }
+    chromaLoop<4>(pairs + 4 * g, pairs + 4 * g + 2, sums + g, count - g, shift, firstCode, secondCode);
+}
+
 } // namespace
 
 void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count,
@@ -142,8 +222,16 @@ void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uin
     // Packed 4:2:2 keeps Cb and Cr in one plane, 2 bytes apart: the loops never write the same byte through both.
     if (step == 1)
         chromaLoop<1>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+    else if (step == 2 && cr == cb + 1)
+        chromaInterleaved(cb, sums, count, shift, colour.cb, colour.cr);
+    else if (step == 2 && cb == cr + 1)
+        chromaInterleaved(cr, sums, count, shift, colour.cr, colour.cb);
     else if (step == 2)
         chromaLoop<2>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+    else if (cr == cb + 2)
+        chromaPacked(cb, sums, count, shift, colour.cb, colour.cr);
+    else if (cb == cr + 2)
+        chromaPacked(cr, sums, count, shift, colour.cr, colour.cb);
     else
         chromaLoop<4>(cb, cr, sums, count, shift, colour.cb, colour.cr);
 }
