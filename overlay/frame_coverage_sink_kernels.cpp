@@ -103,9 +103,9 @@ using Bytes8 = uint8_t __attribute__((vector_size(8)));
 
 // scaled() on 8 lanes without a division: floor(n / 1020) == floor(floor(n / 4) / 255), and floor(y / 255) ==
 // (y + 1 + (y >> 8)) >> 8 for y < 65535 (checked for every sum and code).
-inline Words8 scaled8(Longs8 sum4, unsigned code, Words8 alpha)
+inline Words8 scaled8(Words8 sum4, unsigned code, Words8 alpha)
 {
-    const Longs8 y = (sum4 * code + 510) >> 2;
+    const Longs8 y = (__builtin_convertvector(sum4, Longs8) * code + 510) >> 2;
     const Words8 value = __builtin_convertvector((y + 1 + (y >> 8)) >> 8, Words8);
     return value < alpha ? value : alpha;
 }
@@ -127,15 +127,14 @@ void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned 
         __builtin_memset(sums + g, 0, 16);
         sum = sum << shift;
         const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
-        const Longs8 wide = __builtin_convertvector(sum, Longs8);
         Bytes16 bytes;
         __builtin_memcpy(&bytes, pairs + 2 * g, 16);
         const Words8 first =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 2, 4, 6, 8, 10, 12, 14), Words8);
         const Words8 second =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 1, 3, 5, 7, 9, 11, 13, 15), Words8);
-        const Bytes8 a = __builtin_convertvector(scaled8(wide, firstCode, alpha) + keepOf8(first, keep), Bytes8);
-        const Bytes8 b = __builtin_convertvector(scaled8(wide, secondCode, alpha) + keepOf8(second, keep), Bytes8);
+        const Bytes8 a = __builtin_convertvector(scaled8(sum, firstCode, alpha) + keepOf8(first, keep), Bytes8);
+        const Bytes8 b = __builtin_convertvector(scaled8(sum, secondCode, alpha) + keepOf8(second, keep), Bytes8);
         bytes = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
         __builtin_memcpy(pairs + 2 * g, &bytes, 16);
     }
@@ -157,15 +156,14 @@ void chromaPacked(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift
         __builtin_memset(sums + g, 0, 16);
         sum = sum << shift;
         const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
-        const Longs8 wide = __builtin_convertvector(sum, Longs8);
         Bytes32 bytes;
         __builtin_memcpy(&bytes, pairs + 4 * g, 32);
         const Words8 first =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 4, 8, 12, 16, 20, 24, 28), Words8);
         const Words8 second =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 2, 6, 10, 14, 18, 22, 26, 30), Words8);
-        const Bytes8 a = __builtin_convertvector(scaled8(wide, firstCode, alpha) + keepOf8(first, keep), Bytes8);
-        const Bytes8 b = __builtin_convertvector(scaled8(wide, secondCode, alpha) + keepOf8(second, keep), Bytes8);
+        const Bytes8 a = __builtin_convertvector(scaled8(sum, firstCode, alpha) + keepOf8(first, keep), Bytes8);
+        const Bytes8 b = __builtin_convertvector(scaled8(sum, secondCode, alpha) + keepOf8(second, keep), Bytes8);
         const Bytes16 ab = __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
         const Bytes32 blended = __builtin_shufflevector(ab, ab, 0, 0, 8, 0, 1, 0, 9, 0, 2, 0, 10, 0, 3, 0, 11, 0, 4, 0,
                                                         12, 0, 5, 0, 13, 0, 6, 0, 14, 0, 7, 0, 15, 0);
