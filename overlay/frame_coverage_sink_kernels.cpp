@@ -182,6 +182,12 @@ void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const u
 {
     const unsigned step = layout.lumaStep;
     assert(step == 1 || step == 2);
+    // A long run (a flat line near the camera) as whole 16-byte vectors too, then its remainder.
+    const unsigned perVector = 16 / step;
+    while (count > perVector && room >= 32) {
+        lumaShort(pixels, step, layout.lumaOffset, alpha, perVector, value);
+        pixels += 16, room -= 16, alpha += perVector, count -= perVector;
+    }
     if (count * step <= 16 && room >= 16)
         return lumaShort(pixels, step, layout.lumaOffset, alpha, count, value);
     uint8_t *dst = pixels + layout.lumaOffset;
