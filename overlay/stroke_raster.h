@@ -14,6 +14,9 @@
 
 namespace overlayd {
 
+// Bytes of slack after a row of the rasterizer's scratch: its vector loops write up to this far past a run.
+inline constexpr int kStrokeRowSlack = 16;
+
 class StrokeRasterizer
 {
 public:
