@@ -171,6 +171,12 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out)
             options.dropPolicy = *drop;
         if (auto buffers = sink.integer("buffers", 1, 32))
             options.bufferCount = unsigned(*buffers);
+        if (auto zeroCopy = sink.choice<ZeroCopy>(
+                "zero_copy", {{"auto", ZeroCopy::Auto}, {"on", ZeroCopy::On}, {"off", ZeroCopy::Off}})) {
+            options.zeroCopy = *zeroCopy;
+            if (options.kind != SinkKind::V4l2Output)
+                sink.problem("zero_copy", "only a kind = \"v4l2\" sink can take the capture buffers themselves");
+        }
         sink.finish();
         out.push_back(std::move(options));
     }

@@ -40,9 +40,7 @@ int runCommand(const DaemonOptions &options, Logger &logger)
 {
     const std::unique_ptr<SystemdNotifier> notifier = SystemdNotifier::fromEnvironment();
     Daemon daemon(logger, *notifier, defaultStageFactories(), loadConfigFile, options);
-    if (auto started = daemon.start(); !started) {
-        if (started.error().code != ErrorCode::ConfigError)
-            logger.error(started.error().message);
+    if (auto started = daemon.start(); !started) { // start() has logged why
         notifier->stopping();
         return started.error().code == ErrorCode::ConfigError ? kExitConfigError : kExitFailure;
     }

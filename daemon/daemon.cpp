@@ -23,6 +23,16 @@ Daemon::~Daemon()
 
 Status Daemon::start()
 {
+    Status status = setUp();
+    // The config loader's problems are logged one per line where they are found; any other refusal is logged here,
+    // once, so that no failure leaves the process with exit status 2 and nothing said.
+    if (!status && !configProblemsLogged_)
+        logger_.error(status.error().message);
+    return status;
+}
+
+Status Daemon::setUp()
+{
     auto signals = SignalReader::create();
     if (!signals)
         return signals.error();
@@ -38,6 +48,7 @@ Status Daemon::start()
     if (!loaded) {
         for (const ConfigProblem &problem : problems)
             logger_.error(problem.format());
+        configProblemsLogged_ = !problems.empty();
         return loaded.error();
     }
     config_ = std::move(*loaded);
@@ -62,7 +73,15 @@ Status Daemon::start()
 std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &config, Status &status)
 {
     std::vector<std::unique_ptr<SinkWorker>> sinks;
-    for (const SinkOptions &options : config.sinks) {
+    std::vector<SinkOptions> all = config.sinks;
+    std::vector<std::string> notices;
+    if (auto limited = limitZeroCopy(all, notices); !limited) {
+        status = limited;
+        return {};
+    }
+    for (const std::string &notice : notices)
+        logger_.notice(notice);
+    for (const SinkOptions &options : all) {
         auto sink = factories_.sink(options);
         if (!sink) {
             status = makeError(sink.error().code, "sink '" + options.path + "': " + sink.error().message);
@@ -89,7 +108,8 @@ Status Daemon::openSource()
     const StreamFormat &current = pipeline_.format();
     const bool formatChanged = current.format != format->format || current.width != format->width ||
                                current.height != format->height || current.stride != format->stride ||
-                               !(current.colorimetry == format->colorimetry) || current.fps != format->fps;
+                               !(current.colorimetry == format->colorimetry) || current.fps != format->fps ||
+                               current.dmabufBuffers != format->dmabufBuffers;
     if (formatChanged) {
         if (auto opened = pipeline_.openSinks(*format); !opened && state_ == State::Idle) {
             (*source)->stop();
@@ -138,7 +158,7 @@ void Daemon::onFrameReady()
             handleSourceError(frame.error());
             return;
         }
-        pipeline_.process(frame->view(), frame->metadata());
+        pipeline_.process(std::move(*frame));
         ++framesSincePet_;
         if (!readySent_) {
             readySent_ = true;

@@ -38,7 +38,7 @@ public:
     ~Daemon();
 
     // Loads the config and opens the pipeline. A source that is absent (DeviceLost, NotFound) is waited for; any
-    // other failure (a bad config, a sink that cannot open) is returned: the caller exits non-zero.
+    // other failure (a bad config, a sink that cannot open) is logged and returned: the caller exits non-zero.
     Status start();
     // The event loop until SIGTERM/SIGINT, the end of the source, the frame limit or a fatal error; returns the
     // process exit status.
@@ -62,6 +62,7 @@ public:
     int exitStatus() const { return exitStatus_; }
 
 private:
+    Status setUp();
     static std::chrono::nanoseconds framePeriod(double fps);
     Status openSource();
     void closeSource();
@@ -103,6 +104,7 @@ private:
     uint64_t framesSincePet_ = 0;
     unsigned idleWatchdogTicks_ = 0; // watchdog ticks in a row without a frame while streaming (for STATUS=)
     bool readySent_ = false;
+    bool configProblemsLogged_ = false;
     uint64_t totalDrops_ = 0;
 };
 

@@ -140,7 +140,8 @@ bool Daemon::reload()
         return reject(cat(problems.size(), " problem(s) in ", options_.configPath));
     }
     DaemonConfig next = std::move(*loaded);
-    const bool sourceChanged = !sameSourceOptions(config_.source, next.source) || sceneCameraChanged(config_, next);
+    const bool sourceChanged = !sameSourceOptions(config_.source, next.source) || sceneCameraChanged(config_, next) ||
+                               wantsZeroCopy(config_) != wantsZeroCopy(next);
     const bool sinksChanged = !sameSinkOptions(config_.sinks, next.sinks);
 
     // Everything that can fail is built before anything is switched.

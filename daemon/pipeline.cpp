@@ -2,6 +2,7 @@
 #include "daemon/pipeline.h"
 
 #include <cstdio>
+#include <memory>
 
 namespace overlayd {
 
@@ -21,7 +22,8 @@ std::string fixed(double value, int decimals)
 
 SinkCounters operator-(const SinkCounters &a, const SinkCounters &b)
 {
-    return {a.written - b.written, a.dropped - b.dropped, a.failed - b.failed, a.writeTime - b.writeTime};
+    return {a.written - b.written, a.dropped - b.dropped, a.failed - b.failed, a.writeTime - b.writeTime,
+            a.zeroCopy - b.zeroCopy};
 }
 
 } // namespace
@@ -37,7 +39,8 @@ std::string PipelineStats::describe() const
     for (const Sink &sink : sinks)
         text += cat("; ", sink.name, ": out ", fixed(rate(sink.counters.written), 1), " fps, ", sink.counters.dropped,
                     " dropped, ", sink.counters.failed, " failed, write ",
-                    fixed(millis(sink.counters.writeTime, sink.counters.written + sink.counters.failed), 2), " ms");
+                    fixed(millis(sink.counters.writeTime, sink.counters.written + sink.counters.failed), 2), " ms",
+                    sink.counters.zeroCopy ? cat(", ", sink.counters.zeroCopy, " zero-copy") : std::string());
     return text;
 }
 
@@ -74,12 +77,33 @@ void Pipeline::closeSinks()
 void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
 {
     const auto start = std::chrono::steady_clock::now();
-    if (renderer_) {
-        if (auto blended = renderer_->blend(frame, metadata, format_.fps); !blended)
-            logger_.error(cat("overlay: ", blended.error().message));
-    }
+    blend(frame, metadata);
     const auto blended = std::chrono::steady_clock::now();
     pushToSinks(frame, metadata);
+    countFrame(start, blended);
+}
+
+void Pipeline::process(FrameLease lease)
+{
+    const auto start = std::chrono::steady_clock::now();
+    blend(lease.view(), lease.metadata());
+    const auto blended = std::chrono::steady_clock::now();
+    const auto shared = std::make_shared<const FrameLease>(std::move(lease));
+    for (auto &sink : sinks_)
+        sink->push(shared);
+    countFrame(start, blended);
+}
+
+void Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
+{
+    if (!renderer_)
+        return;
+    if (auto blended = renderer_->blend(frame, metadata, format_.fps); !blended)
+        logger_.error(cat("overlay: ", blended.error().message));
+}
+
+void Pipeline::countFrame(std::chrono::steady_clock::time_point start, std::chrono::steady_clock::time_point blended)
+{
     blendTime_ += blended - start;
     pushTime_ += std::chrono::steady_clock::now() - blended;
     ++framesIn_;

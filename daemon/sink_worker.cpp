@@ -25,7 +25,7 @@ Status SinkWorker::open(const StreamFormat &format)
         auto buffer = FrameBuffer::allocate(format);
         if (!buffer)
             return buffer.error();
-        slots.push_back(Slot{std::move(*buffer), {}});
+        slots.push_back(Slot{std::move(*buffer), {}, nullptr});
     }
     if (auto opened = sink_->open(format); !opened)
         return opened;
@@ -68,6 +68,7 @@ void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
     // The copy runs unlocked: the worker never touches a slot that is neither queued nor being written.
     lock.unlock();
     Slot &target = slots_[*slot];
+    target.lease.reset(); // a dropped oldest frame may have been a reference
     const Status copied = target.buffer.copyFrom(frame);
     target.metadata = metadata;
     lock.lock();
@@ -78,6 +79,25 @@ void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
         logger_.error(cat(describe(), ": ", copied.error().message));
         return;
     }
+    queued_.push_back(*slot);
+    wake_.notify_one();
+}
+
+void SinkWorker::push(const std::shared_ptr<const FrameLease> &lease)
+{
+    if (!isOpen())
+        return;
+    if (!sink_->takesLease(lease->view())) {
+        push(lease->view(), lease->metadata());
+        return;
+    }
+    std::unique_lock lock(mutex_);
+    const std::optional<size_t> slot = takeFreeSlot(lock);
+    if (!slot)
+        return;
+    // A dropped oldest frame's reference goes here, which may give its buffer back to the source.
+    slots_[*slot].lease = lease;
+    slots_[*slot].metadata = lease->metadata();
     queued_.push_back(*slot);
     wake_.notify_one();
 }
@@ -93,13 +113,17 @@ void SinkWorker::threadMain()
         queued_.pop_front();
         lock.unlock();
         const auto start = std::chrono::steady_clock::now();
-        const Status written = sink_->write(slots_[slot].buffer.view(), slots_[slot].metadata);
+        Slot &item = slots_[slot];
+        const bool leased = item.lease != nullptr;
+        const Status written =
+            leased ? sink_->writeLease(std::move(item.lease)) : sink_->write(item.buffer.view(), item.metadata);
         const auto elapsed = std::chrono::steady_clock::now() - start;
         if (!written)
             logger_.error(cat(describe(), ": ", written.error().message));
         lock.lock();
         counters_.writeTime += elapsed;
         ++(written ? counters_.written : counters_.failed);
+        counters_.zeroCopy += written && leased;
         free_.push_back(slot);
         slotFree_.notify_one();
     }
@@ -115,6 +139,8 @@ Status SinkWorker::close()
     }
     wake_.notify_one();
     thread_.join();
+    for (Slot &slot : slots_)
+        slot.lease.reset();
     return sink_->close();
 }
 

@@ -1,5 +1,6 @@
-// SinkWorker: one sink on its own thread behind a bounded queue of pooled frame copies, so a slow sink never
-// stalls the source; when the queue is full the sink's drop policy applies and drops are counted.
+// SinkWorker: one sink on its own thread behind a bounded queue of pooled frame copies (or, for a zero-copy sink,
+// references to the source's buffers), so a slow sink never stalls the source; when the queue is full the sink's
+// drop policy applies and drops are counted.
 #pragma once
 
 #include <chrono>
@@ -23,6 +24,7 @@ struct SinkCounters {
     uint64_t dropped = 0;                  // frames the drop policy discarded
     uint64_t failed = 0;                   // frames the sink refused (write errors)
     std::chrono::nanoseconds writeTime{0}; // total time inside FrameSink::write
+    uint64_t zeroCopy = 0;                 // of `written`: frames the sink took as leases (FrameSink::writeLease)
 };
 
 class SinkWorker
@@ -38,6 +40,9 @@ public:
     Status open(const StreamFormat &format);
     // Copies the frame into a pooled buffer and queues it. Never blocks unless lossless.
     void push(const FrameView &frame, const FrameMetadata &metadata);
+    // A source's frame: queued as a reference when the sink takes it (zero copy), else copied as above. The copy
+    // happens here, on the caller's thread: the worker thread never reads a lease's mapped bytes.
+    void push(const std::shared_ptr<const FrameLease> &lease);
     // Writes what is queued, stops the thread and closes the sink. Safe to call twice.
     Status close();
 
@@ -50,6 +55,7 @@ private:
     struct Slot {
         FrameBuffer buffer;
         FrameMetadata metadata;
+        std::shared_ptr<const FrameLease> lease; // set: write this instead of the buffer
     };
 
     void threadMain();

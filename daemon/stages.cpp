@@ -13,6 +13,7 @@ namespace {
 Result<std::unique_ptr<FrameSource>> buildSource(const DaemonConfig &config)
 {
     SourceOptions options = config.source;
+    options.v4l2.exportDmabuf = wantsZeroCopy(config);
     if (options.kind == SourceKind::Synthetic && options.synthetic.pattern == SyntheticPattern::CheckerboardScene) {
         // The scene is ray-traced through the same camera the overlay uses, so that the two can be compared.
         auto camera = config.camera.build(options.width, options.height);
@@ -46,7 +47,7 @@ auto sourceKey(const SourceOptions &o)
 
 auto sinkKey(const SinkOptions &o)
 {
-    return std::tuple(o.kind, o.path, o.every, o.jpegQuality, o.queueDepth, o.dropPolicy, o.bufferCount);
+    return std::tuple(o.kind, o.path, o.every, o.jpegQuality, o.queueDepth, o.dropPolicy, o.bufferCount, o.zeroCopy);
 }
 
 bool drawsThroughCamera(const SourceOptions &o)
@@ -68,6 +69,42 @@ bool sameMapping(const Camera &a, const Camera &b)
 }
 
 } // namespace
+
+bool wantsZeroCopy(const DaemonConfig &config)
+{
+    for (const SinkOptions &sink : config.sinks)
+        if (sink.kind == SinkKind::V4l2Output && sink.zeroCopy != ZeroCopy::Off)
+            return true;
+    return false;
+}
+
+Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices)
+{
+    const auto wants = [](const SinkOptions &s, ZeroCopy mode) {
+        return s.kind == SinkKind::V4l2Output && s.zeroCopy == mode;
+    };
+    const SinkOptions *keeper = nullptr;
+    for (const SinkOptions &sink : sinks) {
+        if (wants(sink, ZeroCopy::On) && keeper)
+            return makeError(ErrorCode::ConfigError, "sinks " + keeper->path + " and " + sink.path +
+                                                         " both have zero_copy = \"on\"; only one sink can hold the "
+                                                         "camera's buffers");
+        if (wants(sink, ZeroCopy::On))
+            keeper = &sink;
+    }
+    for (SinkOptions &sink : sinks) {
+        if (!wants(sink, ZeroCopy::Auto))
+            continue;
+        if (!keeper) {
+            keeper = &sink;
+            continue;
+        }
+        sink.zeroCopy = ZeroCopy::Off;
+        notices.push_back("sink " + sink.path + ": copying (zero_copy \"auto\"): " + keeper->path +
+                          " already takes the camera's buffers");
+    }
+    return Ok{};
+}
 
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b)
 {

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "config/daemon_config.h"
@@ -27,6 +28,13 @@ StageFactories defaultStageFactories();
 // Whether a reload must re-open the source / the sinks: only when what they were built from changed.
 bool sameSourceOptions(const SourceOptions &a, const SourceOptions &b);
 bool sameSinkOptions(const std::vector<SinkOptions> &a, const std::vector<SinkOptions> &b);
+// Whether a V4L2 output sink may take the capture buffers themselves (zero_copy not "off"): then the V4L2 source
+// exports its buffers (VIDIOC_EXPBUF), and a reload that changes this re-opens the source.
+bool wantsZeroCopy(const DaemonConfig &config);
+// Only one sink may hold the camera's buffers (it may hold all but the 2 the capture keeps): the first v4l2 sink
+// with zero_copy = "on", else the first with "auto", keeps zero copy; the other "auto" ones are turned "off" (one
+// notice each). Two "on" sinks are a ConfigError.
+Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices);
 // Whether the source draws through [camera] (the synthetic checkerboard scene) and that camera changed, so that a
 // reload must re-open the source although its own options are the same.
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b);

@@ -15,6 +15,10 @@ struct PlaneView {
     uint8_t *data = nullptr;
     unsigned stride = 0;
     size_t size = 0;
+    // The dmabuf holding the plane and where in it the plane starts (data_offset included), for zero-copy sinks;
+    // -1 unless the frame is a lease of a source that exported its buffers (VIDIOC_EXPBUF). The source owns the fd.
+    int dmabufFd = -1;
+    size_t dmabufOffset = 0;
 };
 
 // Per-plane pointers travel with the frame so that consumers never compute where a chroma plane starts.

@@ -1,6 +1,7 @@
 // FrameSink: where overlaid frames go (Y4M, raw, image snapshots, null, V4L2 output).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "drivers/stream.h"
@@ -22,6 +23,17 @@ public:
     virtual Status close() = 0;
 
     virtual std::string describe() const = 0;
+
+    // Zero copy (opt-in; only the V4L2 output does it). takesLease() is asked on the pipeline's thread for every
+    // source frame, so it may only read what open() decided; true: the frame goes to writeLease() instead of being
+    // copied for write(). writeLease() gets a reference to the source's own buffer and drops it when the device is
+    // done with it (the last reference gives the buffer back to the source). It may use only the frame's dmabuf
+    // fds, never its mapped bytes: the source may unmap them at any time (stop()).
+    virtual bool takesLease(const FrameView &) const { return false; }
+    virtual Status writeLease(std::shared_ptr<const FrameLease> lease)
+    {
+        return write(lease->view(), lease->metadata()); // never reached unless takesLease() says yes
+    }
 };
 
 } // namespace overlayd

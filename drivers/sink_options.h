@@ -19,6 +19,11 @@ enum class SinkKind {
 
 enum class DropPolicy { DropOldest, DropNewest };
 
+// V4l2Output: queue the capture buffer the overlay was blended into (DMABUF import) instead of copying it. Auto:
+// when the frames carry dmabuf fds and the output takes DMABUF, else copy (logged once per open); On: the same, but
+// impossible is an error at open(); Off: always copy.
+enum class ZeroCopy { Auto, On, Off };
+
 struct SinkOptions {
     SinkKind kind = SinkKind::Null;
     std::string path;          // file, "-" for stdout, or device
@@ -26,7 +31,8 @@ struct SinkOptions {
     unsigned jpegQuality = 90; // Snapshot .jpg
     unsigned queueDepth = 4;   // frames waiting for this sink before the drop policy applies
     DropPolicy dropPolicy = DropPolicy::DropOldest;
-    unsigned bufferCount = 4; // V4l2Output
+    unsigned bufferCount = 4;           // V4l2Output
+    ZeroCopy zeroCopy = ZeroCopy::Auto; // V4l2Output
 };
 
 Result<std::unique_ptr<FrameSink>> makeSink(const SinkOptions &options);

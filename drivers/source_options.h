@@ -43,6 +43,9 @@ struct V4l2CaptureOptions {
     std::string device = "/dev/video0"; // a path, a /dev/v4l/by-id|by-path link, or a card name
     unsigned bufferCount = 4;
     double noSignalTimeoutSec = 2.0; // no frame for this long: the stream is torn down and retried
+    // VIDIOC_EXPBUF every buffer so that frames carry dmabuf fds (zero-copy sinks). Not a config key: the daemon
+    // sets it when a sink wants zero copy. A driver that refuses is logged once and streams without fds.
+    bool exportDmabuf = false;
 };
 
 struct SourceOptions {

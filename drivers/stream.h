@@ -22,6 +22,9 @@ struct StreamFormat {
     unsigned stride = 0;
     Colorimetry colorimetry{};
     double fps = 0.0;
+    // Frames are leases of this many dmabuf-exported buffers (PlaneView::dmabufFd set); 0: no dmabuf fds. A
+    // zero-copy sink may hold up to dmabufBuffers - 2 of them, so that the source keeps two to capture into.
+    unsigned dmabufBuffers = 0;
 
     // "1280x720 YUYV 30.0 fps", for logs and systemd STATUS=.
     std::string describe() const;

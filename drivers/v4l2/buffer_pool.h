@@ -11,6 +11,7 @@
 #include "drivers/frame.h"
 #include "drivers/v4l2/frame_split.h"
 #include "drivers/v4l2/mapped_buffer.h"
+#include "drivers/v4l2/unique_fd.h"
 #include "drivers/v4l2/video_device.h"
 
 namespace overlayd::v4l2 {
@@ -42,6 +43,10 @@ public:
     const FrameView &view(unsigned index) const { return buffers_[index].view; }
     PlaneMemory memory(unsigned index, unsigned plane) const;
 
+    // VIDIOC_EXPBUF of every buffer's memory planes (O_CLOEXEC): the views then carry each plane's dmabuf fd and
+    // offset. The fds are the caller's to keep open while frames are out (buffer_export.cpp).
+    Result<std::vector<UniqueFd>> exportDmabufs();
+
     // VIDIOC_QBUF; an output buffer carries bytesUsed per plane.
     Status queue(unsigned index, const std::array<uint32_t, 3> &bytesUsed = {});
     // VIDIOC_DQBUF, non-blocking: 0, or -errno (-EAGAIN: nothing ready).
@@ -55,6 +60,7 @@ private:
 
     explicit BufferPool(const VideoDevice &device) : device_(device) {}
     Status mapBuffer(unsigned index, const DeviceFormat &format, const PixelFormatInfo *info);
+    void attachDmabuf(unsigned index, unsigned memoryPlane, int fd);
 
     const VideoDevice &device_;
     std::vector<Buffer> buffers_;

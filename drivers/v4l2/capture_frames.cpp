@@ -11,10 +11,10 @@ Result<FrameLease> V4l2CaptureSource::nextFrame()
 {
     if (!streaming_)
         return makeError(ErrorCode::DeviceLost, describe() + " is not streaming");
-    if (pendingError_)
-        return *std::exchange(pendingError_, std::nullopt);
+    if (auto failed = hub_->takeError())
+        return *failed;
     Dequeued buffer;
-    if (const int r = pool_->dequeue(buffer); r < 0) // EINTR is retried inside
+    if (const int r = hub_->dequeue(buffer); r < 0) // EINTR is retried inside
         return failDequeue(r);
 
     if (firstFrame_)
@@ -39,7 +39,7 @@ Result<FrameLease> V4l2CaptureSource::failDequeue(int negativeErrno)
     if (negativeErrno != -EAGAIN)
         return ioctlError(describe() + ": VIDIOC_DQBUF", negativeErrno);
     // vb2 answers POLLERR while buffers are queued only when the queue is in error (the device went away).
-    if (pool_->queuedCount() > 0) {
+    if (hub_->queuedCount() > 0) {
         pollfd fd{device_->fd(), POLLIN, 0};
         if (syscalls_.poll(&fd, 1, 0) > 0 && (fd.revents & POLLERR))
             return makeError(ErrorCode::DeviceLost, describe() + " reports an error (POLLERR)");
@@ -63,6 +63,7 @@ Result<FrameLease> V4l2CaptureSource::deliver(const Dequeued &buffer)
         const uint32_t offset = std::min<uint32_t>(wanted, uint32_t(view.planes[p].size));
         view.planes[p].data += view.planes[p].data ? offset : 0;
         view.planes[p].size -= offset;
+        view.planes[p].dmabufOffset += offset;
     }
     if (mjpeg_) {
         const PlaneMemory memory = pool_->memory(buffer.index, 0);
@@ -80,20 +81,15 @@ Result<FrameLease> V4l2CaptureSource::deliver(const Dequeued &buffer)
             return makeError(ErrorCode::TryAgain, message);
         }
     }
-    const unsigned index = buffer.index;
-    return FrameLease(view, metadata, [this, token = std::weak_ptr<int>(leaseToken_), index] {
-        if (token.lock())
-            requeue(index);
-    });
+    // The lease holds the hub, not the source: its last owner may be a sink thread, and may outlive stop().
+    return FrameLease(view, metadata, [hub = hub_, index = buffer.index] { hub->giveBack(index); });
 }
 
 void V4l2CaptureSource::requeue(unsigned index)
 {
-    if (!streaming_ || !pool_)
-        return;
     // A failed QBUF (device gone) is reported by the next nextFrame().
-    if (auto queued = pool_->queue(index); !queued && !pendingError_)
-        pendingError_ = queued.error();
+    if (hub_)
+        hub_->giveBack(index);
 }
 
 } // namespace overlayd::v4l2

@@ -34,11 +34,13 @@ Result<StreamFormat> V4l2CaptureSource::start()
 
 void V4l2CaptureSource::stop()
 {
-    leaseToken_.reset();
+    // First, so that no give-back from a sink thread is in the middle of a QBUF while the buffers go.
+    if (hub_)
+        hub_->detach();
+    hub_.reset();
     if (streaming_ && device_)
         (void)device_->streamOff(); // a vanished device cannot stream off; the buffers are freed either way
     streaming_ = false;
-    pendingError_.reset();
     decoded_.clear();
     pool_.reset();
     decoder_.reset();
@@ -120,17 +122,34 @@ Status V4l2CaptureSource::startStreaming(const DeviceFormat &format)
             return buffer.error();
         decoded_.push_back(std::move(buffer.value()));
     }
+    std::vector<UniqueFd> dmabufs = exportBuffers();
+    stream_.dmabufBuffers = dmabufs.empty() ? 0 : pool_->size();
+    hub_ = std::make_shared<LeaseHub>(*pool_, std::move(dmabufs));
     for (unsigned i = 0; i < pool_->size(); ++i) {
-        if (auto queued = pool_->queue(i); !queued)
+        if (auto queued = hub_->queue(i); !queued)
             return queued;
     }
     if (auto on = device_->streamOn(); !on)
         return on;
     streaming_ = true;
-    leaseToken_ = std::make_shared<int>(0);
     firstFrame_ = true;
     dropped_ = decodeFailures_ = 0;
     return Ok{};
+}
+
+// Only when asked (a zero-copy sink wants the fds) and never for MJPEG, whose frames are our decoded copies. A
+// driver that cannot export is not an error: the frames go without fds and zero-copy sinks copy (logged once).
+std::vector<UniqueFd> V4l2CaptureSource::exportBuffers()
+{
+    if (!options_.v4l2.exportDmabuf || mjpeg_)
+        return {};
+    auto exported = pool_->exportDmabufs();
+    if (exported)
+        return std::move(exported.value());
+    if (!exportFailureLogged_ && log_)
+        log_(exported.error().message + ": buffers not exportable, frames carry no dmabuf fds");
+    exportFailureLogged_ = true;
+    return {};
 }
 
 } // namespace overlayd::v4l2

@@ -11,6 +11,7 @@
 #include "drivers/frame_source.h"
 #include "drivers/source_options.h"
 #include "drivers/v4l2/buffer_pool.h"
+#include "drivers/v4l2/lease_hub.h"
 #include "drivers/v4l2/mjpeg_decoder.h"
 #include "drivers/v4l2/video_device.h"
 
@@ -27,8 +28,8 @@ public:
     ~V4l2CaptureSource() override;
 
     Result<StreamFormat> start() override;
-    // Streams off and frees the buffers. Leases still out become no-ops when given back, but their views are
-    // gone: give every lease back before stop().
+    // Streams off and frees the buffers. Leases still out become no-ops when given back (from any thread) and
+    // keep their dmabuf fds open, but their mapped bytes are gone: only a zero-copy sink may hold one past stop().
     void stop() override;
     int eventFd() const override { return device_ ? device_->fd() : -1; }
     Result<FrameLease> nextFrame() override;
@@ -45,6 +46,7 @@ private:
     Result<DeviceFormat> applyFormat(uint32_t fourcc, unsigned width, unsigned height);
     Status startStreaming(const DeviceFormat &format);
     void noteAdjustment(const StreamFormat &got, uint32_t deviceFourcc);
+    std::vector<UniqueFd> exportBuffers();
     Result<FrameLease> deliver(const Dequeued &buffer);
     Result<FrameLease> failDequeue(int negativeErrno);
     void requeue(unsigned index);
@@ -61,13 +63,13 @@ private:
     StreamFormat stream_{};
     bool mjpeg_ = false;
     bool streaming_ = false;
-    std::shared_ptr<int> leaseToken_; // leases hold it weakly: after stop() their give-back does nothing
+    std::shared_ptr<LeaseHub> hub_; // shared with the leases; detached by stop()
 
     bool firstFrame_ = true;
     uint32_t firstSequence_ = 0, nextSequence_ = 0;
     uint64_t dropped_ = 0, decodeFailures_ = 0;
     std::string adjustment_, lastLogged_;
-    std::optional<Error> pendingError_; // a failed give-back (QBUF), reported by the next nextFrame()
+    bool exportFailureLogged_ = false;
 };
 
 } // namespace overlayd::v4l2

@@ -31,6 +31,12 @@ std::string V4l2OutputSink::describe() const
     return "v4l2 output " + (device_ ? device_->describe() : options_.path);
 }
 
+void V4l2OutputSink::log(const std::string &line) const
+{
+    if (log_)
+        log_(line);
+}
+
 Status V4l2OutputSink::open(const StreamFormat &format)
 {
     (void)close();
@@ -40,8 +46,25 @@ Status V4l2OutputSink::open(const StreamFormat &format)
     if (!device)
         return device.error();
     device_ = std::move(device.value());
+    if (auto set = setFormat(format); !set)
+        return set;
+    stream_ = format;
+    (void)device_->setRate(format.fps);
+    if (auto chosen = chooseMemory(format); !chosen)
+        return chosen;
+    if (auto on = device_->streamOn(); !on)
+        return on;
+    streaming_ = true;
+    return Ok{};
+}
+
+Status V4l2OutputSink::setFormat(const StreamFormat &format)
+{
     DeviceFormat wanted{.fourcc = format.format->fourcc, .width = format.width, .height = format.height};
     setColorimetry(wanted, *format.format, format.colorimetry);
+    // Zero copy needs the output to read rows where the capture wrote them: ask for the capture's stride.
+    if (options_.zeroCopy != ZeroCopy::Off && format.dmabufBuffers > 0)
+        wanted.planes[0].bytesPerLine = format.stride;
     auto got = device_->setFormat(wanted);
     if (got && got->fourcc != wanted.fourcc && device_->multiPlanar() && multiPlaneVariant(wanted.fourcc) != 0) {
         // A multi-planar device may offer NV12 only as NV12M: the same frame in one buffer per plane.
@@ -57,23 +80,26 @@ Status V4l2OutputSink::open(const StreamFormat &format)
                                                      std::to_string(got->width) + "x" + std::to_string(got->height) +
                                                      ")");
     deviceFormat_ = *got;
-    stream_ = format;
-    (void)device_->setRate(format.fps);
-    auto pool = BufferPool::create(*device_, options_.bufferCount, deviceFormat_, format.format);
-    if (!pool)
-        return pool.error();
-    pool_ = std::move(pool.value());
-    for (unsigned i = 0; i < pool_->size(); ++i)
-        free_.push_back(i);
-    return device_->streamOn();
+    placePlanes(*format.format, format.width, format.height);
+    return Ok{};
 }
 
 Status V4l2OutputSink::close()
 {
-    if (device_ && pool_)
+    if (device_ && streaming_)
         (void)device_->streamOff(); // a vanished device cannot stream off; the buffers are freed either way
+    releaseLeases();
+    slots_.clear();
     free_.clear();
     pool_.reset();
+    dmabuf_.reset();
+    if (device_ && options_.zeroCopy != ZeroCopy::Off && streaming_)
+        log(describe() + ": " + std::to_string(written_) + " frames out: " + std::to_string(zeroCopied_) +
+            " zero-copy, " + std::to_string(written_ - zeroCopied_) + " copied, " + std::to_string(dropped_) +
+            " dropped");
+    memory_ = Memory::None;
+    streaming_ = false;
+    zeroCopy_ = false;
     device_.reset();
     return Ok{};
 }
@@ -113,12 +139,15 @@ Status V4l2OutputSink::copyInto(unsigned index, const FrameView &frame)
 
 Status V4l2OutputSink::write(const FrameView &frame, const FrameMetadata &)
 {
-    if (!pool_)
+    if (!streaming_)
         return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
     if (frame.format != stream_.format || frame.width != stream_.width || frame.height != stream_.height)
         return makeError(ErrorCode::InvalidArgument, describe() + ": frame does not match the opened format");
     if (auto checked = checkFrame(frame); !checked)
         return checked;
+    // In zero-copy mode a frame of our own (NO SIGNAL) needs MMAP buffers to be copied into.
+    if (auto mmap = useMemory(Memory::Mmap); !mmap)
+        return mmap;
     if (auto reclaimed = reclaim(); !reclaimed)
         return reclaimed;
     if (free_.empty()) {

@@ -44,7 +44,8 @@ Result<std::unique_ptr<FrameSink>> makeV4l2OutputSink(const SinkOptions &options
                          "sink buffers must be 2..32 (got " + std::to_string(options.bufferCount) + ")");
     if (options.path.empty())
         return makeError(ErrorCode::ConfigError, "a v4l2 sink needs a device path");
-    return std::unique_ptr<FrameSink>(std::make_unique<v4l2::V4l2OutputSink>(v4l2::realSyscalls(), options));
+    return std::unique_ptr<FrameSink>(
+        std::make_unique<v4l2::V4l2OutputSink>(v4l2::realSyscalls(), options, logToStderr));
 }
 
 } // namespace overlayd

@@ -8,7 +8,8 @@ namespace overlayd::v4l2::test {
 
 int FakeDevice::requestBuffers(v4l2_requestbuffers &r)
 {
-    if (r.type != bufferType || r.memory != V4L2_MEMORY_MMAP)
+    const bool dmabuf = r.memory == V4L2_MEMORY_DMABUF && importsDmabuf;
+    if (r.type != bufferType || (r.memory != V4L2_MEMORY_MMAP && !dmabuf))
         return -EINVAL;
     if (streaming || mapped > 0)
         return -EBUSY;
@@ -21,7 +22,10 @@ int FakeDevice::requestBuffers(v4l2_requestbuffers &r)
     }
     r.count = std::clamp(r.count, 2u, 32u);
     buffers.resize(r.count);
+    memory = r.memory;
     for (Buffer &b : buffers) {
+        if (dmabuf)
+            break; // the memory is the application's dmabufs
         for (unsigned p = 0; p < memoryPlanes(); ++p)
             b.planes.emplace_back(planeLength(p), 0);
     }
@@ -52,24 +56,66 @@ int FakeDevice::queueBuffer(v4l2_buffer &b)
     ++qbufCalls;
     if (qbufError)
         return qbufError;
-    if (b.type != bufferType || b.memory != V4L2_MEMORY_MMAP || b.index >= buffers.size() || buffers[b.index].queued)
+    if (b.type != bufferType || b.memory != memory || b.index >= buffers.size() || buffers[b.index].queued)
         return -EINVAL;
     if (multiPlanar() && (!b.m.planes || b.length < memoryPlanes()))
         return -EINVAL;
     Buffer &buffer = buffers[b.index];
-    buffer.queued = true;
     for (unsigned p = 0; p < memoryPlanes(); ++p)
         buffer.bytesUsed[p] = multiPlanar() ? b.m.planes[p].bytesused : b.bytesused;
-    if (!output() || !consumeOutput) {
-        queued.push_back(b.index);
-        return 0;
+    if (memory == V4L2_MEMORY_DMABUF) {
+        if (const int r = importDmabufs(buffer, b); r < 0)
+            return r;
     }
-    std::vector<std::vector<uint8_t>> planes;
-    for (unsigned p = 0; p < memoryPlanes(); ++p)
-        planes.emplace_back(buffer.planes[p].begin(), buffer.planes[p].begin() + buffer.bytesUsed[p]);
-    written.push_back(std::move(planes));
-    done.push_back(b.index);
+    buffer.queued = true;
+    queued.push_back(b.index);
+    if (output() && consumeOutput)
+        consume();
     return 0;
+}
+
+// As vb2 checks a DMABUF QBUF: a live dmabuf per plane, length at least the format's plane size and at least
+// bytesused, data_offset inside bytesused; the single-planar API has no data_offset.
+int FakeDevice::importDmabufs(Buffer &buffer, const v4l2_buffer &b)
+{
+    for (unsigned p = 0; p < memoryPlanes(); ++p) {
+        const int fd = multiPlanar() ? b.m.planes[p].m.fd : b.m.fd;
+        const uint32_t length = multiPlanar() ? b.m.planes[p].length : b.length;
+        const uint32_t offset = multiPlanar() ? b.m.planes[p].data_offset : 0;
+        const std::vector<uint8_t> *bytes = dmabufBytes ? dmabufBytes(fd) : nullptr;
+        if (!bytes || length > bytes->size() || length < planeLength(p) || buffer.bytesUsed[p] > length ||
+            (offset > 0 && offset >= buffer.bytesUsed[p]))
+            return -EINVAL;
+        buffer.dmabufFds[p] = fd;
+        buffer.dataOffset[p] = offset;
+    }
+    return 0;
+}
+
+bool FakeDevice::consume()
+{
+    if (queued.empty())
+        return false;
+    record(buffers[queued.front()]);
+    done.push_back(queued.front());
+    queued.pop_front();
+    return true;
+}
+
+// What the device reads of a buffer: from data_offset to bytesused of each plane, its own memory or the dmabuf's.
+void FakeDevice::record(const Buffer &buffer)
+{
+    std::vector<std::vector<uint8_t>> planes;
+    for (unsigned p = 0; p < memoryPlanes(); ++p) {
+        const std::vector<uint8_t> *bytes =
+            memory == V4L2_MEMORY_DMABUF ? dmabufBytes(buffer.dmabufFds[p]) : &buffer.planes[p];
+        if (!bytes || buffer.bytesUsed[p] > bytes->size()) {
+            planes.emplace_back(); // the dmabuf went away under the device
+            continue;
+        }
+        planes.emplace_back(bytes->begin() + buffer.dataOffset[p], bytes->begin() + buffer.bytesUsed[p]);
+    }
+    written.push_back(std::move(planes));
 }
 
 int FakeDevice::dequeueBuffer(v4l2_buffer &b)
@@ -80,7 +126,7 @@ int FakeDevice::dequeueBuffer(v4l2_buffer &b)
         dqbufErrors.pop_front();
         return error;
     }
-    if (b.type != bufferType || (multiPlanar() && (!b.m.planes || b.length < memoryPlanes())))
+    if (b.type != bufferType || b.memory != memory || (multiPlanar() && (!b.m.planes || b.length < memoryPlanes())))
         return -EINVAL;
     if (!streaming)
         return -EINVAL;

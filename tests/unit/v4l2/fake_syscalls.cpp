@@ -1,6 +1,8 @@
 // The fake V4L2 kernel: the seam's calls (open, close, ioctl, mmap, munmap, poll) over the fake devices.
 #include "fake_v4l2.h"
 
+#include <fcntl.h>
+
 #include <cerrno>
 
 namespace overlayd::v4l2::test {
@@ -8,6 +10,9 @@ namespace overlayd::v4l2::test {
 FakeDevice &FakeSyscalls::add(const std::string &path, const std::vector<std::string> &aliases)
 {
     auto device = std::make_shared<FakeDevice>();
+    device->dmabufBytes = [this](int fd) {
+        return dmabufBytes(fd);
+    };
     devices_[path] = device;
     present_[path] = true;
     nodes_.push_back(path);
@@ -31,13 +36,44 @@ int FakeSyscalls::open(const std::string &path, int)
 
 int FakeSyscalls::close(int fd)
 {
-    return fds_.erase(fd) ? 0 : -EBADF;
+    return fds_.erase(fd) || dmabufs_.erase(fd) ? 0 : -EBADF;
 }
 
 int FakeSyscalls::ioctl(int fd, unsigned long request, void *argument)
 {
     auto found = fds_.find(fd);
-    return found == fds_.end() ? -EBADF : found->second->ioctl(request, argument);
+    if (found == fds_.end())
+        return -EBADF;
+    if (request == VIDIOC_EXPBUF)
+        return exportBuffer(*found->second, found->second, *static_cast<v4l2_exportbuffer *>(argument));
+    return found->second->ioctl(request, argument);
+}
+
+// As vb2 does: only MMAP buffers of the queue's type, a new fd per call; flags other than O_CLOEXEC and the access
+// mode are refused.
+int FakeSyscalls::exportBuffer(FakeDevice &device, const std::shared_ptr<FakeDevice> &owner, v4l2_exportbuffer &request)
+{
+    if (device.expbufError)
+        return device.expbufError;
+    if (request.type != device.bufferType || device.memory != V4L2_MEMORY_MMAP ||
+        request.index >= device.buffers.size() || request.plane >= device.buffers[request.index].planes.size() ||
+        (request.flags & ~(O_CLOEXEC | O_ACCMODE)))
+        return -EINVAL;
+    request.fd = nextFd_++;
+    dmabufs_[request.fd] = {owner, request.index, request.plane};
+    return 0;
+}
+
+std::vector<uint8_t> *FakeSyscalls::dmabufBytes(int fd)
+{
+    auto found = dmabufs_.find(fd);
+    if (found == dmabufs_.end())
+        return nullptr;
+    FakeDevice &device = *found->second.device;
+    if (found->second.index >= device.buffers.size() ||
+        found->second.plane >= device.buffers[found->second.index].planes.size())
+        return nullptr; // the exporter freed its buffers (a real dmabuf would keep them alive)
+    return &device.buffers[found->second.index].planes[found->second.plane];
 }
 
 int FakeSyscalls::mmap(size_t length, int, int, int fd, off_t offset, void **address)

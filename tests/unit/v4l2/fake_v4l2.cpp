@@ -42,7 +42,9 @@ unsigned FakeDevice::memoryPlanes() const
 
 uint32_t FakeDevice::planeLength(unsigned plane) const
 {
-    return multiPlanar() ? format.fmt.pix_mp.plane_fmt[plane].sizeimage : format.fmt.pix.sizeimage;
+    // vivid makes room for the header it puts before a multi-planar capture plane's data (data_offset).
+    const uint32_t header = multiPlanar() && !output() ? dataOffset[plane] : 0;
+    return (multiPlanar() ? format.fmt.pix_mp.plane_fmt[plane].sizeimage : format.fmt.pix.sizeimage) + header;
 }
 
 int FakeDevice::ioctl(unsigned long request, void *argument)

@@ -35,6 +35,8 @@ public:
     uint32_t colorspace = V4L2_COLORSPACE_SMPTE170M, ycbcrEnc = 0, quantization = 0;
     std::array<uint32_t, 3> dataOffset{}; // multi-planar capture: reported by DQBUF per plane
     bool consumeOutput = true;            // output: a queued buffer is read at once and comes back done
+    int expbufError = 0;                  // VIDIOC_EXPBUF fails with this when set (vb2: -EINVAL, not exportable)
+    bool importsDmabuf = true;            // REQBUFS with V4L2_MEMORY_DMABUF is refused (-EINVAL) when false
 
     // What the driver holds now.
     v4l2_format format{};
@@ -46,7 +48,10 @@ public:
         std::array<uint32_t, 3> bytesUsed{};
         uint32_t sequence = 0, flags = 0;
         timeval timestamp{};
+        std::array<int, 3> dmabufFds{-1, -1, -1}; // DMABUF queue: what the last QBUF imported
+        std::array<uint32_t, 3> dataOffset{};
     };
+    uint32_t memory = V4L2_MEMORY_MMAP; // of the current buffers
     std::vector<Buffer> buffers;
     std::deque<unsigned> queued, done;
 
@@ -57,11 +62,16 @@ public:
     unsigned dqbufCalls = 0, qbufCalls = 0, reqbufsZero = 0;
     unsigned mapped = 0;                                    // live mappings of this device's buffers
     std::vector<std::vector<std::vector<uint8_t>>> written; // output: the planes of every consumed buffer
+    // DMABUF import: the bytes of an exported fd (set by FakeSyscalls), nullptr if it is no live dmabuf.
+    std::function<std::vector<uint8_t> *(int fd)> dmabufBytes;
 
     // Capture: fills the oldest queued buffer and marks it done (bytesUsed = plane sizes unless fill changes
     // them). False if no buffer is queued.
     bool produce(uint32_t sequence, std::chrono::microseconds timestamp, const std::function<void(Buffer &)> &fill = {},
                  uint32_t flags = 0);
+
+    // Output with consumeOutput = false: the oldest queued buffer is read now and comes back done.
+    bool consume();
 
     int ioctl(unsigned long request, void *argument);
 
@@ -71,6 +81,8 @@ private:
     int queryBuffer(v4l2_buffer &b);
     int queueBuffer(v4l2_buffer &b);
     int dequeueBuffer(v4l2_buffer &b);
+    int importDmabufs(Buffer &buffer, const v4l2_buffer &b);
+    void record(const Buffer &buffer);
     int enumSizes(v4l2_frmsizeenum &s) const;
     int enumIntervals(v4l2_frmivalenum &i) const;
     int parm(v4l2_streamparm &p, bool set);
@@ -95,15 +107,24 @@ public:
     int poll(pollfd *fds, nfds_t count, int timeoutMs) override;
     std::vector<std::string> videoDevices() override;
 
-    unsigned openFds() const { return unsigned(fds_.size()); }
+    unsigned openFds() const { return unsigned(fds_.size() + dmabufs_.size()); }
+    unsigned openDmabufs() const { return unsigned(dmabufs_.size()); }
     unsigned mappings() const { return mappings_; }
 
 private:
+    struct Dmabuf {
+        std::shared_ptr<FakeDevice> device;
+        unsigned index = 0, plane = 0;
+    };
+    int exportBuffer(FakeDevice &device, const std::shared_ptr<FakeDevice> &owner, v4l2_exportbuffer &request);
+    std::vector<uint8_t> *dmabufBytes(int fd);
+
     std::map<std::string, std::shared_ptr<FakeDevice>> devices_; // path or alias -> device
     std::map<std::string, bool> present_;
     std::vector<std::string> nodes_;
     std::map<int, std::shared_ptr<FakeDevice>> fds_;
     std::map<void *, std::shared_ptr<FakeDevice>> maps_;
+    std::map<int, Dmabuf> dmabufs_; // exported fds
     int nextFd_ = 100;
     unsigned mappings_ = 0;
 };

@@ -1,0 +1,58 @@
+# Zero copy through real drivers: overlayd captures vivid instance 0 and queues the very capture buffers it blended
+# into on instance 1's HDMI output (zero_copy = "on": VIDIOC_EXPBUF on the capture, V4L2_MEMORY_DMABUF on the
+# output), which vivid loops back to instance 1's capture node. The looped frames must carry the overlay where
+# `overlayd project` says, and overlayd must report every frame it wrote as zero-copy. A baseline first: v4l2-ctl
+# drives the same path (capture MMAP, exported buffers queued on the output by DMABUF), so that a refusal is
+# vivid's and is named as such.
+. /vm/lib.sh
+
+have_overlayd || { fail zerocopy "no overlayd binary was staged (build the overlayd target)"; exit 0; }
+vivid_load n_devs=2 node_types=0x1,0x101 multiplanar=1,1 || { fail zerocopy "modprobe vivid failed"; exit 0; }
+SRC=$(node vivid-000-vid-cap) CAP=$(node vivid-001-vid-cap) OUT=$(node vivid-001-vid-out)
+W=1280 H=720
+black_pattern "$SRC"
+v4l2-ctl -d "$CAP" -i 3 >/dev/null && v4l2-ctl -d "$OUT" -o 1 >/dev/null
+v4l2-ctl -d "$CAP" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
+v4l2-ctl -d "$CAP" -c loop_video=1 -c osd_text_mode=2
+
+v4l2-ctl -d "$SRC" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
+v4l2-ctl -d "$OUT" --set-fmt-video-out=width=$W,height=$H,pixelformat=YUYV
+timeout 60 v4l2-ctl -d "$SRC" -e "$OUT" --stream-mmap=4 --stream-out-dmabuf --stream-count=8 >/tmp/zc-base.log 2>&1
+# v4l2-ctl exits 0 whatever happened: its progress marks decide ('<' a frame captured, '>' a buffer output).
+caps=$(tr -cd '<' </tmp/zc-base.log | wc -c) outs=$(tr -cd '>' </tmp/zc-base.log | wc -c)
+[ "$outs" -ge 4 ] && ! grep -q 'failed' /tmp/zc-base.log
+verdict zerocopy-vivid-dmabuf $? "v4l2-ctl: $SRC MMAP capture, buffers exported and queued on $OUT by DMABUF: \
+$caps captured, $outs output; $(grep -m1 'failed' /tmp/zc-base.log)"
+cp /tmp/zc-base.log "$ART/zerocopy-v4l2ctl.log"
+
+config_for zerocopy.toml /tmp/zc.toml "device=\"$SRC\"" "path=\"$OUT\""
+overlayd run --config /tmp/zc.toml >/tmp/zc-run.log 2>&1 &
+pid=$!
+points=$(axes_points /tmp/zc.toml)
+PIXEL="yuyv_pixel /tmp/zc.yuv 3 $W $H"
+for try in 1 2 3 4 5 6; do
+    sleep 2
+    v4l2-ctl -d "$CAP" --stream-mmap=4 --stream-count=4 --stream-to=/tmp/zc.yuv >/dev/null 2>&1
+    axes_check "$points" && break
+done
+ok=$?
+kill -0 $pid 2>/dev/null || ok=1
+verdict zerocopy-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, zero_copy = on, try $try, looped frame:$summary"
+cp /tmp/zc.yuv "$ART/zerocopy-${W}x$H.yuyv" 2>/dev/null
+
+kill -TERM $pid 2>/dev/null
+(sleep 20 && kill -KILL $pid 2>/dev/null) &
+wait $pid
+rc=$?
+# The sink's own account at close: "<device>: N frames out: Z zero-copy, C copied, D dropped".
+counts=$(sed -n 's/.*: \([0-9]*\) frames out: \([0-9]*\) zero-copy, \([0-9]*\) copied, \([0-9]*\) dropped.*/\1 \2 \3 \4/p' \
+    /tmp/zc-run.log | tail -1)
+set -- $counts 0 0 0 0
+stats=$(grep -c ' zero-copy; \| zero-copy$' /tmp/zc-run.log)
+[ $rc = 0 ] && grep -q 'zero copy: the capture buffers are queued by DMABUF' /tmp/zc-run.log &&
+    [ "$1" -gt 0 ] && [ "$2" = "$1" ] && [ "$3" = 0 ] && [ "$stats" -gt 0 ]
+verdict zerocopy-log $? "exit $rc; $1 frames out: $2 zero-copy, $3 copied, $4 dropped; $stats stats lines with a \
+zero-copy count"
+grep -E 'v4l2|zero|stats' /tmp/zc-run.log | tail -4
+rmmod vivid
+exit 0
