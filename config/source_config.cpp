@@ -73,7 +73,7 @@ void readV4l2(TableReader &v4l2, V4l2CaptureOptions &out)
 {
     if (auto device = v4l2.string("device"))
         out.device = *device;
-    if (auto buffers = v4l2.integer("buffers", 1, 32))
+    if (auto buffers = v4l2.integer("buffers", 2, 32)) // streaming needs one queued while another is out
         out.bufferCount = unsigned(*buffers);
     if (auto timeout = v4l2.positive("no_signal_timeout", 3600.0))
         out.noSignalTimeoutSec = *timeout;
@@ -169,7 +169,7 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out)
         if (auto drop = sink.choice<DropPolicy>(
                 "drop", {{"oldest", DropPolicy::DropOldest}, {"newest", DropPolicy::DropNewest}}))
             options.dropPolicy = *drop;
-        if (auto buffers = sink.integer("buffers", 1, 32))
+        if (auto buffers = sink.integer("buffers", 2, 32))
             options.bufferCount = unsigned(*buffers);
         if (auto zeroCopy = sink.choice<ZeroCopy>(
                 "zero_copy", {{"auto", ZeroCopy::Auto}, {"on", ZeroCopy::On}, {"off", ZeroCopy::Off}})) {

@@ -67,7 +67,8 @@ TEST(BadConfig, OutOfRange)
     EXPECT_PROBLEM(problems, 3, "source.width", "out of range");
     EXPECT_PROBLEM(problems, 4, "source.fps", "must be > 0");
     EXPECT_PROBLEM(problems, 7, "camera.position[1]", "finite");
-    EXPECT_EQ(problems.size(), 3u) << dump(problems);
+    EXPECT_PROBLEM(problems, 13, "sink[0].buffers", "out of range");
+    EXPECT_EQ(problems.size(), 4u) << dump(problems);
 }
 
 TEST(BadConfig, UnknownKeysSuggestTheNearestKey)
