@@ -2,6 +2,8 @@
 // a lane mask, long runs as plain loops the compiler vectorizes (16-bit lanes); built with -O3 for that reason.
 #include "overlay/blend_kernel.h"
 
+#include "overlay/div255.h"
+
 namespace overlayd {
 
 namespace {
@@ -10,9 +12,7 @@ inline void blendInline(uint8_t *__restrict dst, const uint8_t *__restrict value
                         const uint8_t *__restrict inverseAlpha, size_t count)
 {
     for (size_t i = 0; i < count; ++i) {
-        // x / 255 rounded, exactly, for x <= 255 * 255, without a division.
-        const uint16_t x = uint16_t(dst[i] * inverseAlpha[i] + 128);
-        dst[i] = uint8_t(values[i] + ((x + (x >> 8)) >> 8));
+        dst[i] = uint8_t(values[i] + div255(uint16_t(dst[i] * inverseAlpha[i])));
     }
 }
 

@@ -1,21 +1,12 @@
 // The "over" of a coverage mask in one colour, in 8-bit premultiplied arithmetic.
 #include "overlay/coverage.h"
 
+#include "overlay/div255.h"
+
 #include <algorithm>
 #include <cstring>
 
 namespace overlayd {
-
-namespace {
-
-// x / 255 rounded, exact for x <= 255 * 255.
-inline uint32_t div255(uint32_t x)
-{
-    x += 128;
-    return (x + (x >> 8)) >> 8;
-}
-
-} // namespace
 
 LayerRect LayerRect::intersect(const LayerRect &other) const
 {

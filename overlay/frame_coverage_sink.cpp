@@ -2,21 +2,12 @@
 // blended when the item leaves a chroma row, so that a 4:2:0 sample sees both of its luma rows.
 #include "overlay/frame_coverage_sink.h"
 
+#include "overlay/div255.h"
+
 #include <algorithm>
 #include <cassert>
 
 namespace overlayd {
-
-namespace {
-
-// x / 255 rounded, exact for x <= 255 * 255: the rounding compositeCoverage uses for opacity.
-inline unsigned div255(unsigned x)
-{
-    x += 128;
-    return (x + (x >> 8)) >> 8;
-}
-
-} // namespace
 
 FrameCoverageSink::FrameCoverageSink(const PixelFormatInfo &format, Colorimetry colorimetry)
     : format_(&format), colorimetry_(colorimetry), encoder_(colorimetry), layout_(layoutOf(format))

@@ -2,19 +2,14 @@
 // computed from the opacity on the fly, in 16-bit lanes the compiler vectorizes (built with -O3).
 #include "overlay/frame_coverage_sink.h"
 
+#include "overlay/div255.h"
+
 #include <algorithm>
 #include <cassert>
 
 namespace overlayd {
 
 namespace {
-
-// x / 255 rounded, exactly, for x <= 255 * 255, without a division.
-inline uint8_t div255(uint16_t x)
-{
-    x = uint16_t(x + 128);
-    return uint8_t((x + (x >> 8)) >> 8);
-}
 
 // out = a * value / 255 + in * (255 - a) / 255, each term rounded as the cached path rounds it.
 inline uint8_t over(uint8_t in, unsigned a, unsigned value)
@@ -110,10 +105,18 @@ inline Words8 scaled8(Words8 sum4, unsigned code, Words8 alpha)
     return value < alpha ? value : alpha;
 }
 
-inline Words8 keepOf8(Words8 in, Words8 keep)
+// Eight groups' opacity sums taken (and zeroed, ready for the next chroma row) and their two chroma samples, given
+// and returned as 16-bit lanes, blended by chromaLoop's rule.
+inline void blendEightGroups(uint16_t *sums, unsigned shift, unsigned firstCode, unsigned secondCode, Words8 &first,
+                             Words8 &second)
 {
-    const Words8 x = in * keep + 128;
-    return (x + (x >> 8)) >> 8;
+    Words8 sum;
+    __builtin_memcpy(&sum, sums, 16);
+    __builtin_memset(sums, 0, 16);
+    sum = sum << shift;
+    const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
+    first = scaled8(sum, firstCode, alpha) + div255(Words8(first * keep));
+    second = scaled8(sum, secondCode, alpha) + div255(Words8(second * keep));
 }
 
 // NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step, then chromaLoop's scalar rule.
@@ -122,19 +125,14 @@ void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned 
 {
     unsigned g = 0;
     for (; g + 8 <= count; g += 8) {
-        Words8 sum;
-        __builtin_memcpy(&sum, sums + g, 16);
-        __builtin_memset(sums + g, 0, 16);
-        sum = sum << shift;
-        const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
         Bytes16 bytes;
         __builtin_memcpy(&bytes, pairs + 2 * g, 16);
-        const Words8 first =
+        Words8 first =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 2, 4, 6, 8, 10, 12, 14), Words8);
-        const Words8 second =
+        Words8 second =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 1, 3, 5, 7, 9, 11, 13, 15), Words8);
-        const Bytes8 a = __builtin_convertvector(scaled8(sum, firstCode, alpha) + keepOf8(first, keep), Bytes8);
-        const Bytes8 b = __builtin_convertvector(scaled8(sum, secondCode, alpha) + keepOf8(second, keep), Bytes8);
+        blendEightGroups(sums + g, shift, firstCode, secondCode, first, second);
+        const Bytes8 a = __builtin_convertvector(first, Bytes8), b = __builtin_convertvector(second, Bytes8);
         bytes = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
         __builtin_memcpy(pairs + 2 * g, &bytes, 16);
     }
@@ -151,19 +149,14 @@ void chromaPacked(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift
 {
     unsigned g = 0;
     for (; g + 8 < count; g += 8) {
-        Words8 sum;
-        __builtin_memcpy(&sum, sums + g, 16);
-        __builtin_memset(sums + g, 0, 16);
-        sum = sum << shift;
-        const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
         Bytes32 bytes;
         __builtin_memcpy(&bytes, pairs + 4 * g, 32);
-        const Words8 first =
+        Words8 first =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 4, 8, 12, 16, 20, 24, 28), Words8);
-        const Words8 second =
+        Words8 second =
             __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 2, 6, 10, 14, 18, 22, 26, 30), Words8);
-        const Bytes8 a = __builtin_convertvector(scaled8(sum, firstCode, alpha) + keepOf8(first, keep), Bytes8);
-        const Bytes8 b = __builtin_convertvector(scaled8(sum, secondCode, alpha) + keepOf8(second, keep), Bytes8);
+        blendEightGroups(sums + g, shift, firstCode, secondCode, first, second);
+        const Bytes8 a = __builtin_convertvector(first, Bytes8), b = __builtin_convertvector(second, Bytes8);
         const Bytes16 ab = __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
         const Bytes32 blended = __builtin_shufflevector(ab, ab, 0, 0, 8, 0, 1, 0, 9, 0, 2, 0, 10, 0, 3, 0, 11, 0, 4, 0,
                                                         12, 0, 5, 0, 13, 0, 6, 0, 14, 0, 7, 0, 15, 0);

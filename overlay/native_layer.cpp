@@ -80,8 +80,13 @@ Status NativeLayer::blend(const FrameView &frame) const
                                                          "x" + std::to_string(height_));
     if (Status status = checkFrame(frame); !status)
         return status;
-    blendRuns(frame, runs_, values_.data(), inverseAlpha_.data());
+    blendChecked(frame);
     return Ok{};
+}
+
+void NativeLayer::blendChecked(const FrameView &frame) const
+{
+    blendRuns(frame, runs_, values_.data(), inverseAlpha_.data());
 }
 
 } // namespace overlayd

@@ -39,6 +39,8 @@ public:
     // Frame path: blends into the frame in place; touches only the bytes of the layer's runs. The frame must have
     // the format and size the layer was converted for; its strides may be anything its format allows.
     Status blend(const FrameView &frame) const;
+    // The same for a caller that has already checked the frame once for all its layers (the scene renderer).
+    void blendChecked(const FrameView &frame) const;
 
     const PixelFormatInfo &format() const { return *format_; }
     const std::vector<NativeRun> &runs() const { return runs_; }

@@ -171,6 +171,7 @@ void SceneRenderer::drawWorldInto(const FrameView &frame)
 
 Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
 {
+    // Checked once here; every layer below blends without checking again.
     if (!frame.format || frame.format->fourcc != format_.format->fourcc || frame.width != format_.width ||
         frame.height != format_.height)
         return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " + format_.describe());
@@ -188,10 +189,8 @@ Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadat
             return status;
     }
     for (const Layer &layer : layers_) {
-        if (!layer.enabled || !layer.native)
-            continue;
-        if (Status status = layer.native->blend(frame); !status)
-            return status;
+        if (layer.enabled && layer.native)
+            layer.native->blendChecked(frame);
     }
     return blendTexts(frame, metadata, fps);
 }
@@ -207,10 +206,8 @@ Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &me
             if (Status status = renderText(slot); !status)
                 return status;
         }
-        if (slot.native) {
-            if (Status status = slot.native->blend(frame); !status)
-                return status;
-        }
+        if (slot.native)
+            slot.native->blendChecked(frame);
     }
     return Ok{};
 }

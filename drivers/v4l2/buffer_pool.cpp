@@ -9,24 +9,6 @@
 
 namespace overlayd::v4l2 {
 
-namespace {
-
-// Fills the plane array the multi-planar API needs; the single-planar API ignores it.
-void prepare(v4l2_buffer &buffer, std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes, uint32_t type, unsigned index)
-{
-    buffer = {};
-    planes = {};
-    buffer.type = type;
-    buffer.memory = V4L2_MEMORY_MMAP;
-    buffer.index = index;
-    if (isMultiPlanar(type)) {
-        buffer.m.planes = planes.data();
-        buffer.length = VIDEO_MAX_PLANES;
-    }
-}
-
-} // namespace
-
 Result<std::unique_ptr<BufferPool>> BufferPool::create(const VideoDevice &device, unsigned count,
                                                        const DeviceFormat &format, const PixelFormatInfo *info)
 {
@@ -52,7 +34,7 @@ Status BufferPool::mapBuffer(unsigned index, const DeviceFormat &format, const P
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
-    prepare(buffer, planes, device_.bufferType(), index);
+    prepareBuffer(buffer, planes, device_.bufferType(), V4L2_MEMORY_MMAP, index);
     if (const int r = device_.ioctl(VIDIOC_QUERYBUF, &buffer); r < 0)
         return ioctlError(device_.describe() + ": VIDIOC_QUERYBUF " + std::to_string(index), r);
     const bool mplane = isMultiPlanar(device_.bufferType());
@@ -95,7 +77,7 @@ Status BufferPool::queue(unsigned index, const std::array<uint32_t, 3> &bytesUse
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
-    prepare(buffer, planes, device_.bufferType(), index);
+    prepareBuffer(buffer, planes, device_.bufferType(), V4L2_MEMORY_MMAP, index);
     if (isMultiPlanar(device_.bufferType())) {
         buffer.length = unsigned(buffers_[index].planes.size());
         for (unsigned p = 0; p < buffer.length; ++p)
@@ -113,7 +95,7 @@ int BufferPool::dequeue(Dequeued &out)
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
-    prepare(buffer, planes, device_.bufferType(), 0);
+    prepareBuffer(buffer, planes, device_.bufferType(), V4L2_MEMORY_MMAP, 0);
     if (const int r = device_.ioctl(VIDIOC_DQBUF, &buffer); r < 0)
         return r;
     if (buffer.index >= buffers_.size())

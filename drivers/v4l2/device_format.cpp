@@ -25,6 +25,20 @@ bool isMultiPlanar(uint32_t bufferType)
     return bufferType == V4L2_BUF_TYPE_VIDEO_CAPTURE_MPLANE || bufferType == V4L2_BUF_TYPE_VIDEO_OUTPUT_MPLANE;
 }
 
+void prepareBuffer(v4l2_buffer &buffer, std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes, uint32_t type,
+                   uint32_t memory, unsigned index)
+{
+    buffer = {};
+    planes = {};
+    buffer.type = type;
+    buffer.memory = memory;
+    buffer.index = index;
+    if (isMultiPlanar(type)) {
+        buffer.m.planes = planes.data();
+        buffer.length = VIDEO_MAX_PLANES;
+    }
+}
+
 void toV4l2(const DeviceFormat &format, uint32_t bufferType, v4l2_format &out)
 {
     out = {};

@@ -30,6 +30,9 @@ struct DeviceFormat {
 void toV4l2(const DeviceFormat &format, uint32_t bufferType, v4l2_format &out);
 DeviceFormat fromV4l2(const v4l2_format &in);
 bool isMultiPlanar(uint32_t bufferType);
+// A v4l2_buffer for QUERYBUF/QBUF/DQBUF; with the multi-planar API it points at `planes`, which must outlive it.
+void prepareBuffer(v4l2_buffer &buffer, std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes, uint32_t type,
+                   uint32_t memory, unsigned index);
 
 // "YUYV", "MJPG": the four characters, for messages.
 std::string fourccName(uint32_t fourcc);

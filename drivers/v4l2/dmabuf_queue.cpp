@@ -6,23 +6,6 @@
 
 namespace overlayd::v4l2 {
 
-namespace {
-
-void prepare(v4l2_buffer &buffer, std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes, uint32_t type, unsigned index)
-{
-    buffer = {};
-    planes = {};
-    buffer.type = type;
-    buffer.memory = V4L2_MEMORY_DMABUF;
-    buffer.index = index;
-    if (isMultiPlanar(type)) {
-        buffer.m.planes = planes.data();
-        buffer.length = VIDEO_MAX_PLANES;
-    }
-}
-
-} // namespace
-
 Result<std::unique_ptr<DmabufQueue>> DmabufQueue::create(const VideoDevice &device, unsigned count)
 {
     v4l2_requestbuffers request{};
@@ -49,7 +32,7 @@ Status DmabufQueue::queue(unsigned index, const std::array<DmabufPlane, 3> &plan
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> raw;
-    prepare(buffer, raw, device_.bufferType(), index);
+    prepareBuffer(buffer, raw, device_.bufferType(), V4L2_MEMORY_DMABUF, index);
     if (isMultiPlanar(device_.bufferType())) {
         buffer.length = planeCount;
         for (unsigned p = 0; p < planeCount; ++p) {
@@ -72,7 +55,7 @@ int DmabufQueue::dequeue(unsigned &index)
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> raw;
-    prepare(buffer, raw, device_.bufferType(), 0);
+    prepareBuffer(buffer, raw, device_.bufferType(), V4L2_MEMORY_DMABUF, 0);
     if (const int r = device_.ioctl(VIDIOC_DQBUF, &buffer); r < 0)
         return r;
     if (buffer.index >= count_)

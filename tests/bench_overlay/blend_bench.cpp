@@ -105,24 +105,11 @@ private:
 int main(int argc, char **argv)
 {
     using namespace overlayd;
-    struct Size {
-        const char *format;
-        unsigned width, height;
-    };
-    for (const Size &s : {Size{"YUYV", 1280, 720}, Size{"NV12", 1920, 1080}, Size{"YUYV", 1920, 1080}}) {
-        const std::string name = std::string(s.format) + "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
-        benchmark::RegisterBenchmark(("blend/" + name).c_str(), blendBench, s.format, s.width, s.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("memcpy/" + name).c_str(), memcpyBench, s.format, s.width, s.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("convert/" + name).c_str(), convertBench, s.format, s.width, s.height)
-            ->Unit(benchmark::kMillisecond);
+    for (const bench::FrameCase &c : bench::kFrameCases) {
+        bench::registerCase("blend", blendBench, c);
+        bench::registerCase("memcpy", memcpyBench, c);
+        bench::registerCase("convert", convertBench, c);
     }
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
-        return 1;
     RatioReporter reporter;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::Shutdown();
-    return 0;
+    return bench::runBenchmarks(argc, argv, reporter);
 }

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -37,6 +38,39 @@ inline void memcpyBench(benchmark::State &state, const char *formatName, unsigne
         benchmark::ClobberMemory();
         ++i;
     }
+}
+
+// The formats and sizes the overlay benchmarks time (the issue's), and a case's name: "YUYV/1280x720".
+struct FrameCase {
+    const char *format;
+    unsigned width, height;
+
+    std::string name() const
+    {
+        return std::string(format) + "/" + std::to_string(width) + "x" + std::to_string(height);
+    }
+};
+inline constexpr FrameCase kFrameCases[] = {
+    {"YUYV", 1280, 720}, {"NV12", 1280, 720}, {"YUYV", 1920, 1080}, {"NV12", 1920, 1080}};
+
+using FrameBench = void (*)(benchmark::State &, const char *format, unsigned width, unsigned height);
+
+// Registers bench for one case as "<kind>/<case>", timed in milliseconds.
+inline void registerCase(const char *kind, FrameBench bench, const FrameCase &c)
+{
+    benchmark::RegisterBenchmark((std::string(kind) + "/" + c.name()).c_str(), bench, c.format, c.width, c.height)
+        ->Unit(benchmark::kMillisecond);
+}
+
+// Google Benchmark's main, with a reporter that prints the same-run ratios at the end.
+inline int runBenchmarks(int argc, char **argv, benchmark::BenchmarkReporter &reporter)
+{
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv))
+        return 1;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::Shutdown();
+    return 0;
 }
 
 } // namespace overlayd::bench

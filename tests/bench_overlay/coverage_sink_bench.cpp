@@ -196,25 +196,11 @@ private:
 int main(int argc, char **argv)
 {
     using namespace overlayd;
-    struct Size {
-        const char *format;
-        unsigned width, height;
-    };
-    for (const Size &s :
-         {Size{"YUYV", 1280, 720}, Size{"NV12", 1280, 720}, Size{"YUYV", 1920, 1080}, Size{"NV12", 1920, 1080}}) {
-        const std::string name = std::string(s.format) + "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
-        benchmark::RegisterBenchmark(("sink/" + name).c_str(), sinkBench, s.format, s.width, s.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("cached/" + name).c_str(), cachedBench, s.format, s.width, s.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("memcpy/" + name).c_str(), memcpyBench, s.format, s.width, s.height)
-            ->Unit(benchmark::kMillisecond);
+    for (const bench::FrameCase &c : bench::kFrameCases) {
+        bench::registerCase("sink", sinkBench, c);
+        bench::registerCase("cached", cachedBench, c);
+        bench::registerCase("memcpy", memcpyBench, c);
     }
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
-        return 1;
     RatioReporter reporter;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::Shutdown();
-    return 0;
+    return bench::runBenchmarks(argc, argv, reporter);
 }

@@ -219,27 +219,12 @@ private:
 int main(int argc, char **argv)
 {
     using namespace overlayd;
-    struct Case {
-        const char *format;
-        unsigned width, height;
-    };
-    for (const Case &c :
-         {Case{"YUYV", 1280, 720}, Case{"NV12", 1280, 720}, Case{"YUYV", 1920, 1080}, Case{"NV12", 1920, 1080}}) {
-        const std::string name = std::string(c.format) + "/" + std::to_string(c.width) + "x" + std::to_string(c.height);
-        benchmark::RegisterBenchmark(("memcpy/" + name).c_str(), memcpyBench, c.format, c.width, c.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("static/" + name).c_str(), staticBench, c.format, c.width, c.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("dynamic/" + name).c_str(), dynamicBench, c.format, c.width, c.height)
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("opencv_naive/" + name).c_str(), opencvNaiveBench, c.format, c.width, c.height)
-            ->Unit(benchmark::kMillisecond);
+    for (const bench::FrameCase &c : bench::kFrameCases) {
+        bench::registerCase("memcpy", memcpyBench, c);
+        bench::registerCase("static", staticBench, c);
+        bench::registerCase("dynamic", dynamicBench, c);
+        bench::registerCase("opencv_naive", opencvNaiveBench, c);
     }
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
-        return 1;
     RatioReporter reporter;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::Shutdown();
-    return 0;
+    return bench::runBenchmarks(argc, argv, reporter);
 }

@@ -1,6 +1,7 @@
 // A camera that changes before every frame is drawn straight into the frame (FrameCoverageSink); one that holds
 // still goes back to the cached layers. Both must show the same overlay: the direct frame is compared with a fresh
 // renderer's cached frame for the same camera, in every format, at an odd size with padded strides.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,18 +44,30 @@ TestFrame blendMoving(SceneRenderer &renderer, const std::string &format, const 
     return frame;
 }
 
+// The reference: a fresh renderer for `camera`, one blend through its cached layers.
+TestFrame cachedFrame(const std::string &format, const OverlayScene &scene, const Camera &camera)
+{
+    auto still = test::makeRenderer(scene, camera, test::streamFormat(format, kWidth, kHeight));
+    TestFrame cached = greyFrame(format);
+    EXPECT_TRUE(still->blend(cached.view(), FrameMetadata{}, 30.0));
+    EXPECT_FALSE(still->drewDirectly());
+    return cached;
+}
+
+// A renderer that starts at another camera (the bottom-left origin's).
+std::unique_ptr<SceneRenderer> movingRenderer(const std::string &format, const OverlayScene &scene)
+{
+    return test::makeRenderer(scene, test::groundCamera(kWidth, kHeight, Origin::BottomLeft),
+                              test::streamFormat(format, kWidth, kHeight));
+}
+
 TEST_P(MovingCamera, DirectFrameMatchesCachedFrame)
 {
     const std::string &format = GetParam();
     const Camera camera = test::groundCamera(kWidth, kHeight);
     const OverlayScene scene = test::demoScene(true);
-    auto still = test::makeRenderer(scene, camera, test::streamFormat(format, kWidth, kHeight));
-    TestFrame cached = greyFrame(format);
-    ASSERT_TRUE(still->blend(cached.view(), FrameMetadata{}, 30.0));
-    EXPECT_FALSE(still->drewDirectly());
-
-    auto moving = test::makeRenderer(scene, test::groundCamera(kWidth, kHeight, Origin::BottomLeft),
-                                     test::streamFormat(format, kWidth, kHeight));
+    const TestFrame cached = cachedFrame(format, scene, camera);
+    auto moving = movingRenderer(format, scene);
     const TestFrame before = greyFrame(format);
     TestFrame direct = blendMoving(*moving, format, camera);
     ASSERT_TRUE(moving->drewDirectly());
@@ -93,12 +106,8 @@ TEST_P(MovingCamera, HoldingStillReturnsToTheCache)
     const std::string &format = GetParam();
     const Camera camera = test::groundCamera(kWidth, kHeight);
     const OverlayScene scene = test::demoScene(true);
-    auto still = test::makeRenderer(scene, camera, test::streamFormat(format, kWidth, kHeight));
-    TestFrame cached = greyFrame(format);
-    ASSERT_TRUE(still->blend(cached.view(), FrameMetadata{}, 30.0));
-
-    auto moving = test::makeRenderer(scene, test::groundCamera(kWidth, kHeight, Origin::BottomLeft),
-                                     test::streamFormat(format, kWidth, kHeight));
+    const TestFrame cached = cachedFrame(format, scene, camera);
+    auto moving = movingRenderer(format, scene);
     blendMoving(*moving, format, camera);
     ASSERT_TRUE(moving->drewDirectly());
     for (int i = 0; i < 2; ++i) {
@@ -114,8 +123,7 @@ TEST_P(MovingCamera, DisabledLayersAreNotDrawn)
 {
     const std::string &format = GetParam();
     OverlayScene scene = test::demoScene(false);
-    auto moving = test::makeRenderer(scene, test::groundCamera(kWidth, kHeight, Origin::BottomLeft),
-                                     test::streamFormat(format, kWidth, kHeight));
+    auto moving = movingRenderer(format, scene);
     for (const std::string &name : moving->layerNames())
         ASSERT_TRUE(moving->setLayerEnabled(name, false));
     const TestFrame before = greyFrame(format);

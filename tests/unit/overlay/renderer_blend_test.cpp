@@ -199,6 +199,14 @@ TEST(RendererErrors, RefusesBadScenesAndMismatchedCameras)
     ASSERT_TRUE(ok.ok()) << ok.error().message;
     EXPECT_FALSE((*ok)->setCamera(test::groundCamera(32, 48)).ok());
     EXPECT_TRUE((*ok)->setCamera(camera).ok());
+    // The frame is checked once per blend (the layers then blend unchecked): another size or format is refused
+    // and left as it was.
+    for (TestFrame wrong : {test::makeFrame("YUYV", format.width, format.height, 0),
+                            test::makeFrame(std::string(format.format->name), format.width + 2, format.height, 0)}) {
+        const std::vector<uint8_t> before = wrong.bytes;
+        EXPECT_FALSE((*ok)->blend(wrong.view(), FrameMetadata{}, 30.0).ok());
+        EXPECT_EQ(wrong.bytes, before);
+    }
 }
 
 } // namespace

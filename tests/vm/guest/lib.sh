@@ -106,6 +106,19 @@ axes_check() {
     return $_r
 }
 
+# Reads the looped capture node CAP into FILE until the overlay of CONFIG shows at its projected axes (overlayd needs
+# a few seconds to start streaming under TCG: 6 tries, 2 s apart). Sets $try and $summary; 0 when it shows.
+await_loop_overlay() { # CAP FILE CONFIG W H
+    points=$(axes_points "$3")
+    PIXEL="yuyv_pixel $2 3 $4 $5"
+    for try in 1 2 3 4 5 6; do
+        sleep 2
+        v4l2-ctl -d "$1" --stream-mmap=4 --stream-count=4 --stream-to="$2" >/dev/null 2>&1
+        axes_check "$points" && return 0
+    done
+    return 1
+}
+
 axis_probe() { # "U V" WANT NAME
     _got=$($PIXEL $1)
     summary="$summary $3@${1% *},${1#* }=($_got)"

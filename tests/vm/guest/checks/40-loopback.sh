@@ -17,14 +17,7 @@ config_for loopback.toml /tmp/loop.toml "device=\"$SRC\"" "path=\"$OUT\""
 overlayd run --config /tmp/loop.toml >/tmp/loop-run.log 2>&1 &
 pid=$!
 
-# overlayd needs a few seconds to start streaming under TCG: read the loop until the overlay shows, 6 tries.
-points=$(axes_points /tmp/loop.toml)
-PIXEL="yuyv_pixel /tmp/loop.yuv 3 $W $H"
-for try in 1 2 3 4 5 6; do
-    sleep 2
-    v4l2-ctl -d "$CAP" --stream-mmap=4 --stream-count=4 --stream-to=/tmp/loop.yuv >/dev/null 2>&1
-    axes_check "$points" && break
-done
+await_loop_overlay "$CAP" /tmp/loop.yuv /tmp/loop.toml $W $H
 ok=$?
 kill -0 $pid 2>/dev/null || ok=1
 verdict loopback-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, try $try, looped frame:$summary"

@@ -28,13 +28,7 @@ cp /tmp/zc-base.log "$ART/zerocopy-v4l2ctl.log"
 config_for zerocopy.toml /tmp/zc.toml "device=\"$SRC\"" "path=\"$OUT\""
 overlayd run --config /tmp/zc.toml >/tmp/zc-run.log 2>&1 &
 pid=$!
-points=$(axes_points /tmp/zc.toml)
-PIXEL="yuyv_pixel /tmp/zc.yuv 3 $W $H"
-for try in 1 2 3 4 5 6; do
-    sleep 2
-    v4l2-ctl -d "$CAP" --stream-mmap=4 --stream-count=4 --stream-to=/tmp/zc.yuv >/dev/null 2>&1
-    axes_check "$points" && break
-done
+await_loop_overlay "$CAP" /tmp/zc.yuv /tmp/zc.toml $W $H
 ok=$?
 kill -0 $pid 2>/dev/null || ok=1
 verdict zerocopy-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, zero_copy = on, try $try, looped frame:$summary"
