@@ -9,8 +9,9 @@
 namespace overlayd {
 
 // One item (a stroke, a fill, a text) is painted as begin(colour), then row() calls, then end(). Within an item:
-// rows come in increasing y; several row() calls for one y come in increasing x and never overlap; coverage is
-// 0..255 per pixel (0 is allowed and changes nothing). Coordinates are the sink's own pixels (a layer's or a
+// rows come in increasing y; several row() calls for one y come in increasing x with at least one pixel between
+// them (touching runs are one run), so that no 4:2:2 macropixel is split between two calls; coverage is 0..255
+// per pixel (0 is allowed and changes nothing). Coordinates are the sink's own pixels (a layer's or a
 // frame's), already clipped to it by the rasterizer. Items are painted "over" each other in call order.
 class CoverageSink
 {

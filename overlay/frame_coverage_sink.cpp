@@ -1,5 +1,5 @@
-// FrameCoverageSink: per item, luma (or RGB) bytes blend as rows arrive; chroma opacity is summed per macropixel and
-// blended when the item leaves a chroma row, so that a 4:2:0 sample sees both of its luma rows.
+// FrameCoverageSink: per item, luma (or RGB) bytes and 4:2:2 chroma blend as rows arrive; 4:2:0 chroma opacity is
+// summed per macropixel and blended when the item leaves a chroma row, so that a sample sees both of its luma rows.
 #include "overlay/frame_coverage_sink.h"
 
 #include "overlay/div255.h"
@@ -29,6 +29,7 @@ FrameCoverageSink::Layout FrameCoverageSink::layoutOf(const PixelFormatInfo &for
         layout.cbPlane = format.cbPlane, layout.crPlane = format.crPlane;
         layout.cbOffset = format.cbOffset, layout.crOffset = format.crOffset;
         layout.vSub = format.vSubSampling;
+        layout.packed422 = layout.vSub == 1 && layout.cbPlane == 0;
     }
     return layout;
 }
@@ -38,25 +39,24 @@ void FrameCoverageSink::setFrame(const FrameView &frame)
     assert(frame.format && frame.format->fourcc == format_->fourcc);
     frame_ = frame;
     rowBytes_ = format_->minStride(0, frame.width);
-    if (alpha_.size() < frame.width)
-        alpha_.resize(frame.width);
+    if (alpha_.size() < frame.width + 17)
+        alpha_.resize(frame.width + 17);
     // An item left without end() must not leak its opacity into this frame's chroma.
     for (const Interval &interval : intervals_)
         std::fill(alphaSums_.begin() + interval.g0, alphaSums_.begin() + interval.g1, 0);
     intervals_.clear();
-    pendingChromaRow_ = lastLumaRow_ = -1;
-    // Two luma rows of at most one interval per chroma group each.
+    nextInterval_ = 0;
+    pendingChromaRow_ = -1;
+    // One luma row of at most one interval per chroma group; accumulateAlpha adds eight groups at a time.
     const size_t groups = (frame.width + 1) / 2;
-    if (layout_.chroma && alphaSums_.size() < groups + 1) {
-        alphaSums_.assign(groups + 1, 0);
-        intervals_.reserve(2 * groups);
-        merged_.reserve(2 * groups);
+    if (layout_.chroma && alphaSums_.size() < groups + 16) {
+        alphaSums_.assign(groups + 16, 0);
+        intervals_.reserve(groups);
     }
 }
 
 void FrameCoverageSink::begin(Rgba colour)
 {
-    previousY_ = -1;
     colour_ = ItemColour{};
     colour_.alpha = colour.a;
     if (layout_.rgb) {
@@ -73,72 +73,81 @@ void FrameCoverageSink::begin(Rgba colour)
     opaque.add(pixel);
     const YcbcrBlendSamples samples = encoder_.encode(opaque);
     colour_.luma = samples.y.value, colour_.cb = samples.cb.value, colour_.cr = samples.cr.value;
+    if (layout_.packed422) {
+        for (unsigned k = 0; k < 8; ++k) {
+            const unsigned byte = k % 4;
+            colour_.packedCodes[k] = uint16_t(byte == format_->cbOffset   ? colour_.cb
+                                              : byte == format_->crOffset ? colour_.cr
+                                                                          : colour_.luma);
+        }
+    }
 }
 
-const uint8_t *FrameCoverageSink::opacities(const uint8_t *coverage, unsigned count)
+void FrameCoverageSink::stage(const uint8_t *coverage, unsigned count, uint8_t *alpha) const
 {
-    if (colour_.alpha == 255)
-        return coverage;
+    alpha[-1] = 0;
+    std::fill_n(alpha + count, 16, uint8_t(0));
+    if (colour_.alpha == 255) {
+        std::copy_n(coverage, count, alpha);
+        return;
+    }
     const unsigned a = colour_.alpha;
-    uint8_t *alpha = alpha_.data();
     for (unsigned i = 0; i < count; ++i)
         alpha[i] = uint8_t(div255(coverage[i] * a));
-    return alpha;
 }
 
 void FrameCoverageSink::row(int y, int x0, const uint8_t *coverage, int count)
 {
     if (count <= 0)
         return;
-    prefetchAhead(y, x0, count);
-    const uint8_t *alpha = opacities(coverage, unsigned(count));
+    stage(coverage, unsigned(count), alpha_.data() + 1);
+    blendRow(y, x0, alpha_.data() + 1, count);
+}
+
+void FrameCoverageSink::blendRow(int y, int x0, const uint8_t *alpha, int count)
+{
     const PlaneView &plane = frame_.planes[0];
     uint8_t *row = plane.data + size_t(y) * plane.stride;
     if (layout_.rgb) {
         blendRgb(row + size_t(x0) * layout_.pixelBytes, layout_.pixelBytes, alpha, unsigned(count), colour_);
         return;
     }
+    if (layout_.packed422)
+        return blendPackedRow(row, y, x0, alpha, count);
     const size_t start = size_t(x0) * layout_.lumaStep;
     blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
-    if (layout_.chroma) {
-        noteChroma(unsigned(y), unsigned(x0), unsigned(count));
-        accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
+    if (!layout_.chroma)
+        return;
+    // A chroma row's opacities add up in alphaSums_ until its last luma row: the first row's groups wait in
+    // intervals_, the last row's are blended as they come, with the waiting ones beside them.
+    const int chromaRow = y / int(layout_.vSub);
+    if (chromaRow != pendingChromaRow_)
+        flushChroma();
+    accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
+    const Interval groups{unsigned(x0) / 2, unsigned(x0 + count + 1) / 2};
+    if (unsigned(y + 1) % layout_.vSub == 0 || unsigned(y + 1) == frame_.height) {
+        blendLastRowGroups(unsigned(chromaRow), groups);
+        return;
     }
+    pendingChromaRow_ = chromaRow;
+    intervals_.push_back(groups);
 }
 
-// A stroke's rows arrive one below the other, each in a different page of a frame that is usually cold: the
-// hardware prefetchers do not follow that, so we ask for the bytes a few rows down where the item's slope says it
-// will be. Several misses then overlap instead of one per row.
-void FrameCoverageSink::prefetchAhead(int y, int x0, int count)
+void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
-    constexpr int kRowsAhead = 8;
-    if (y == previousY_)
+    // Whole windows of four macropixels from the run's first, as long as they end inside the row and before a
+    // one-pixel macropixel at an odd right edge; the groups past the last window go the general way.
+    const unsigned g0 = unsigned(x0) / 2, gEnd = unsigned(x0 + count + 1) / 2, wholeGroups = frame_.width / 2;
+    const unsigned windows = std::min((gEnd - g0 + 3) / 4, (wholeGroups - std::min(g0, wholeGroups)) / 4);
+    blendPackedWindows(row + size_t(g0) * 4, alpha - x0 % 2, windows, colour_.packedCodes, layout_.lumaOffset);
+    const int rest = std::max(x0, int(2 * (g0 + 4 * windows)));
+    if (rest >= x0 + count)
         return;
-    const int slope = previousY_ == y - 1 ? x0 - previousX0_ : 0;
-    previousY_ = y, previousX0_ = x0;
-    prefetchRow(y + kRowsAhead, x0 + slope * kRowsAhead, count);
-}
-
-void FrameCoverageSink::prefetchRow(int y, int x0, int count)
-{
-    if (y >= int(frame_.height))
-        return;
-    // The guess is off by a few pixels where the slope is not a whole number of pixels per row: widen it.
-    constexpr int kSlack = 6;
-    const int first = std::clamp(x0 - kSlack, 0, int(frame_.width) - 1);
-    const int last = std::clamp(x0 + count + kSlack, 1, int(frame_.width)) - 1;
-    const PlaneView &luma = frame_.planes[0];
-    const unsigned step = layout_.rgb ? layout_.pixelBytes : layout_.lumaStep;
-    const uint8_t *row = luma.data + size_t(y) * luma.stride;
-    __builtin_prefetch(row + size_t(first) * step, 1);
-    __builtin_prefetch(row + size_t(last) * step, 1);
-    if (!layout_.chroma || layout_.cbPlane == 0 || y % int(layout_.vSub) != 0)
-        return; // packed 4:2:2 chroma shares the luma's bytes
-    const size_t chromaRow = size_t(y) / layout_.vSub, chromaByte = size_t(first) / 2 * layout_.chromaStep;
-    const PlaneView &cb = frame_.planes[layout_.cbPlane], &cr = frame_.planes[layout_.crPlane];
-    __builtin_prefetch(cb.data + chromaRow * cb.stride + chromaByte, 1);
-    if (layout_.crPlane != layout_.cbPlane)
-        __builtin_prefetch(cr.data + chromaRow * cr.stride + chromaByte, 1);
+    const int done = rest - x0;
+    blendLuma(row + size_t(rest) * 2, layout_, alpha + done, unsigned(count - done), colour_.luma,
+              rowBytes_ - size_t(rest) * 2);
+    accumulateAlpha(alphaSums_.data(), unsigned(rest), alpha + done, unsigned(count - done));
+    blendChromaInterval(unsigned(y), {unsigned(rest) / 2, gEnd});
 }
 
 void FrameCoverageSink::end()

@@ -27,7 +27,7 @@ public:
     void end() override;
 
 private:
-    // Chroma groups [g0, g1) of the pending chroma row touched by the item.
+    // Chroma groups [g0, g1) of a chroma row.
     struct Interval {
         unsigned g0 = 0, g1 = 0;
     };
@@ -35,6 +35,7 @@ private:
     // Where a format keeps its samples, read once from the pixel-format table.
     struct Layout {
         bool rgb = false, chroma = false;
+        bool packed422 = false; // YUYV, UYVY, YVYU: a macropixel's luma and chroma in four consecutive bytes
         unsigned lumaStep = 1, lumaOffset = 0; // luma byte of pixel x: x * lumaStep + lumaOffset (plane 0)
         unsigned chromaStep = 0;               // bytes between chroma groups in the Cb/Cr plane(s)
         unsigned cbPlane = 0, crPlane = 0, cbOffset = 0, crOffset = 0;
@@ -46,30 +47,38 @@ private:
     // are linear in alpha for a fixed colour).
     struct ItemColour {
         unsigned luma = 0, cb = 0, cr = 0;
-        uint8_t rgb[4] = {};     // per byte of an RGB pixel; an alpha byte composes "over" as 255
-        uint8_t rgbMask[4] = {}; // 0xff for a byte the blend writes, 0 for an X byte
+        uint16_t packedCodes[8] = {}; // packed 4:2:2: the code of each byte of two macropixels
+        uint8_t rgb[4] = {};          // per byte of an RGB pixel; an alpha byte composes "over" as 255
+        uint8_t rgbMask[4] = {};      // 0xff for a byte the blend writes, 0 for an X byte
         uint8_t alpha = 255;
     };
 
     static Layout layoutOf(const PixelFormatInfo &format);
-    const uint8_t *opacities(const uint8_t *coverage, unsigned count);
-    void prefetchAhead(int y, int x0, int count);
-    void prefetchRow(int y, int x0, int count);
-    void noteChroma(unsigned y, unsigned x0, unsigned count);
+    // Writes a row() call's opacities with pixel x0's at alpha, 0 before it and in the 16 bytes after the last: the
+    // kernels read whole vectors and whole macropixels, and a zero opacity leaves a byte as it is.
+    void stage(const uint8_t *coverage, unsigned count, uint8_t *alpha) const;
+    void blendRow(int y, int x0, const uint8_t *alpha, int count);
+    void blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
     void flushChroma();
+    void blendLastRowGroups(unsigned chromaRow, Interval groups);
     void blendChromaInterval(unsigned chromaRow, Interval interval);
-    const std::vector<Interval> &mergedIntervals();
 
-    // The pixel loops (frame_coverage_sink_kernels.cpp), plain enough for the compiler to vectorize.
+    // The pixel loops (frame_coverage_sink_kernels.cpp), in 16-bit vector lanes.
+    // Packed 4:2:2: luma and chroma of `windows` runs of four macropixels (16 bytes) at once; alpha holds the
+    // opacity of each of their pixels.
+    static void blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows, const uint16_t *codes,
+                                   unsigned lumaOffset);
     // pixels: the first byte of pixel x0's bytes; room: visible bytes of the row from there (a short run is one
-    // 16-byte vector operation when they suffice).
+    // 16-byte vector operation when they suffice); alpha is staged.
     static void blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count, unsigned value,
                           size_t room);
     static void blendRgb(uint8_t *dst, unsigned pixelBytes, const uint8_t *alpha, unsigned count,
                          const ItemColour &colour);
+    // alpha is staged (see stage()); sums has eight groups of slack past the last.
     static void accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count);
-    static void blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count, unsigned shift,
-                            const ItemColour &colour);
+    // count groups from cb/cr; room: groups of the chroma row from there.
+    static void blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count, unsigned room,
+                            unsigned shift, const ItemColour &colour);
 
     const PixelFormatInfo *format_;
     Colorimetry colorimetry_;
@@ -80,13 +89,11 @@ private:
     ItemColour colour_;
 
     // Scratch grown by setFrame and then reused: no allocation per frame.
-    std::vector<uint8_t> alpha_;      // opacity of one row() call's pixels
+    std::vector<uint8_t> alpha_;      // opacities of one row() call, staged when a kernel needs it
     std::vector<uint16_t> alphaSums_; // per chroma group of the pending chroma row; all zero between flushes
-    std::vector<Interval> intervals_; // touched groups, in arrival order
-    std::vector<Interval> merged_;
-    size_t secondRowStart_ = 0; // intervals_ index where the chroma row's second luma row starts
-    int pendingChromaRow_ = -1, lastLumaRow_ = -1;
-    int previousY_ = -1, previousX0_ = 0; // the item's last row start, to guess where its next rows will be
+    std::vector<Interval> intervals_; // groups of pendingChromaRow_ touched by its first luma row
+    size_t nextInterval_ = 0;         // the first of them not blended yet
+    int pendingChromaRow_ = -1;
 };
 
 } // namespace overlayd

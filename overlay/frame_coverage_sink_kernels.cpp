@@ -31,12 +31,12 @@ inline Bytes16 over16(Bytes16 in, Bytes16 alpha, uint16_t value)
 }
 
 // A thin line's run of up to 16 (step 1) or 8 (step 2, luma in every other byte) pixels as one vector operation:
-// the bytes between and after the luma samples see opacity 0 and are written back unchanged.
-inline void lumaShort(uint8_t *pixels, unsigned step, unsigned offset, const uint8_t *alpha, unsigned count,
-                      unsigned value)
+// the bytes between and after the luma samples see opacity 0 (alpha is staged: zeros follow the run) and are
+// written back unchanged.
+inline void lumaShort(uint8_t *pixels, unsigned step, unsigned offset, const uint8_t *alpha, unsigned value)
 {
-    Bytes16 a{}, in;
-    __builtin_memcpy(&a, alpha, count);
+    Bytes16 a, in;
+    __builtin_memcpy(&a, alpha, 16);
     if (step == 2) {
         const Bytes16 zero{};
         a = offset == 0 ? __builtin_shufflevector(a, zero, 0, 16, 1, 16, 2, 16, 3, 16, 4, 16, 5, 16, 6, 16, 7, 16)
@@ -96,79 +96,114 @@ using Words8 = uint16_t __attribute__((vector_size(16)));
 using Longs8 = uint32_t __attribute__((vector_size(32)));
 using Bytes8 = uint8_t __attribute__((vector_size(8)));
 
-// scaled() on 8 lanes without a division: floor(n / 1020) == floor(floor(n / 4) / 255), and floor(y / 255) ==
-// (y + 1 + (y >> 8)) >> 8 for y < 65535 (checked for every sum and code).
-inline Words8 scaled8(Words8 sum4, unsigned code, Words8 alpha)
+using Shorts8 = int16_t __attribute__((vector_size(16)));
+
+// scaled() on 8 lanes of four-pixel sums (s <= 1020), in 16-bit lanes: with s = 4q + r, floor((s * code + 510) / 4)
+// = q * code + floor((r * code + 510) / 4) <= 65152, and floor(y / 255) == (y + 1 + (y >> 8)) >> 8 for y < 65535
+// (checked for every sum and code). Value and cap are at most 1020: a signed minimum (one SSE2 instruction) does.
+inline Words8 scaledBySum(Words8 s, Words8 code, Words8 alpha)
 {
-    const Longs8 y = (__builtin_convertvector(sum4, Longs8) * code + 510) >> 2;
-    const Words8 value = __builtin_convertvector((y + 1 + (y >> 8)) >> 8, Words8);
-    return value < alpha ? value : alpha;
+    const Words8 y = (s >> 2) * code + (((s & 3) * code + 510) >> 2);
+    const Shorts8 value = (Shorts8)((y + 1 + (y >> 8)) >> 8), cap = (Shorts8)alpha;
+    return (Words8)(value < cap ? value : cap);
 }
 
-// Eight groups' opacity sums taken (and zeroed, ready for the next chroma row) and their two chroma samples, given
-// and returned as 16-bit lanes, blended by chromaLoop's rule.
-inline void blendEightGroups(uint16_t *sums, unsigned shift, unsigned firstCode, unsigned secondCode, Words8 &first,
-                             Words8 &second)
+// meanAlpha() on 8 lanes.
+inline Words8 meanAlpha8(Words8 sum4)
 {
-    Words8 sum;
-    __builtin_memcpy(&sum, sums, 16);
-    __builtin_memset(sums, 0, 16);
-    sum = sum << shift;
-    const Words8 alpha = (sum + 1 + ((sum >> 2) & 1)) >> 2, keep = 255 - alpha;
-    first = scaled8(sum, firstCode, alpha) + div255(Words8(first * keep));
-    second = scaled8(sum, secondCode, alpha) + div255(Words8(second * keep));
+    return (sum4 + 1 + ((sum4 >> 2) & 1)) >> 2;
 }
 
-// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step, then chromaLoop's scalar rule.
-void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift, unsigned firstCode,
-                       unsigned secondCode)
+// NV12/NV21: eight groups' Cb/Cr pairs (16 bytes) blended by chromaLoop's rule from their four-pixel sums.
+inline void blendEightPairs(uint8_t *pairs, Words8 sum4, unsigned firstCode, unsigned secondCode)
+{
+    Bytes16 bytes;
+    __builtin_memcpy(&bytes, pairs, 16);
+    Words8 first = __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 2, 4, 6, 8, 10, 12, 14), Words8);
+    Words8 second = __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 1, 3, 5, 7, 9, 11, 13, 15), Words8);
+    const Words8 alpha = meanAlpha8(sum4), keep = 255 - alpha;
+    first = scaledBySum(sum4, Words8{} + uint16_t(firstCode), alpha) + div255(Words8(first * keep));
+    second = scaledBySum(sum4, Words8{} + uint16_t(secondCode), alpha) + div255(Words8(second * keep));
+    const Bytes8 a = __builtin_convertvector(first, Bytes8), b = __builtin_convertvector(second, Bytes8);
+    bytes = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
+    __builtin_memcpy(pairs, &bytes, 16);
+}
+
+// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step. The last few groups are one
+// more step with the other lanes' sums held back (opacity 0 leaves a byte as it is) when the row has room (in
+// groups from pairs) for it, else chromaLoop's scalar rule. Sums are zeroed as they are used.
+void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned room, unsigned shift,
+                       unsigned firstCode, unsigned secondCode)
 {
     unsigned g = 0;
     for (; g + 8 <= count; g += 8) {
-        Bytes16 bytes;
-        __builtin_memcpy(&bytes, pairs + 2 * g, 16);
-        Words8 first =
-            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 2, 4, 6, 8, 10, 12, 14), Words8);
-        Words8 second =
-            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 1, 3, 5, 7, 9, 11, 13, 15), Words8);
-        blendEightGroups(sums + g, shift, firstCode, secondCode, first, second);
-        const Bytes8 a = __builtin_convertvector(first, Bytes8), b = __builtin_convertvector(second, Bytes8);
-        bytes = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
-        __builtin_memcpy(pairs + 2 * g, &bytes, 16);
+        Words8 sum;
+        __builtin_memcpy(&sum, sums + g, 16);
+        __builtin_memset(sums + g, 0, 16);
+        blendEightPairs(pairs + 2 * g, sum << shift, firstCode, secondCode);
+    }
+    if (g == count)
+        return;
+    if (g + 8 <= room) {
+        static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
+        Words8 sum;
+        __builtin_memcpy(&sum, sums + g, 16);
+        const Words8 mine = kLane < uint16_t(count - g) ? sum : 0, others = sum - mine;
+        __builtin_memcpy(sums + g, &others, 16);
+        return blendEightPairs(pairs + 2 * g, mine << shift, firstCode, secondCode);
     }
     chromaLoop<2>(pairs + 2 * g, pairs + 2 * g + 1, sums + g, count - g, shift, firstCode, secondCode);
 }
 
-using Bytes32 = uint8_t __attribute__((vector_size(32)));
-
-// Packed 4:2:2 (YUYV, UYVY, YVYU): the two chroma bytes of a group are 2 apart, groups 4 apart; eight groups (32
-// bytes) per step, the luma bytes between written back as read. The 32nd byte belongs to the group after the eight,
-// so a step needs one more group in the interval.
-void chromaPacked(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift, unsigned firstCode,
-                  unsigned secondCode)
+// Packed 4:2:2, one rule for every byte: s is four times the byte's opacity, alpha = s / 4 rounded half to even,
+// value = min(round(s * code / 1020), alpha).
+inline Words8 overBySum(Words8 in, Words8 s, Words8 code)
 {
-    unsigned g = 0;
-    for (; g + 8 < count; g += 8) {
-        Bytes32 bytes;
-        __builtin_memcpy(&bytes, pairs + 4 * g, 32);
-        Words8 first =
-            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 4, 8, 12, 16, 20, 24, 28), Words8);
-        Words8 second =
-            __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 2, 6, 10, 14, 18, 22, 26, 30), Words8);
-        blendEightGroups(sums + g, shift, firstCode, secondCode, first, second);
-        const Bytes8 a = __builtin_convertvector(first, Bytes8), b = __builtin_convertvector(second, Bytes8);
-        const Bytes16 ab = __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-        const Bytes32 blended = __builtin_shufflevector(ab, ab, 0, 0, 8, 0, 1, 0, 9, 0, 2, 0, 10, 0, 3, 0, 11, 0, 4, 0,
-                                                        12, 0, 5, 0, 13, 0, 6, 0, 14, 0, 7, 0, 15, 0);
-        static constexpr Bytes32 kChroma = {0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0,
-                                            0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0, 0xff, 0};
-        bytes = (blended & kChroma) | (bytes & ~kChroma);
-        __builtin_memcpy(pairs + 4 * g, &bytes, 32);
-    }
-    chromaLoop<4>(pairs + 4 * g, pairs + 4 * g + 2, sums + g, count - g, shift, firstCode, secondCode);
+    const Words8 alpha = meanAlpha8(s);
+    return scaledBySum(s, code, alpha) + div255(Words8(in * (255 - alpha)));
+}
+
+// Bytes 0-7 (low) or 8-15 (high) of v as 16-bit lanes.
+inline Words8 lowWords(Bytes16 v)
+{
+    return (Words8)__builtin_shufflevector(v, Bytes16{}, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+}
+inline Words8 highWords(Bytes16 v)
+{
+    return (Words8)__builtin_shufflevector(v, Bytes16{}, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
 }
 
 } // namespace
+
+// Luma bytes take s = 4 * their pixel's opacity, which makes overBySum over()'s div255(a * luma) exactly; chroma
+// bytes take s = 2 * the sum of their macropixel's two opacities, which makes it chromaLoop's rule (shift 1). So
+// the result is byte for byte the one of blendLuma followed by blendChroma.
+void FrameCoverageSink::blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows,
+                                           const uint16_t *codes, unsigned lumaOffset)
+{
+    static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
+    const auto isLuma = (kLane & 1) == uint16_t(lumaOffset);
+    Words8 code;
+    __builtin_memcpy(&code, codes, 16);
+    for (unsigned w = 0; w < windows; ++w, bytes += 16, alpha += 8) {
+        Bytes16 raw{};
+        __builtin_memcpy(&raw, alpha, 8);
+        // Each pixel's opacity twice (the two bytes of its half macropixel), then each macropixel's sum four times.
+        const Words8 pixelLow =
+            lowWords(__builtin_shufflevector(raw, raw, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7));
+        const Words8 pixelHigh =
+            highWords(__builtin_shufflevector(raw, raw, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7));
+        const Words8 groupLow = pixelLow + __builtin_shufflevector(pixelLow, pixelLow, 2, 3, 0, 1, 6, 7, 4, 5);
+        const Words8 groupHigh = pixelHigh + __builtin_shufflevector(pixelHigh, pixelHigh, 2, 3, 0, 1, 6, 7, 4, 5);
+        Bytes16 in;
+        __builtin_memcpy(&in, bytes, 16);
+        const Words8 low = overBySum(lowWords(in), isLuma ? pixelLow << 2 : groupLow << 1, code);
+        const Words8 high = overBySum(highWords(in), isLuma ? pixelHigh << 2 : groupHigh << 1, code);
+        const Bytes16 out = __builtin_convertvector(
+            __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15), Bytes16);
+        __builtin_memcpy(bytes, &out, 16);
+    }
+}
 
 void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count,
                                   unsigned value, size_t room)
@@ -178,11 +213,11 @@ void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const u
     // A long run (a flat line near the camera) as whole 16-byte vectors too, then its remainder.
     const unsigned perVector = 16 / step;
     while (count > perVector && room >= 32) {
-        lumaShort(pixels, step, layout.lumaOffset, alpha, perVector, value);
+        lumaShort(pixels, step, layout.lumaOffset, alpha, value);
         pixels += 16, room -= 16, alpha += perVector, count -= perVector;
     }
     if (count * step <= 16 && room >= 16)
-        return lumaShort(pixels, step, layout.lumaOffset, alpha, count, value);
+        return lumaShort(pixels, step, layout.lumaOffset, alpha, value);
     uint8_t *dst = pixels + layout.lumaOffset;
     if (step == 1)
         lumaLoop<1>(dst, alpha, count, value);
@@ -202,33 +237,31 @@ void FrameCoverageSink::blendRgb(uint8_t *dst, unsigned pixelBytes, const uint8_
 
 void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count)
 {
-    unsigned i = 0;
-    if (x0 % 2 == 1) // the first pixel is the second of its group
-        sums[x0 / 2] = uint16_t(sums[x0 / 2] + alpha[i++]);
-    uint16_t *__restrict group = sums + (x0 + i) / 2;
-    const unsigned pairs = (count - i) / 2;
-    for (unsigned p = 0; p < pairs; ++p)
-        group[p] = uint16_t(group[p] + alpha[i + 2 * p] + alpha[i + 2 * p + 1]);
-    if ((count - i) % 2 == 1)
-        group[pairs] = uint16_t(group[pairs] + alpha[count - 1]);
+    // Sixteen pixels (eight groups) a step from the first group's first pixel: alpha is staged, so the pixel before
+    // an odd x0 and the 16 after the last read 0, and sums has slack for the eight groups past the last.
+    const uint8_t *pixels = alpha - x0 % 2;
+    uint16_t *group = sums + x0 / 2;
+    for (unsigned i = 0; i < x0 % 2 + count; i += 16, pixels += 16, group += 8) {
+        Words8 pairs, sum;
+        __builtin_memcpy(&pairs, pixels, 16);
+        __builtin_memcpy(&sum, group, 16);
+        sum += (pairs & 0xff) + (pairs >> 8);
+        __builtin_memcpy(group, &sum, 16);
+    }
 }
 
 void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count,
-                                    unsigned shift, const ItemColour &colour)
+                                    unsigned room, unsigned shift, const ItemColour &colour)
 {
     // Packed 4:2:2 keeps Cb and Cr in one plane, 2 bytes apart: the loops never write the same byte through both.
     if (step == 1)
         chromaLoop<1>(cb, cr, sums, count, shift, colour.cb, colour.cr);
     else if (step == 2 && cr == cb + 1)
-        chromaInterleaved(cb, sums, count, shift, colour.cb, colour.cr);
+        chromaInterleaved(cb, sums, count, room, shift, colour.cb, colour.cr);
     else if (step == 2 && cb == cr + 1)
-        chromaInterleaved(cr, sums, count, shift, colour.cr, colour.cb);
+        chromaInterleaved(cr, sums, count, room, shift, colour.cr, colour.cb);
     else if (step == 2)
         chromaLoop<2>(cb, cr, sums, count, shift, colour.cb, colour.cr);
-    else if (cr == cb + 2)
-        chromaPacked(cb, sums, count, shift, colour.cb, colour.cr);
-    else if (cb == cr + 2)
-        chromaPacked(cr, sums, count, shift, colour.cr, colour.cb);
     else
         chromaLoop<4>(cb, cr, sums, count, shift, colour.cb, colour.cr);
 }

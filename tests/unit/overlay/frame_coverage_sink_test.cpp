@@ -71,8 +71,8 @@ std::vector<Case> allCases()
     return cases;
 }
 
-// Runs of 1..8 pixels in increasing x, some adjacent (splitting macropixels between calls), some rows skipped,
-// coverage a mix of 0, 255 and anything; the last rows and columns are reached.
+// Runs of 1..8 pixels in increasing x, some one pixel apart (the closest CoverageSink allows: neighbouring
+// macropixels), some rows skipped, coverage a mix of 0, 255 and anything; the last rows and columns are reached.
 Item randomItem(unsigned width, unsigned height, std::mt19937 &rng)
 {
     auto pick = [&rng](int lo, int hi) {
@@ -85,7 +85,7 @@ Item randomItem(unsigned width, unsigned height, std::mt19937 &rng)
     for (int y = y0; y <= y1; ++y) {
         if (pick(0, 4) == 0)
             continue;
-        for (int x = pick(0, int(width) - 1); x < int(width); x += pick(0, 6)) {
+        for (int x = pick(0, int(width) - 1); x < int(width); x += pick(1, 6)) {
             RowCall call{y, x, std::vector<uint8_t>(std::min(pick(1, 8), int(width) - x))};
             for (uint8_t &c : call.coverage)
                 c = uint8_t(std::clamp(pick(-60, 320), 0, 255));
