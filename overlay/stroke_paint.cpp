@@ -1,5 +1,6 @@
-// StrokeRasterizer's pixel loops: coverage across a stroke for a run of pixels (vector kernels for short and long
-// runs) and the exact per-pixel formula beside the ends. The semantics are in stroke_raster.cpp's header comment.
+// StrokeRasterizer's pixel work for one row: merging the runs, coverage across a stroke for a run of pixels (vector
+// kernels for short and long runs, the exact per-pixel formula beside the ends) and trimming before the sink. The
+// semantics are in stroke_raster.cpp's header comment.
 #include "overlay/stroke_raster.h"
 
 #include <algorithm>
@@ -38,59 +39,83 @@ constexpr int kPad = kStrokeRowSlack;
 // The byte packing below and the trimming read bytes from the low bits of a word (x86-64, arm64).
 static_assert(std::endian::native == std::endian::little, "little-endian words assumed");
 
-struct Across {
-    float gain, reach; // the profile, in 0..255 units
-    int peak;
-    float s, ds; // signed distance across at the first pixel, and per pixel
-};
-
-// Long runs (a flat stroke's row): 16 pixels a step as four 4-lane float vectors holding pixels {0, 4, 8, 12} + j,
-// so that or-ing the four results shifted by 0, 8, 16 and 24 bits puts the 16 bytes in pixel order (SSE2 has no
-// cheap narrowing: GCC's own vectorization of this loop spent most of its time there and in integer clamps).
+// Vector extensions (GCC and Clang), as in blend_kernel.cpp.
 using Floats4 [[gnu::vector_size(16)]] = float;
 using Ints4 [[gnu::vector_size(16)]] = int32_t;
 using Longs2 [[gnu::vector_size(16)]] = uint64_t;
 using Bytes16 [[gnu::vector_size(16)]] = uint8_t;
 
+// The profile's lanes and the signed distance across at the run's first pixel and its step per pixel.
+struct Across {
+    Floats4 gain, reach, peak, s, ds;
+};
+
+// The coverage (plus 0.5, to be truncated) of the pixels `lane`; when Masked, lanes at or past n get 0.
+template<bool Masked>
 inline Floats4 across4(const Across &a, Floats4 lane, float n)
 {
     const Floats4 x = a.s + lane * a.ds, distance = (Floats4)((Ints4)x & 0x7fffffff); // |x|: clear the sign bit
     Floats4 c = a.gain * (a.reach - distance);
     c = c > 0 ? c : 0;
-    c = c < float(a.peak) ? c : float(a.peak);
-    return lane < n ? c + 0.5f : 0;
+    c = c < a.peak ? c : a.peak;
+    if constexpr (Masked)
+        return lane < n ? c + 0.5f : 0;
+    else
+        return c + 0.5f;
+}
+
+// Four 32-bit lanes (each 0..255) as four bytes in a word: bytes 0 and 4 of each half side by side (two 64-bit
+// shifts), then the high half's pair next to the low's (a 6-byte shift): GCC turns a plain narrowing into scalar
+// code.
+inline uint32_t packBytes(Ints4 lanes)
+{
+    Longs2 q = (Longs2)lanes;
+    q |= q >> 24;
+    const Bytes16 b = (Bytes16)q;
+    const Bytes16 high =
+        __builtin_shufflevector(b, Bytes16{}, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21);
+    return uint32_t(((Ints4)(b | high))[0]);
+}
+
+// Long runs (a flat stroke's row): 16 pixels a step as four 4-lane float vectors holding pixels {0, 4, 8, 12} + j,
+// so that or-ing the four results shifted by 0, 8, 16 and 24 bits puts the 16 bytes in pixel order (SSE2 has no
+// cheap narrowing: GCC's own vectorization of this loop spent most of its time there and in integer clamps). Only
+// the last step needs the lane mask.
+template<bool Overwrite, bool Masked>
+inline void paint16(const Across &a, int k, int n, uint8_t *out)
+{
+    static constexpr Floats4 kLane = {0, 4, 8, 12};
+    const Floats4 lane = kLane + float(k);
+    Ints4 bytes = __builtin_convertvector(across4<Masked>(a, lane, float(n)), Ints4);
+    for (int j = 1; j < 4; ++j)
+        bytes |= __builtin_convertvector(across4<Masked>(a, lane + float(j), float(n)), Ints4) << (8 * j);
+    Bytes16 v = (Bytes16)bytes;
+    if (!Overwrite) {
+        Bytes16 old;
+        __builtin_memcpy(&old, out + k, sizeof old);
+        v = old > v ? old : v;
+    }
+    __builtin_memcpy(out + k, &v, sizeof v);
 }
 
 template<bool Overwrite>
 void paintLong(const Across &a, int n, uint8_t *out)
 {
-    static constexpr Floats4 kLane = {0, 4, 8, 12};
-    for (int k = 0; k < n; k += kPad) {
-        const Floats4 lane = kLane + float(k);
-        Ints4 bytes = __builtin_convertvector(across4(a, lane, float(n)), Ints4);
-        for (int j = 1; j < 4; ++j)
-            bytes |= __builtin_convertvector(across4(a, lane + float(j), float(n)), Ints4) << (8 * j);
-        Bytes16 v = (Bytes16)bytes;
-        if (!Overwrite) {
-            Bytes16 old;
-            __builtin_memcpy(&old, out + k, sizeof old);
-            v = old > v ? old : v;
-        }
-        __builtin_memcpy(out + k, &v, sizeof v);
-    }
+    int k = 0;
+    for (; k + kPad <= n; k += kPad)
+        paint16<Overwrite, false>(a, k, n, out);
+    if (k < n)
+        paint16<Overwrite, true>(a, k, n, out);
 }
 
 // Short runs (a steep stroke's 3 or 4 pixels a row, most runs): 4 lanes at a time in vector extensions, as in
-// blend_kernel.cpp; a 16-pixel step would do 4 times the work. The four 32-bit results (each 0..255) become four
-// bytes with two 64-bit shifts, and the max is one pmaxub: GCC turns a plain narrowing into scalar code.
+// blend_kernel.cpp; a 16-pixel step would do 4 times the work. The max is one pmaxub.
 template<bool Overwrite>
 void paintShort(const Across &a, int n, uint8_t *out)
 {
     static constexpr Floats4 kLane = {0, 1, 2, 3};
     for (int k = 0; k < n; k += 4) {
-        Longs2 q = (Longs2) __builtin_convertvector(across4(a, kLane + float(k), float(n)), Ints4);
-        q |= q >> 24; // lane bytes 0 and 4 of each half side by side
-        uint32_t packed = uint32_t(q[0] & 0xffff) | uint32_t(q[1] << 16);
+        uint32_t packed = packBytes(__builtin_convertvector(across4<true>(a, kLane + float(k), float(n)), Ints4));
         if (!Overwrite) {
             uint32_t old;
             __builtin_memcpy(&old, out + k, sizeof old);
@@ -108,6 +133,36 @@ void paintAcross(const Across &a, int n, uint8_t *out)
         paintShort<Overwrite>(a, n, out);
     else
         paintLong<Overwrite>(a, n, out);
+}
+
+// The trimming of a run's zero ends, 8 bytes at a time: a byte loop's exit branch is mispredicted about once a run.
+// Reads up to 7 bytes past p + n (the scratch's slack), never before p.
+
+uint64_t word(const uint8_t *p, int valid)
+{
+    uint64_t w;
+    __builtin_memcpy(&w, p, sizeof w);
+    return valid >= 8 ? w : w & ((uint64_t(1) << (8 * valid)) - 1);
+}
+
+// The first non-zero byte of p[0, n), or n.
+int firstNonZero(const uint8_t *p, int n)
+{
+    for (int i = 0; i < n; i += 8)
+        if (const uint64_t w = word(p + i, n - i))
+            return i + std::countr_zero(w) / 8;
+    return n;
+}
+
+// One past the last non-zero byte of p[0, n) (p[0, n) has one).
+int endNonZero(const uint8_t *p, int n)
+{
+    for (int e = n; e > 0; e -= 8) {
+        const uint64_t w = e >= 8 ? word(p + e - 8, 8) : word(p, e) << (8 * (8 - e));
+        if (w)
+            return e - std::countl_zero(w) / 8;
+    }
+    return 0;
 }
 
 } // namespace
@@ -136,17 +191,16 @@ void StrokeRasterizer::paint(const Segment &g, int y, int x0, int count, uint8_t
     // others (and every pixel of a binary stroke) take the exact per-pixel formula.
     int f0 = 0, f1 = 0;
     if (!profile_.binary) {
-        const double lo = g.roundStart ? 0.0 : profile_.extension;
-        const double hi = g.roundEnd ? g.length : g.length - profile_.extension;
         const double tEnd = t + (count - 1) * dt;
         f1 = count; // the common case: the whole run lies between the ends
-        if (std::min(t, tEnd) < lo || std::max(t, tEnd) > hi)
-            std::tie(f0, f1) = indexRange(t, dt, lo, hi, count);
+        if (std::min(t, tEnd) < g.innerLo || std::max(t, tEnd) > g.innerHi)
+            std::tie(f0, f1) = indexRange(t, dt, g.innerLo, g.innerHi, count);
     }
     for (int k = 0; k < f0; ++k)
         out[k] =
             overwrite ? coverage(g, t + k * dt, s + k * ds) : std::max(out[k], coverage(g, t + k * dt, s + k * ds));
-    const Across across{profile_.gain, float(profile_.reach), int(profile_.peak + 0.5f), float(s + f0 * ds), float(ds)};
+    const Across across{profile_.gainLanes, profile_.reachLanes, profile_.peakLanes, float(s + f0 * ds) + Floats4{},
+                        g.dsLanes};
     if (overwrite)
         paintAcross<true>(across, f1 - f0, out + f0);
     else
@@ -154,6 +208,79 @@ void StrokeRasterizer::paint(const Segment &g, int y, int x0, int count, uint8_t
     for (int k = f1; k < count; ++k)
         out[k] =
             overwrite ? coverage(g, t + k * dt, s + k * ds) : std::max(out[k], coverage(g, t + k * dt, s + k * ds));
+}
+
+// The short kernel's steps for the usual run, inlined with the profile's lanes read in place: 4 lanes (or 8) and
+// no lane mask, as pixels past the run are never read (a later run overwrites or zeroes its own pixels first).
+// t, s and the lanes as paint() computes them (s + 0 * ds is s but for the sign of a zero, which |x| drops).
+inline bool StrokeRasterizer::paintShortRun(const Segment &g, int y, int x0, int count, uint8_t *out) const
+{
+    if (count > 8 || profile_.binary)
+        return false;
+    const double dy = y - g.a.y, dx = x0 - g.a.x;
+    const double t = dy * g.u.y + dx * g.u.x, s = dy * g.u.x - dx * g.u.y;
+    const double tEnd = t + (count - 1) * g.u.x;
+    if (std::min(t, tEnd) < g.innerLo || std::max(t, tEnd) > g.innerHi)
+        return false;
+    const float s0 = float(s);
+    const Across across{profile_.gainLanes, profile_.reachLanes, profile_.peakLanes, Floats4{s0, s0, s0, s0},
+                        g.dsLanes};
+    static constexpr Floats4 kLane = {0, 1, 2, 3};
+    const uint32_t low = packBytes(__builtin_convertvector(across4<false>(across, kLane, 8.0f), Ints4));
+    __builtin_memcpy(out, &low, sizeof low);
+    if (count > 4) {
+        const uint32_t high = packBytes(__builtin_convertvector(across4<false>(across, kLane + 4.0f, 8.0f), Ints4));
+        __builtin_memcpy(out + 4, &high, sizeof high);
+    }
+    return true;
+}
+
+void StrokeRasterizer::emitRow(int y, const Span *spans, size_t count, CoverageSink &sink)
+{
+    uint8_t *const scratch = row_.data();
+    const int clipX0 = clip_.x0;
+    for (size_t i = 0; i < count;) {
+        const Span &span = spans[i];
+        size_t j = i + 1;
+        if (j < count && spans[j].x0 <= span.x1 + 1) {
+            // Overlapping or touching runs share one scratch run (max per pixel) and one row() call.
+            int x1 = span.x1;
+            for (; j < count && spans[j].x0 <= x1 + 1; ++j)
+                x1 = std::max(x1, spans[j].x1);
+            emitMerged(y, spans + i, j - i, span.x0, x1, sink);
+            i = j;
+            continue;
+        }
+        uint8_t *const row = scratch + (span.x0 - clipX0);
+        const int n = span.x1 - span.x0 + 1;
+        if (!paintShortRun(*span.segment, y, span.x0, n, row))
+            paint(*span.segment, y, span.x0, n, row, true);
+        if (row[0] != 0 && row[n - 1] != 0) // the usual case: a run's end pixels are covered
+            sink.row(y, span.x0, row, n);
+        else
+            emitTrimmed(y, span.x0, row, n, sink);
+        i = j;
+    }
+}
+
+void StrokeRasterizer::emitMerged(int y, const Span *spans, size_t count, int x0, int x1, CoverageSink &sink)
+{
+    uint8_t *const row = row_.data() + (x0 - clip_.x0);
+    const int n = x1 - x0 + 1;
+    std::fill(row, row + n, uint8_t(0));
+    for (size_t i = 0; i < count; ++i)
+        paint(*spans[i].segment, y, spans[i].x0, spans[i].x1 - spans[i].x0 + 1, row + (spans[i].x0 - x0), false);
+    if (row[0] != 0 && row[n - 1] != 0)
+        sink.row(y, x0, row, n);
+    else
+        emitTrimmed(y, x0, row, n, sink);
+}
+
+void StrokeRasterizer::emitTrimmed(int y, int x0, const uint8_t *row, int n, CoverageSink &sink)
+{
+    const int first = firstNonZero(row, n);
+    if (first < n)
+        sink.row(y, x0 + first, row + first, endNonZero(row, n) - first);
 }
 
 } // namespace overlayd

@@ -18,17 +18,18 @@
 // with an active list: each active segment gives the pixel run where its capsule meets the row (linear in y, plus
 // a square root near round ends); runs are sorted (kept in x order from row to row), merged and painted into a row
 // scratch, max per pixel, by branch-free vector loops (no square root except beside round ends or butt-end ramps,
-// which take a scalar formula). Cost: covered pixels plus rows spanned, whatever the bounding box; no allocation
-// once the scratch has grown. Known limit: where two different segments each cover part of a pixel (a crossing's
-// or a sharp joint's inner corner) the max is below the union's area.
+// which take a scalar formula). Most runs are a steep stroke's 3-6 pixels, so the cost per run is what counts:
+// per-segment constants are derived once, the active list is updated in place (runs computed and insertion-sorted
+// in one pass), and a run that touches no other and lies between its segment's ends is written by one inlined step
+// of the short kernel. Every shortcut evaluates the same expressions as the general path, so the bytes are the same.
+// Cost: covered pixels plus rows spanned, whatever the bounding box; no allocation once the scratch has grown.
+// Known limit: where two different segments each cover part of a pixel (a crossing's or a sharp joint's inner
+// corner) the max is below the union's area.
 #include "overlay/stroke_raster.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
-#include <tuple>
-#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -67,36 +68,6 @@ Band band(double cx, double cy, double lo, double hi)
     return b;
 }
 
-// The trimming of a run's zero ends, 8 bytes at a time: a byte loop's exit branch is mispredicted about once a run.
-// Reads up to 7 bytes past p + n (the scratch's slack), never before p.
-
-uint64_t word(const uint8_t *p, int valid)
-{
-    uint64_t w;
-    __builtin_memcpy(&w, p, sizeof w);
-    return valid >= 8 ? w : w & ((uint64_t(1) << (8 * valid)) - 1);
-}
-
-// The first non-zero byte of p[0, n), or n.
-int firstNonZero(const uint8_t *p, int n)
-{
-    for (int i = 0; i < n; i += 8)
-        if (const uint64_t w = word(p + i, n - i))
-            return i + std::countr_zero(w) / 8;
-    return n;
-}
-
-// One past the last non-zero byte of p[0, n) (p[0, n) has one).
-int endNonZero(const uint8_t *p, int n)
-{
-    for (int e = n; e > 0; e -= 8) {
-        const uint64_t w = e >= 8 ? word(p + e - 8, 8) : word(p, e) << (8 * (8 - e));
-        if (w)
-            return e - std::countl_zero(w) / 8;
-    }
-    return 0;
-}
-
 } // namespace
 
 void StrokeRasterizer::rasterize(const Polylines &lines, double width, bool antialias, glm::dvec2 origin,
@@ -112,7 +83,12 @@ void StrokeRasterizer::rasterize(const Polylines &lines, double width, bool anti
         profile_ = {float(255.0 * width), float(255.0 * width), 1.0, 0.5, false};
     else
         profile_ = {255.0f, 255.0f, hw + 0.5, 0.5, false};
+    profile_.gainLanes = profile_.gain + Floats4{};
+    profile_.reachLanes = float(profile_.reach) + Floats4{};
+    profile_.peakLanes = float(int(profile_.peak + 0.5f)) + Floats4{};
     clip_ = clip;
+    runX0Min_ = clip.x0, runX0Max_ = clip.x1;
+    runX1Min_ = clip.x0 - 1.0, runX1Max_ = clip.x1 - 1.0;
     // Coverage reaches at most reach + extension from the centre line's ends, so a segment cut one pixel beyond
     // that outside the clip colours no clipped pixel differently, whatever end it gets at the cut.
     const double margin = profile_.reach + profile_.extension + 1.0;
@@ -188,6 +164,10 @@ void StrokeRasterizer::addSegment(glm::dvec2 a, glm::dvec2 b, bool roundStart, b
     g.tLoX = along.loX, g.tHiX = along.hiX, g.tSlope = along.slope;
     g.sLoX = across.loX, g.sHiX = across.hiX, g.sSlope = across.slope;
     g.bodyY0 = std::max(along.y0, across.y0), g.bodyY1 = std::min(along.y1, across.y1);
+    g.plain = !g.roundStart && !g.roundEnd && g.bodyY0 == -kInf && g.bodyY1 == kInf;
+    g.innerLo = g.roundStart ? 0.0 : ext;
+    g.innerHi = g.roundEnd ? g.length : g.length - ext;
+    g.dsLanes = float(-g.u.y) + Floats4{};
     const double top = std::ceil(std::min(g.a.y, g.b.y) - reach - ext);
     const double bottom = std::floor(std::max(g.a.y, g.b.y) + reach + ext);
     g.top = int(std::max(top, double(clip_.y0)));
@@ -196,94 +176,75 @@ void StrokeRasterizer::addSegment(glm::dvec2 a, glm::dvec2 b, bool roundStart, b
         segments_.push_back(g);
 }
 
-void StrokeRasterizer::sweep(CoverageSink &sink)
-{
-    active_.clear();
-    size_t next = 0;
-    for (int y = segments_.front().top; y < clip_.y1; ++y) {
-        if (active_.empty()) {
-            if (next == segments_.size())
-                break;
-            y = std::max(y, segments_[next].top);
-        }
-        while (next < segments_.size() && segments_[next].top <= y)
-            active_.push_back(uint32_t(next++));
-        spans_.clear();
-        idle_.clear();
-        for (const uint32_t i : active_) {
-            Span span{0, 0, i};
-            if (segments_[i].bottom < y)
-                continue;
-            if (rowSpan(segments_[i], y, span))
-                spans_.push_back(span);
-            else
-                idle_.push_back(i);
-        }
-        // Sorted by x, and the active list kept in that order: the next row's runs come nearly sorted, so the
-        // insertion sort costs about one comparison per run.
-        for (size_t j = 1; j < spans_.size(); ++j)
-            for (size_t k = j; k > 0 && spans_[k].x0 < spans_[k - 1].x0; --k)
-                std::swap(spans_[k], spans_[k - 1]);
-        active_.clear();
-        for (const Span &span : spans_)
-            active_.push_back(span.segment);
-        active_.insert(active_.end(), idle_.begin(), idle_.end());
-        emitRow(y, sink);
-    }
-}
-
-bool StrokeRasterizer::rowSpan(const Segment &g, int y, Span &span) const
+inline bool StrokeRasterizer::rowSpan(const Segment &g, int y, Span &span) const
 {
     const double dy = y - g.a.y, reach = profile_.reach;
     double lo = kInf, hi = -kInf;
-    if (dy >= g.bodyY0 && dy <= g.bodyY1) {
+    if (g.plain || (dy >= g.bodyY0 && dy <= g.bodyY1)) { // a plain segment's body rows are all rows (finite dy)
         lo = std::max(g.tLoX + g.tSlope * dy, g.sLoX + g.sSlope * dy);
         hi = std::min(g.tHiX + g.tSlope * dy, g.sHiX + g.sSlope * dy);
     }
     // The capsule is convex, so its row is one run: the hull of the body's and the round ends' discs' runs.
-    for (int end = g.roundStart ? 0 : 1; end < (g.roundEnd ? 2 : 1); ++end) {
-        const glm::dvec2 c = end == 0 ? g.a : g.b;
+    const auto disc = [&](glm::dvec2 c) {
         const double cy = y - c.y;
         if (std::fabs(cy) > reach)
-            continue;
+            return;
         const double h = std::sqrt(reach * reach - cy * cy);
         lo = std::min(lo, c.x - g.a.x - h), hi = std::max(hi, c.x - g.a.x + h);
+    };
+    if (!g.plain) {
+        if (g.roundStart)
+            disc(g.a);
+        if (g.roundEnd)
+            disc(g.b);
     }
     if (!(lo <= hi))
         return false;
     // Clamped first, so that the conversions cannot overflow; ceil and floor by hand (without SSE4.1 the library's
     // take about 20 instructions each, the largest cost of this function).
-    const double x0 = std::clamp(g.a.x + lo - kSlack, double(clip_.x0), double(clip_.x1));
-    const double x1 = std::clamp(g.a.x + hi + kSlack, clip_.x0 - 1.0, clip_.x1 - 1.0);
+    const double x0 = std::clamp(g.a.x + lo - kSlack, runX0Min_, runX0Max_);
+    const double x1 = std::clamp(g.a.x + hi + kSlack, runX1Min_, runX1Max_);
     span.x0 = int(x0) + (double(int(x0)) < x0);
     span.x1 = int(x1) - (double(int(x1)) > x1);
     return span.x0 <= span.x1;
 }
 
-void StrokeRasterizer::emitRow(int y, CoverageSink &sink)
+void StrokeRasterizer::sweep(CoverageSink &sink)
 {
-    for (size_t i = 0; i < spans_.size();) {
-        // Overlapping or touching runs share one scratch run (max per pixel) and one row() call.
-        const int x0 = spans_[i].x0;
-        int x1 = spans_[i].x1;
-        size_t j = i + 1;
-        for (; j < spans_.size() && spans_[j].x0 <= x1 + 1; ++j)
-            x1 = std::max(x1, spans_[j].x1);
-        uint8_t *row = row_.data() + (x0 - clip_.x0);
-        const bool alone = j == i + 1;
-        if (!alone)
-            std::fill(row, row + (x1 - x0 + 1), uint8_t(0));
-        for (; i < j; ++i)
-            paint(segments_[spans_[i].segment], y, spans_[i].x0, spans_[i].x1 - spans_[i].x0 + 1,
-                  row + (spans_[i].x0 - x0), alone);
-        const int n = x1 - x0 + 1;
-        if (row[0] != 0 && row[n - 1] != 0) { // the usual case: a run's end pixels are covered
-            sink.row(y, x0, row, n);
-            continue;
+    active_.clear();
+    const Segment *const segments = segments_.data();
+    const size_t segmentCount = segments_.size();
+    size_t next = 0;
+    for (int y = segments[0].top; y < clip_.y1; ++y) {
+        if (active_.empty()) {
+            if (next == segmentCount)
+                break;
+            y = std::max(y, segments[next].top);
         }
-        const int first = firstNonZero(row, n);
-        if (first < n)
-            sink.row(y, x0 + first, row + first, endNonZero(row, n) - first);
+        while (next < segmentCount && segments[next].top <= y)
+            active_.push_back({kIdle, kIdle, &segments[next++]});
+        // In place: finished segments leave, the others get this row's run (or kIdle) and are inserted in x order
+        // (idle ones last), an insertion sort whose order is kept from row to row: the runs come nearly sorted, so
+        // it costs about one comparison per run.
+        Span *const spans = active_.data();
+        const size_t active = active_.size();
+        size_t kept = 0, runs = 0;
+        for (size_t i = 0; i < active; ++i) {
+            Span span = spans[i];
+            const Segment &g = *span.segment;
+            if (g.bottom < y)
+                continue;
+            if (rowSpan(g, y, span))
+                ++runs;
+            else
+                span.x0 = kIdle;
+            size_t k = kept++;
+            for (; k > 0 && span.x0 < spans[k - 1].x0; --k)
+                spans[k] = spans[k - 1];
+            spans[k] = span;
+        }
+        active_.resize(kept);
+        emitRow(y, spans, runs, sink);
     }
 }
 
