@@ -74,12 +74,11 @@ void FrameCoverageSink::begin(Rgba colour)
     const YcbcrBlendSamples samples = encoder_.encode(opaque);
     colour_.luma = samples.y.value, colour_.cb = samples.cb.value, colour_.cr = samples.cr.value;
     if (layout_.packed422) {
-        for (unsigned k = 0; k < 8; ++k) {
-            const unsigned byte = k % 4;
-            colour_.packedCodes[k] = uint16_t(byte == format_->cbOffset   ? colour_.cb
-                                              : byte == format_->crOffset ? colour_.cr
-                                                                          : colour_.luma);
-        }
+        // The chroma byte at the lower offset of a macropixel comes first (YUYV, UYVY: Cb; YVYU: Cr).
+        const bool cbFirst = format_->cbOffset < format_->crOffset;
+        for (unsigned k = 0; k < 8; ++k)
+            colour_.packedChroma[k] =
+                uint16_t(k % 2 == 0 ? (cbFirst ? colour_.cb : colour_.cr) : (cbFirst ? colour_.cr : colour_.cb));
     }
 }
 
@@ -88,7 +87,20 @@ void FrameCoverageSink::stage(const uint8_t *coverage, unsigned count, uint8_t *
     alpha[-1] = 0;
     std::fill_n(alpha + count, 16, uint8_t(0));
     if (colour_.alpha == 255) {
-        std::copy_n(coverage, count, alpha);
+        // Most runs are a few pixels: 8, 4, 2 and 1 byte copies instead of a call to memcpy.
+        if (count > 32) {
+            std::copy_n(coverage, count, alpha);
+            return;
+        }
+        unsigned i = 0;
+        for (; i + 8 <= count; i += 8)
+            __builtin_memcpy(alpha + i, coverage + i, 8);
+        if (i + 4 <= count)
+            __builtin_memcpy(alpha + i, coverage + i, 4), i += 4;
+        if (i + 2 <= count)
+            __builtin_memcpy(alpha + i, coverage + i, 2), i += 2;
+        if (i < count)
+            alpha[i] = coverage[i];
         return;
     }
     const unsigned a = colour_.alpha;
@@ -131,23 +143,6 @@ void FrameCoverageSink::blendRow(int y, int x0, const uint8_t *alpha, int count)
     }
     pendingChromaRow_ = chromaRow;
     intervals_.push_back(groups);
-}
-
-void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
-{
-    // Whole windows of four macropixels from the run's first, as long as they end inside the row and before a
-    // one-pixel macropixel at an odd right edge; the groups past the last window go the general way.
-    const unsigned g0 = unsigned(x0) / 2, gEnd = unsigned(x0 + count + 1) / 2, wholeGroups = frame_.width / 2;
-    const unsigned windows = std::min((gEnd - g0 + 3) / 4, (wholeGroups - std::min(g0, wholeGroups)) / 4);
-    blendPackedWindows(row + size_t(g0) * 4, alpha - x0 % 2, windows, colour_.packedCodes, layout_.lumaOffset);
-    const int rest = std::max(x0, int(2 * (g0 + 4 * windows)));
-    if (rest >= x0 + count)
-        return;
-    const int done = rest - x0;
-    blendLuma(row + size_t(rest) * 2, layout_, alpha + done, unsigned(count - done), colour_.luma,
-              rowBytes_ - size_t(rest) * 2);
-    accumulateAlpha(alphaSums_.data(), unsigned(rest), alpha + done, unsigned(count - done));
-    blendChromaInterval(unsigned(y), {unsigned(rest) / 2, gEnd});
 }
 
 void FrameCoverageSink::end()

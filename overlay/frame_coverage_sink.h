@@ -47,9 +47,9 @@ private:
     // are linear in alpha for a fixed colour).
     struct ItemColour {
         unsigned luma = 0, cb = 0, cr = 0;
-        uint16_t packedCodes[8] = {}; // packed 4:2:2: the code of each byte of two macropixels
-        uint8_t rgb[4] = {};          // per byte of an RGB pixel; an alpha byte composes "over" as 255
-        uint8_t rgbMask[4] = {};      // 0xff for a byte the blend writes, 0 for an X byte
+        uint16_t packedChroma[8] = {}; // packed 4:2:2: a macropixel's first and second chroma byte's codes, x4
+        uint8_t rgb[4] = {};           // per byte of an RGB pixel; an alpha byte composes "over" as 255
+        uint8_t rgbMask[4] = {};       // 0xff for a byte the blend writes, 0 for an X byte
         uint8_t alpha = 255;
     };
 
@@ -66,7 +66,7 @@ private:
     // The pixel loops (frame_coverage_sink_kernels.cpp), in 16-bit vector lanes.
     // Packed 4:2:2: luma and chroma of `windows` runs of four macropixels (16 bytes) at once; alpha holds the
     // opacity of each of their pixels.
-    static void blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows, const uint16_t *codes,
+    static void blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows, const ItemColour &colour,
                                    unsigned lumaOffset);
     // pixels: the first byte of pixel x0's bytes; room: visible bytes of the row from there (a short run is one
     // 16-byte vector operation when they suffice); alpha is staged.

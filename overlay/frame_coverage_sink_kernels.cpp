@@ -155,54 +155,57 @@ void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned 
     chromaLoop<2>(pairs + 2 * g, pairs + 2 * g + 1, sums + g, count - g, shift, firstCode, secondCode);
 }
 
-// Packed 4:2:2, one rule for every byte: s is four times the byte's opacity, alpha = s / 4 rounded half to even,
-// value = min(round(s * code / 1020), alpha).
-inline Words8 overBySum(Words8 in, Words8 s, Words8 code)
-{
-    const Words8 alpha = meanAlpha8(s);
-    return scaledBySum(s, code, alpha) + div255(Words8(in * (255 - alpha)));
-}
-
-// Bytes 0-7 (low) or 8-15 (high) of v as 16-bit lanes.
+// Bytes 0-7 of v as 16-bit lanes.
 inline Words8 lowWords(Bytes16 v)
 {
     return (Words8)__builtin_shufflevector(v, Bytes16{}, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
 }
-inline Words8 highWords(Bytes16 v)
-{
-    return (Words8)__builtin_shufflevector(v, Bytes16{}, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
-}
 
 } // namespace
 
-// Luma bytes take s = 4 * their pixel's opacity, which makes overBySum over()'s div255(a * luma) exactly; chroma
-// bytes take s = 2 * the sum of their macropixel's two opacities, which makes it chromaLoop's rule (shift 1). So
-// the result is byte for byte the one of blendLuma followed by blendChroma.
-void FrameCoverageSink::blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows,
-                                           const uint16_t *codes, unsigned lumaOffset)
+// Each 16-bit word of packed 4:2:2 is one pixel's luma byte and one chroma byte of its macropixel (YUYV: Y0 Cb,
+// Y1 Cr, ...), so a window splits into eight luma lanes and eight chroma lanes by shifts. Luma takes over()'s rule,
+// chroma chromaLoop's with the macropixel's two opacities summed (shift 1): byte for byte the two-pass result.
+[[gnu::always_inline]] inline void FrameCoverageSink::blendPackedWindows(uint8_t *bytes, const uint8_t *alpha,
+                                                                         unsigned windows, const ItemColour &colour,
+                                                                         unsigned lumaOffset)
 {
-    static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
-    const auto isLuma = (kLane & 1) == uint16_t(lumaOffset);
-    Words8 code;
-    __builtin_memcpy(&code, codes, 16);
+    Words8 chromaCode;
+    __builtin_memcpy(&chromaCode, colour.packedChroma, 16);
+    const uint16_t luma = uint16_t(colour.luma);
+    const unsigned lumaShift = 8 * lumaOffset, chromaShift = 8 - lumaShift;
     for (unsigned w = 0; w < windows; ++w, bytes += 16, alpha += 8) {
         Bytes16 raw{};
         __builtin_memcpy(&raw, alpha, 8);
-        // Each pixel's opacity twice (the two bytes of its half macropixel), then each macropixel's sum four times.
-        const Words8 pixelLow =
-            lowWords(__builtin_shufflevector(raw, raw, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7));
-        const Words8 pixelHigh =
-            highWords(__builtin_shufflevector(raw, raw, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7));
-        const Words8 groupLow = pixelLow + __builtin_shufflevector(pixelLow, pixelLow, 2, 3, 0, 1, 6, 7, 4, 5);
-        const Words8 groupHigh = pixelHigh + __builtin_shufflevector(pixelHigh, pixelHigh, 2, 3, 0, 1, 6, 7, 4, 5);
-        Bytes16 in;
-        __builtin_memcpy(&in, bytes, 16);
-        const Words8 low = overBySum(lowWords(in), isLuma ? pixelLow << 2 : groupLow << 1, code);
-        const Words8 high = overBySum(highWords(in), isLuma ? pixelHigh << 2 : groupHigh << 1, code);
-        const Bytes16 out = __builtin_convertvector(
-            __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15), Bytes16);
+        const Words8 a = lowWords(raw);
+        // Chroma lanes 2g and 2g + 1 belong to macropixel g: pixels 2g and 2g + 1.
+        const Words8 pair = a + __builtin_shufflevector(a, a, 1, 0, 3, 2, 5, 4, 7, 6);
+        Words8 words;
+        __builtin_memcpy(&words, bytes, 16);
+        const Words8 y = (words >> lumaShift) & 0xff, c = (words >> chromaShift) & 0xff;
+        const Words8 yOut = div255(Words8(a * luma)) + div255(Words8(y * (255 - a)));
+        const Words8 sum4 = pair << 1, cAlpha = meanAlpha8(sum4);
+        const Words8 cOut = scaledBySum(sum4, chromaCode, cAlpha) + div255(Words8(c * (255 - cAlpha)));
+        const Words8 out = (yOut << lumaShift) | (cOut << chromaShift);
         __builtin_memcpy(bytes, &out, 16);
     }
+}
+
+void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
+{
+    // Whole windows of four macropixels from the run's first, as long as they end inside the row and before a
+    // one-pixel macropixel at an odd right edge; the groups past the last window go the general way.
+    const unsigned g0 = unsigned(x0) / 2, gEnd = unsigned(x0 + count + 1) / 2, wholeGroups = frame_.width / 2;
+    const unsigned windows = std::min((gEnd - g0 + 3) / 4, (wholeGroups - std::min(g0, wholeGroups)) / 4);
+    blendPackedWindows(row + size_t(g0) * 4, alpha - x0 % 2, windows, colour_, layout_.lumaOffset);
+    const int rest = std::max(x0, int(2 * (g0 + 4 * windows)));
+    if (rest >= x0 + count)
+        return;
+    const int done = rest - x0;
+    blendLuma(row + size_t(rest) * 2, layout_, alpha + done, unsigned(count - done), colour_.luma,
+              rowBytes_ - size_t(rest) * 2);
+    accumulateAlpha(alphaSums_.data(), unsigned(rest), alpha + done, unsigned(count - done));
+    blendChromaInterval(unsigned(y), {unsigned(rest) / 2, gEnd});
 }
 
 void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count,
