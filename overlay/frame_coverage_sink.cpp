@@ -126,23 +126,7 @@ void FrameCoverageSink::blendRow(int y, int x0, const uint8_t *alpha, int count)
     }
     if (layout_.packed422)
         return blendPackedRow(row, y, x0, alpha, count);
-    const size_t start = size_t(x0) * layout_.lumaStep;
-    blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
-    if (!layout_.chroma)
-        return;
-    // A chroma row's opacities add up in alphaSums_ until its last luma row: the first row's groups wait in
-    // intervals_, the last row's are blended as they come, with the waiting ones beside them.
-    const int chromaRow = y / int(layout_.vSub);
-    if (chromaRow != pendingChromaRow_)
-        flushChroma();
-    accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
-    const Interval groups{unsigned(x0) / 2, unsigned(x0 + count + 1) / 2};
-    if (unsigned(y + 1) % layout_.vSub == 0 || unsigned(y + 1) == frame_.height) {
-        blendLastRowGroups(unsigned(chromaRow), groups);
-        return;
-    }
-    pendingChromaRow_ = chromaRow;
-    intervals_.push_back(groups);
+    blendYuvRow(row, y, x0, alpha, count);
 }
 
 void FrameCoverageSink::end()

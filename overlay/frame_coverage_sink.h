@@ -59,6 +59,7 @@ private:
     void stage(const uint8_t *coverage, unsigned count, uint8_t *alpha) const;
     void blendRow(int y, int x0, const uint8_t *alpha, int count);
     void blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
+    void blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
     void flushChroma();
     void blendLastRowGroups(unsigned chromaRow, Interval groups);
     void blendChromaInterval(unsigned chromaRow, Interval interval);

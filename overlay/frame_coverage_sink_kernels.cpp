@@ -117,16 +117,16 @@ inline Words8 meanAlpha8(Words8 sum4)
 // NV12/NV21: eight groups' Cb/Cr pairs (16 bytes) blended by chromaLoop's rule from their four-pixel sums.
 inline void blendEightPairs(uint8_t *pairs, Words8 sum4, unsigned firstCode, unsigned secondCode)
 {
-    Bytes16 bytes;
-    __builtin_memcpy(&bytes, pairs, 16);
-    Words8 first = __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 0, 2, 4, 6, 8, 10, 12, 14), Words8);
-    Words8 second = __builtin_convertvector(__builtin_shufflevector(bytes, bytes, 1, 3, 5, 7, 9, 11, 13, 15), Words8);
+    // Each 16-bit word is one group's pair: the first sample in its low byte, the second in its high byte.
+    Words8 words;
+    __builtin_memcpy(&words, pairs, 16);
     const Words8 alpha = meanAlpha8(sum4), keep = 255 - alpha;
-    first = scaledBySum(sum4, Words8{} + uint16_t(firstCode), alpha) + div255(Words8(first * keep));
-    second = scaledBySum(sum4, Words8{} + uint16_t(secondCode), alpha) + div255(Words8(second * keep));
-    const Bytes8 a = __builtin_convertvector(first, Bytes8), b = __builtin_convertvector(second, Bytes8);
-    bytes = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
-    __builtin_memcpy(pairs, &bytes, 16);
+    const Words8 first =
+        scaledBySum(sum4, Words8{} + uint16_t(firstCode), alpha) + div255(Words8((words & 0xff) * keep));
+    const Words8 second =
+        scaledBySum(sum4, Words8{} + uint16_t(secondCode), alpha) + div255(Words8((words >> 8) * keep));
+    words = first | (second << 8);
+    __builtin_memcpy(pairs, &words, 16);
 }
 
 // NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step. The last few groups are one
@@ -208,6 +208,46 @@ void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_
     blendChromaInterval(unsigned(y), {unsigned(rest) / 2, gEnd});
 }
 
+void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count)
+{
+    // Sixteen pixels (eight groups) a step from the first group's first pixel: alpha is staged, so the pixel before
+    // an odd x0 and the 16 after the last read 0, and sums has slack for the eight groups past the last.
+    const uint8_t *pixels = alpha - x0 % 2;
+    uint16_t *group = sums + x0 / 2;
+    for (unsigned i = 0; i < x0 % 2 + count; i += 16, pixels += 16, group += 8) {
+        Words8 pairs, sum;
+        __builtin_memcpy(&pairs, pixels, 16);
+        __builtin_memcpy(&sum, group, 16);
+        sum += (pairs & 0xff) + (pairs >> 8);
+        __builtin_memcpy(group, &sum, 16);
+    }
+}
+
+// Luma (or GREY) and planar or semi-planar chroma of one row() call.
+void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
+{
+    const size_t start = size_t(x0) * layout_.lumaStep;
+    if (unsigned(count) * layout_.lumaStep <= 16 && rowBytes_ - start >= 16) // the usual thin-line run, inline
+        lumaShort(row + start, layout_.lumaStep, layout_.lumaOffset, alpha, colour_.luma);
+    else
+        blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
+    if (!layout_.chroma)
+        return;
+    // A chroma row's opacities add up in alphaSums_ until its last luma row: the first row's groups wait in
+    // intervals_, the last row's are blended as they come, with the waiting ones beside them.
+    const int chromaRow = y / int(layout_.vSub);
+    if (chromaRow != pendingChromaRow_)
+        flushChroma();
+    accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
+    const Interval groups{unsigned(x0) / 2, unsigned(x0 + count + 1) / 2};
+    if (unsigned(y + 1) % layout_.vSub == 0 || unsigned(y + 1) == frame_.height) {
+        blendLastRowGroups(unsigned(chromaRow), groups);
+        return;
+    }
+    pendingChromaRow_ = chromaRow;
+    intervals_.push_back(groups);
+}
+
 void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count,
                                   unsigned value, size_t room)
 {
@@ -236,21 +276,6 @@ void FrameCoverageSink::blendRgb(uint8_t *dst, unsigned pixelBytes, const uint8_
         rgbLoop<3>(dst, alpha, count, colour.rgb, colour.rgbMask);
     else
         rgbLoop<4>(dst, alpha, count, colour.rgb, colour.rgbMask);
-}
-
-void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count)
-{
-    // Sixteen pixels (eight groups) a step from the first group's first pixel: alpha is staged, so the pixel before
-    // an odd x0 and the 16 after the last read 0, and sums has slack for the eight groups past the last.
-    const uint8_t *pixels = alpha - x0 % 2;
-    uint16_t *group = sums + x0 / 2;
-    for (unsigned i = 0; i < x0 % 2 + count; i += 16, pixels += 16, group += 8) {
-        Words8 pairs, sum;
-        __builtin_memcpy(&pairs, pixels, 16);
-        __builtin_memcpy(&sum, group, 16);
-        sum += (pairs & 0xff) + (pairs >> 8);
-        __builtin_memcpy(group, &sum, 16);
-    }
 }
 
 void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count,
