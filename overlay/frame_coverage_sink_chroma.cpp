@@ -4,7 +4,86 @@
 
 #include <algorithm>
 
+#include "overlay/div255.h"
+#include "overlay/sink_lanes.h"
+
 namespace overlayd {
+
+using namespace sink_lanes;
+
+namespace {
+
+template<unsigned Step>
+void chromaLoop(uint8_t *__restrict cb, uint8_t *__restrict cr, uint16_t *__restrict sums, unsigned count,
+                unsigned shift, unsigned cbCode, unsigned crCode)
+{
+    for (unsigned g = 0; g < count; ++g) {
+        const unsigned sum4 = unsigned(sums[g]) << shift, alpha = meanAlpha(sum4);
+        sums[g] = 0; // ready for the next chroma row
+        const uint16_t keep = uint16_t(255 - alpha);
+        cb[g * Step] = uint8_t(scaled(sum4, cbCode, alpha) + div255(uint16_t(cb[g * Step] * keep)));
+        cr[g * Step] = uint8_t(scaled(sum4, crCode, alpha) + div255(uint16_t(cr[g * Step] * keep)));
+    }
+}
+
+// NV12/NV21: eight groups' Cb/Cr pairs (16 bytes) blended by chromaLoop's rule from their four-pixel sums.
+inline void blendEightPairs(uint8_t *pairs, Words8 sum4, unsigned firstCode, unsigned secondCode)
+{
+    // Each 16-bit word is one group's pair: the first sample in its low byte, the second in its high byte.
+    Words8 words;
+    __builtin_memcpy(&words, pairs, 16);
+    const Words8 alpha = meanAlpha8(sum4), keep = 255 - alpha;
+    const Words8 first =
+        scaledBySum(sum4, Words8{} + uint16_t(firstCode), alpha) + div255(Words8((words & 0xff) * keep));
+    const Words8 second =
+        scaledBySum(sum4, Words8{} + uint16_t(secondCode), alpha) + div255(Words8((words >> 8) * keep));
+    words = first | (second << 8);
+    __builtin_memcpy(pairs, &words, 16);
+}
+
+// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step. The last few groups are one
+// more step with the other lanes' sums held back (opacity 0 leaves a byte as it is) when the row has room (in
+// groups from pairs) for it, else chromaLoop's scalar rule. Sums are zeroed as they are used.
+void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned room, unsigned shift,
+                       unsigned firstCode, unsigned secondCode)
+{
+    unsigned g = 0;
+    for (; g + 8 <= count; g += 8) {
+        Words8 sum;
+        __builtin_memcpy(&sum, sums + g, 16);
+        __builtin_memset(sums + g, 0, 16);
+        blendEightPairs(pairs + 2 * g, sum << shift, firstCode, secondCode);
+    }
+    if (g == count)
+        return;
+    if (g + 8 <= room) {
+        static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
+        Words8 sum;
+        __builtin_memcpy(&sum, sums + g, 16);
+        const Words8 mine = kLane < uint16_t(count - g) ? sum : 0, others = sum - mine;
+        __builtin_memcpy(sums + g, &others, 16);
+        return blendEightPairs(pairs + 2 * g, mine << shift, firstCode, secondCode);
+    }
+    chromaLoop<2>(pairs + 2 * g, pairs + 2 * g + 1, sums + g, count - g, shift, firstCode, secondCode);
+}
+
+} // namespace
+
+void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count,
+                                    unsigned room, unsigned shift, const ItemColour &colour)
+{
+    // Packed 4:2:2 keeps Cb and Cr in one plane, 2 bytes apart: the loops never write the same byte through both.
+    if (step == 1)
+        chromaLoop<1>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+    else if (step == 2 && cr == cb + 1)
+        chromaInterleaved(cb, sums, count, room, shift, colour.cb, colour.cr);
+    else if (step == 2 && cb == cr + 1)
+        chromaInterleaved(cr, sums, count, room, shift, colour.cr, colour.cb);
+    else if (step == 2)
+        chromaLoop<2>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+    else
+        chromaLoop<4>(cb, cr, sums, count, shift, colour.cb, colour.cr);
+}
 
 void FrameCoverageSink::flushChroma()
 {

@@ -3,11 +3,14 @@
 #include "overlay/frame_coverage_sink.h"
 
 #include "overlay/div255.h"
+#include "overlay/sink_lanes.h"
 
 #include <algorithm>
 #include <cassert>
 
 namespace overlayd {
+
+using namespace sink_lanes;
 
 namespace {
 
@@ -16,9 +19,6 @@ inline uint8_t over(uint8_t in, unsigned a, unsigned value)
 {
     return uint8_t(div255(uint16_t(a * value)) + div255(uint16_t(in * (255 - a))));
 }
-
-using Bytes16 = uint8_t __attribute__((vector_size(16)));
-using Words16 = uint16_t __attribute__((vector_size(32)));
 
 // over() on 16 lanes at once; a lane with opacity 0 comes out exactly as it went in.
 inline Bytes16 over16(Bytes16 in, Bytes16 alpha, uint16_t value)
@@ -65,100 +65,6 @@ void rgbLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned 
         for (unsigned k = 0; k < Bytes; ++k) // an X byte sees opacity 0: it keeps its value
             dst[i * Bytes + k] = over(dst[i * Bytes + k], alpha[i] & keep[k], value[k]);
     }
-}
-
-// Opacity scaled to a four-pixel sum, rounded half to even as the cached path's lrintf rounds the mean.
-inline unsigned meanAlpha(unsigned sum4)
-{
-    return (sum4 + 1 + ((sum4 >> 2) & 1)) >> 2;
-}
-
-// A code at full opacity scaled to the mean opacity sum4 / 4; never above alpha, so the blend cannot overflow.
-inline unsigned scaled(unsigned sum4, unsigned code, unsigned alpha)
-{
-    return std::min((sum4 * code + 510) / 1020, alpha);
-}
-
-template<unsigned Step>
-void chromaLoop(uint8_t *__restrict cb, uint8_t *__restrict cr, uint16_t *__restrict sums, unsigned count,
-                unsigned shift, unsigned cbCode, unsigned crCode)
-{
-    for (unsigned g = 0; g < count; ++g) {
-        const unsigned sum4 = unsigned(sums[g]) << shift, alpha = meanAlpha(sum4);
-        sums[g] = 0; // ready for the next chroma row
-        const uint16_t keep = uint16_t(255 - alpha);
-        cb[g * Step] = uint8_t(scaled(sum4, cbCode, alpha) + div255(uint16_t(cb[g * Step] * keep)));
-        cr[g * Step] = uint8_t(scaled(sum4, crCode, alpha) + div255(uint16_t(cr[g * Step] * keep)));
-    }
-}
-
-using Words8 = uint16_t __attribute__((vector_size(16)));
-using Longs8 = uint32_t __attribute__((vector_size(32)));
-using Bytes8 = uint8_t __attribute__((vector_size(8)));
-
-using Shorts8 = int16_t __attribute__((vector_size(16)));
-
-// scaled() on 8 lanes of four-pixel sums (s <= 1020), in 16-bit lanes: with s = 4q + r, floor((s * code + 510) / 4)
-// = q * code + floor((r * code + 510) / 4) <= 65152, and floor(y / 255) == (y + 1 + (y >> 8)) >> 8 for y < 65535
-// (checked for every sum and code). Value and cap are at most 1020: a signed minimum (one SSE2 instruction) does.
-inline Words8 scaledBySum(Words8 s, Words8 code, Words8 alpha)
-{
-    const Words8 y = (s >> 2) * code + (((s & 3) * code + 510) >> 2);
-    const Shorts8 value = (Shorts8)((y + 1 + (y >> 8)) >> 8), cap = (Shorts8)alpha;
-    return (Words8)(value < cap ? value : cap);
-}
-
-// meanAlpha() on 8 lanes.
-inline Words8 meanAlpha8(Words8 sum4)
-{
-    return (sum4 + 1 + ((sum4 >> 2) & 1)) >> 2;
-}
-
-// NV12/NV21: eight groups' Cb/Cr pairs (16 bytes) blended by chromaLoop's rule from their four-pixel sums.
-inline void blendEightPairs(uint8_t *pairs, Words8 sum4, unsigned firstCode, unsigned secondCode)
-{
-    // Each 16-bit word is one group's pair: the first sample in its low byte, the second in its high byte.
-    Words8 words;
-    __builtin_memcpy(&words, pairs, 16);
-    const Words8 alpha = meanAlpha8(sum4), keep = 255 - alpha;
-    const Words8 first =
-        scaledBySum(sum4, Words8{} + uint16_t(firstCode), alpha) + div255(Words8((words & 0xff) * keep));
-    const Words8 second =
-        scaledBySum(sum4, Words8{} + uint16_t(secondCode), alpha) + div255(Words8((words >> 8) * keep));
-    words = first | (second << 8);
-    __builtin_memcpy(pairs, &words, 16);
-}
-
-// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step. The last few groups are one
-// more step with the other lanes' sums held back (opacity 0 leaves a byte as it is) when the row has room (in
-// groups from pairs) for it, else chromaLoop's scalar rule. Sums are zeroed as they are used.
-void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned room, unsigned shift,
-                       unsigned firstCode, unsigned secondCode)
-{
-    unsigned g = 0;
-    for (; g + 8 <= count; g += 8) {
-        Words8 sum;
-        __builtin_memcpy(&sum, sums + g, 16);
-        __builtin_memset(sums + g, 0, 16);
-        blendEightPairs(pairs + 2 * g, sum << shift, firstCode, secondCode);
-    }
-    if (g == count)
-        return;
-    if (g + 8 <= room) {
-        static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
-        Words8 sum;
-        __builtin_memcpy(&sum, sums + g, 16);
-        const Words8 mine = kLane < uint16_t(count - g) ? sum : 0, others = sum - mine;
-        __builtin_memcpy(sums + g, &others, 16);
-        return blendEightPairs(pairs + 2 * g, mine << shift, firstCode, secondCode);
-    }
-    chromaLoop<2>(pairs + 2 * g, pairs + 2 * g + 1, sums + g, count - g, shift, firstCode, secondCode);
-}
-
-// Bytes 0-7 of v as 16-bit lanes.
-inline Words8 lowWords(Bytes16 v)
-{
-    return (Words8)__builtin_shufflevector(v, Bytes16{}, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
 }
 
 } // namespace
@@ -276,22 +182,6 @@ void FrameCoverageSink::blendRgb(uint8_t *dst, unsigned pixelBytes, const uint8_
         rgbLoop<3>(dst, alpha, count, colour.rgb, colour.rgbMask);
     else
         rgbLoop<4>(dst, alpha, count, colour.rgb, colour.rgbMask);
-}
-
-void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count,
-                                    unsigned room, unsigned shift, const ItemColour &colour)
-{
-    // Packed 4:2:2 keeps Cb and Cr in one plane, 2 bytes apart: the loops never write the same byte through both.
-    if (step == 1)
-        chromaLoop<1>(cb, cr, sums, count, shift, colour.cb, colour.cr);
-    else if (step == 2 && cr == cb + 1)
-        chromaInterleaved(cb, sums, count, room, shift, colour.cb, colour.cr);
-    else if (step == 2 && cb == cr + 1)
-        chromaInterleaved(cr, sums, count, room, shift, colour.cr, colour.cb);
-    else if (step == 2)
-        chromaLoop<2>(cb, cr, sums, count, shift, colour.cb, colour.cr);
-    else
-        chromaLoop<4>(cb, cr, sums, count, shift, colour.cb, colour.cr);
 }
 
 } // namespace overlayd
