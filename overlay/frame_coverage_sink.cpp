@@ -30,6 +30,9 @@ FrameCoverageSink::Layout FrameCoverageSink::layoutOf(const PixelFormatInfo &for
         layout.cbOffset = format.cbOffset, layout.crOffset = format.crOffset;
         layout.vSub = format.vSubSampling;
         layout.packed422 = layout.vSub == 1 && layout.cbPlane == 0;
+        const bool sideBySide = layout.cbOffset + 1 == layout.crOffset || layout.crOffset + 1 == layout.cbOffset;
+        if (layout.vSub == 2 && layout.chromaStep == 2 && layout.cbPlane == layout.crPlane && sideBySide)
+            layout.pairOffset = std::min(layout.cbOffset, layout.crOffset);
     }
     return layout;
 }
@@ -73,9 +76,11 @@ void FrameCoverageSink::begin(Rgba colour)
     opaque.add(pixel);
     const YcbcrBlendSamples samples = encoder_.encode(opaque);
     colour_.luma = samples.y.value, colour_.cb = samples.cb.value, colour_.cr = samples.cr.value;
+    const bool cbFirst = format_->cbOffset < format_->crOffset;
+    colour_.pairCodes[0] = cbFirst ? colour_.cb : colour_.cr;
+    colour_.pairCodes[1] = cbFirst ? colour_.cr : colour_.cb;
     if (layout_.packed422) {
         // The chroma byte at the lower offset of a macropixel comes first (YUYV, UYVY: Cb; YVYU: Cr).
-        const bool cbFirst = format_->cbOffset < format_->crOffset;
         for (unsigned k = 0; k < 8; ++k)
             colour_.packedChroma[k] =
                 uint16_t(k % 2 == 0 ? (cbFirst ? colour_.cb : colour_.cr) : (cbFirst ? colour_.cr : colour_.cb));

@@ -32,6 +32,8 @@ private:
         unsigned g0 = 0, g1 = 0;
     };
 
+    static constexpr unsigned kNoPairs = ~0u;
+
     // Where a format keeps its samples, read once from the pixel-format table.
     struct Layout {
         bool rgb = false, chroma = false;
@@ -39,14 +41,16 @@ private:
         unsigned lumaStep = 1, lumaOffset = 0; // luma byte of pixel x: x * lumaStep + lumaOffset (plane 0)
         unsigned chromaStep = 0;               // bytes between chroma groups in the Cb/Cr plane(s)
         unsigned cbPlane = 0, crPlane = 0, cbOffset = 0, crOffset = 0;
-        unsigned vSub = 1;       // luma rows per chroma row
-        unsigned pixelBytes = 0; // RGB: bytes per pixel
+        unsigned vSub = 1;              // luma rows per chroma row
+        unsigned pairOffset = kNoPairs; // NV12/NV21: offset of a group's first chroma byte (Cb and Cr side by side)
+        unsigned pixelBytes = 0;        // RGB: bytes per pixel
     };
 
     // The item's colour at full opacity, per touched byte kind; opacity scales it (premultiplied Y'CbCr and RGB
     // are linear in alpha for a fixed colour).
     struct ItemColour {
         unsigned luma = 0, cb = 0, cr = 0;
+        unsigned pairCodes[2] = {};    // NV12/NV21: the codes of a group's first and second chroma byte
         uint16_t packedChroma[8] = {}; // packed 4:2:2: a macropixel's first and second chroma byte's codes, x4
         uint8_t rgb[4] = {};           // per byte of an RGB pixel; an alpha byte composes "over" as 255
         uint8_t rgbMask[4] = {};       // 0xff for a byte the blend writes, 0 for an X byte

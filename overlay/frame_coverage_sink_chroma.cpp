@@ -41,9 +41,22 @@ inline void blendEightPairs(uint8_t *pairs, Words8 sum4, unsigned firstCode, uns
     __builtin_memcpy(pairs, &words, 16);
 }
 
-// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step. The last few groups are one
-// more step with the other lanes' sums held back (opacity 0 leaves a byte as it is) when the row has room (in
-// groups from pairs) for it, else chromaLoop's scalar rule. Sums are zeroed as they are used.
+// NV12/NV21: count (< 8) groups' pairs as one eight-group step, the other lanes' sums held back (opacity 0 leaves a
+// byte as it is); the row must have eight groups from pairs.
+inline void blendFewPairs(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned shift, unsigned firstCode,
+                          unsigned secondCode)
+{
+    static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
+    Words8 sum;
+    __builtin_memcpy(&sum, sums, 16);
+    const Words8 mine = kLane < uint16_t(count) ? sum : 0, others = sum - mine;
+    __builtin_memcpy(sums, &others, 16);
+    blendEightPairs(pairs, mine << shift, firstCode, secondCode);
+}
+
+// NV12/NV21: Cb and Cr interleaved in one plane, eight groups (16 bytes) per step, the last few by blendFewPairs
+// when the row has room (in groups from pairs) for it, else by chromaLoop's scalar rule. Sums are zeroed as they
+// are used.
 void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned room, unsigned shift,
                        unsigned firstCode, unsigned secondCode)
 {
@@ -56,14 +69,8 @@ void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned 
     }
     if (g == count)
         return;
-    if (g + 8 <= room) {
-        static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
-        Words8 sum;
-        __builtin_memcpy(&sum, sums + g, 16);
-        const Words8 mine = kLane < uint16_t(count - g) ? sum : 0, others = sum - mine;
-        __builtin_memcpy(sums + g, &others, 16);
-        return blendEightPairs(pairs + 2 * g, mine << shift, firstCode, secondCode);
-    }
+    if (g + 8 <= room)
+        return blendFewPairs(pairs + 2 * g, sums + g, count - g, shift, firstCode, secondCode);
     chromaLoop<2>(pairs + 2 * g, pairs + 2 * g + 1, sums + g, count - g, shift, firstCode, secondCode);
 }
 
@@ -118,15 +125,22 @@ void FrameCoverageSink::blendLastRowGroups(unsigned chromaRow, Interval groups)
 
 void FrameCoverageSink::blendChromaInterval(unsigned chromaRow, Interval interval)
 {
+    // A macropixel averages the pixels that exist: a sum over 2 x rows pixels scales to four pixels' worth by
+    // 2 - rows bits, one more for the single-pixel column at an odd right edge.
+    const unsigned rows = std::min(layout_.vSub, frame_.height - chromaRow * layout_.vSub);
+    const unsigned shift = 2 - rows;
+    // The usual NV12/NV21 interval, a thin line's few groups away from the right edge, in one step.
+    if (layout_.pairOffset != kNoPairs && interval.g1 - interval.g0 < 8 && interval.g0 + 8 <= frame_.width / 2) {
+        const PlaneView &plane = frame_.planes[layout_.cbPlane];
+        uint8_t *pairs = plane.data + size_t(chromaRow) * plane.stride + layout_.pairOffset + 2 * interval.g0;
+        return blendFewPairs(pairs, alphaSums_.data() + interval.g0, interval.g1 - interval.g0, shift,
+                             colour_.pairCodes[0], colour_.pairCodes[1]);
+    }
     const PlaneView &cbPlane = frame_.planes[layout_.cbPlane], &crPlane = frame_.planes[layout_.crPlane];
     const unsigned step = layout_.chromaStep;
     uint8_t *cb = cbPlane.data + size_t(chromaRow) * cbPlane.stride + layout_.cbOffset + interval.g0 * step;
     uint8_t *cr = crPlane.data + size_t(chromaRow) * crPlane.stride + layout_.crOffset + interval.g0 * step;
     uint16_t *sums = alphaSums_.data() + interval.g0;
-    // A macropixel averages the pixels that exist: a sum over 2 x rows pixels scales to four pixels' worth by
-    // 2 - rows bits, one more for the single-pixel column at an odd right edge.
-    const unsigned rows = std::min(layout_.vSub, frame_.height - chromaRow * layout_.vSub);
-    const unsigned shift = 2 - rows;
     const bool oddEdge = frame_.width % 2 == 1 && interval.g1 == (frame_.width + 1) / 2;
     const unsigned whole = interval.g1 - interval.g0 - (oddEdge ? 1 : 0), room = (frame_.width + 1) / 2 - interval.g0;
     blendChroma(cb, cr, step, sums, whole, room, shift, colour_);

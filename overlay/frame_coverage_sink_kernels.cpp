@@ -141,12 +141,12 @@ void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *
         return;
     // A chroma row's opacities add up in alphaSums_ until its last luma row: the first row's groups wait in
     // intervals_, the last row's are blended as they come, with the waiting ones beside them.
-    const int chromaRow = y / int(layout_.vSub);
+    const int chromaRow = y >> (layout_.vSub - 1); // vSub is 1 or 2: no division per call
     if (chromaRow != pendingChromaRow_)
         flushChroma();
     accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
     const Interval groups{unsigned(x0) / 2, unsigned(x0 + count + 1) / 2};
-    if (unsigned(y + 1) % layout_.vSub == 0 || unsigned(y + 1) == frame_.height) {
+    if (((y + 1) & int(layout_.vSub - 1)) == 0 || unsigned(y + 1) == frame_.height) {
         blendLastRowGroups(unsigned(chromaRow), groups);
         return;
     }
