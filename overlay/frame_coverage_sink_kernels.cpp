@@ -47,6 +47,18 @@ inline void lumaShort(uint8_t *pixels, unsigned step, unsigned offset, const uin
     __builtin_memcpy(pixels, &out, 16);
 }
 
+// lumaShort for up to 8 one-byte luma samples (planar and semi-planar formats, GREY): half the lanes.
+inline void lumaEight(uint8_t *pixels, const uint8_t *alpha, unsigned value)
+{
+    Bytes16 a{}, in{};
+    __builtin_memcpy(&a, alpha, 8);
+    __builtin_memcpy(&in, pixels, 8);
+    const Words8 a8 = lowWords(a);
+    const Words8 out = div255(Words8(a8 * uint16_t(value))) + div255(Words8(lowWords(in) * (255 - a8)));
+    const Bytes8 packed = __builtin_convertvector(out, Bytes8);
+    __builtin_memcpy(pixels, &packed, 8);
+}
+
 template<unsigned Step>
 void lumaLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned count, unsigned value)
 {
@@ -133,7 +145,9 @@ void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8
 void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
     const size_t start = size_t(x0) * layout_.lumaStep;
-    if (unsigned(count) * layout_.lumaStep <= 16 && rowBytes_ - start >= 16) // the usual thin-line run, inline
+    if (layout_.lumaStep == 1 && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes
+        lumaEight(row + start, alpha, colour_.luma);
+    else if (unsigned(count) * layout_.lumaStep <= 16 && rowBytes_ - start >= 16)
         lumaShort(row + start, layout_.lumaStep, layout_.lumaOffset, alpha, colour_.luma);
     else
         blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
