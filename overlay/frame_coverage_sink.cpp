@@ -1,5 +1,6 @@
-// FrameCoverageSink: per item, luma (or RGB) bytes and 4:2:2 chroma blend as rows arrive; 4:2:0 chroma opacity is
-// summed per macropixel and blended when the item leaves a chroma row, so that a sample sees both of its luma rows.
+// FrameCoverageSink: set-up per frame and per item, and row() staging each call's opacities for the kernels. Luma
+// (or RGB) bytes and 4:2:2 chroma blend as rows arrive; 4:2:0 chroma opacity is summed over both luma rows of a
+// macropixel and each sample blended once, as its second row arrives.
 #include "overlay/frame_coverage_sink.h"
 
 #include "overlay/div255.h"

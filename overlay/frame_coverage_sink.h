@@ -68,7 +68,8 @@ private:
     void blendLastRowGroups(unsigned chromaRow, Interval groups);
     void blendChromaInterval(unsigned chromaRow, Interval interval);
 
-    // The pixel loops (frame_coverage_sink_kernels.cpp), in 16-bit vector lanes.
+    // The pixel loops, in 16-bit vector lanes (frame_coverage_sink_kernels.cpp; blendChroma with the chroma
+    // bookkeeping in frame_coverage_sink_chroma.cpp).
     // Packed 4:2:2: luma and chroma of `windows` runs of four macropixels (16 bytes) at once; alpha holds the
     // opacity of each of their pixels.
     static void blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows, const ItemColour &colour,
@@ -94,7 +95,7 @@ private:
     ItemColour colour_;
 
     // Scratch grown by setFrame and then reused: no allocation per frame.
-    std::vector<uint8_t> alpha_;      // opacities of one row() call, staged when a kernel needs it
+    std::vector<uint8_t> alpha_;      // opacities of one row() call, staged (see stage())
     std::vector<uint16_t> alphaSums_; // per chroma group of the pending chroma row; all zero between flushes
     std::vector<Interval> intervals_; // groups of pendingChromaRow_ touched by its first luma row
     size_t nextInterval_ = 0;         // the first of them not blended yet

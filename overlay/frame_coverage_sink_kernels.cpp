@@ -1,5 +1,6 @@
-// FrameCoverageSink's pixel loops: the premultiplied "over" of blend_kernel.cpp with the value and 255 - alpha
-// computed from the opacity on the fly, in 16-bit lanes the compiler vectorizes (built with -O3).
+// FrameCoverageSink's row paths and pixel loops (packed 4:2:2, luma with planar or semi-planar chroma, RGB): the
+// premultiplied "over" of blend_kernel.cpp with the value and 255 - alpha computed from the opacity on the fly, in
+// 16-bit lanes (built with -O3).
 #include "overlay/frame_coverage_sink.h"
 
 #include "overlay/div255.h"
