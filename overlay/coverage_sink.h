@@ -2,11 +2,18 @@
 // frame in its own pixel format (a moving camera, where a cached layer would be redrawn every frame anyway).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "overlay/overlay_layer.h"
 
 namespace overlayd {
+
+// One run of a row: pixels [x0, x0 + count) take coverage[0 .. count).
+struct CoverageRun {
+    int x0, count;
+    const uint8_t *coverage;
+};
 
 // One item (a stroke, a fill, a text) is painted as begin(colour), then row() calls, then end(). Within an item:
 // rows come in increasing y; several row() calls for one y come in increasing x with at least one pixel between
@@ -22,6 +29,13 @@ public:
     virtual void begin(Rgba colour) = 0;
     // Pixels [x0, x0 + count) of row y take coverage[0 .. count).
     virtual void row(int y, int x0, const uint8_t *coverage, int count) = 0;
+    // All of an item's runs in row y at once (in increasing x, a pixel apart at least): the same as row() for
+    // each in turn, but a sink may hoist its per-row work out of the loop.
+    virtual void rowRuns(int y, const CoverageRun *runs, size_t count)
+    {
+        for (size_t i = 0; i < count; ++i)
+            row(y, runs[i].x0, runs[i].coverage, runs[i].count);
+    }
     // The item is complete: a sink that groups rows (chroma shared by two rows) flushes here.
     virtual void end() = 0;
 };

@@ -116,23 +116,29 @@ void FrameCoverageSink::stage(const uint8_t *coverage, unsigned count, uint8_t *
 
 void FrameCoverageSink::row(int y, int x0, const uint8_t *coverage, int count)
 {
-    if (count <= 0)
-        return;
-    stage(coverage, unsigned(count), alpha_.data() + 1);
-    blendRow(y, x0, alpha_.data() + 1, count);
+    const CoverageRun run{x0, count, coverage};
+    rowRuns(y, &run, 1);
 }
 
-void FrameCoverageSink::blendRow(int y, int x0, const uint8_t *alpha, int count)
+void FrameCoverageSink::rowRuns(int y, const CoverageRun *runs, size_t count)
 {
+    // The row's address and the format's path are found once for all of its runs.
     const PlaneView &plane = frame_.planes[0];
-    uint8_t *row = plane.data + size_t(y) * plane.stride;
-    if (layout_.rgb) {
-        blendRgb(row + size_t(x0) * layout_.pixelBytes, layout_.pixelBytes, alpha, unsigned(count), colour_);
-        return;
+    uint8_t *const row = plane.data + size_t(y) * plane.stride;
+    uint8_t *const alpha = alpha_.data() + 1;
+    for (size_t i = 0; i < count; ++i) {
+        const CoverageRun &run = runs[i];
+        if (run.count <= 0)
+            continue;
+        stage(run.coverage, unsigned(run.count), alpha);
+        if (layout_.packed422)
+            blendPackedRow(row, y, run.x0, alpha, run.count);
+        else if (layout_.rgb)
+            blendRgb(row + size_t(run.x0) * layout_.pixelBytes, layout_.pixelBytes, alpha, unsigned(run.count),
+                     colour_);
+        else
+            blendYuvRow(row, y, run.x0, alpha, run.count);
     }
-    if (layout_.packed422)
-        return blendPackedRow(row, y, x0, alpha, count);
-    blendYuvRow(row, y, x0, alpha, count);
 }
 
 void FrameCoverageSink::end()

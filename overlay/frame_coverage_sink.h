@@ -24,6 +24,7 @@ public:
 
     void begin(Rgba colour) override;
     void row(int y, int x0, const uint8_t *coverage, int count) override;
+    void rowRuns(int y, const CoverageRun *runs, size_t count) override;
     void end() override;
 
 private:
@@ -61,7 +62,6 @@ private:
     // Writes a row() call's opacities with pixel x0's at alpha, 0 before it and in the 16 bytes after the last: the
     // kernels read whole vectors and whole macropixels, and a zero opacity leaves a byte as it is.
     void stage(const uint8_t *coverage, unsigned count, uint8_t *alpha) const;
-    void blendRow(int y, int x0, const uint8_t *alpha, int count);
     void blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
     void blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
     void flushChroma();

@@ -237,17 +237,20 @@ inline bool StrokeRasterizer::paintShortRun(const Segment &g, int y, int x0, int
 
 void StrokeRasterizer::emitRow(int y, const Span *spans, size_t count, CoverageSink &sink)
 {
+    // Runs are painted in x order and a paint writes only from its own x0 on, so a run's bytes stay as painted
+    // until the row is handed over (the short kernel's extra lanes land where later runs paint).
     uint8_t *const scratch = row_.data();
     const int clipX0 = clip_.x0;
+    rowRuns_.clear();
     for (size_t i = 0; i < count;) {
         const Span &span = spans[i];
         size_t j = i + 1;
         if (j < count && spans[j].x0 <= span.x1 + 1) {
-            // Overlapping or touching runs share one scratch run (max per pixel) and one row() call.
+            // Overlapping or touching runs share one scratch run (max per pixel) and one sink run.
             int x1 = span.x1;
             for (; j < count && spans[j].x0 <= x1 + 1; ++j)
                 x1 = std::max(x1, spans[j].x1);
-            emitMerged(y, spans + i, j - i, span.x0, x1, sink);
+            addMerged(y, spans + i, j - i, span.x0, x1);
             i = j;
             continue;
         }
@@ -256,14 +259,16 @@ void StrokeRasterizer::emitRow(int y, const Span *spans, size_t count, CoverageS
         if (!paintShortRun(*span.segment, y, span.x0, n, row))
             paint(*span.segment, y, span.x0, n, row, true);
         if (row[0] != 0 && row[n - 1] != 0) // the usual case: a run's end pixels are covered
-            sink.row(y, span.x0, row, n);
+            rowRuns_.push_back({span.x0, n, row});
         else
-            emitTrimmed(y, span.x0, row, n, sink);
+            addTrimmed(span.x0, row, n);
         i = j;
     }
+    if (!rowRuns_.empty())
+        sink.rowRuns(y, rowRuns_.data(), rowRuns_.size());
 }
 
-void StrokeRasterizer::emitMerged(int y, const Span *spans, size_t count, int x0, int x1, CoverageSink &sink)
+void StrokeRasterizer::addMerged(int y, const Span *spans, size_t count, int x0, int x1)
 {
     uint8_t *const row = row_.data() + (x0 - clip_.x0);
     const int n = x1 - x0 + 1;
@@ -271,16 +276,16 @@ void StrokeRasterizer::emitMerged(int y, const Span *spans, size_t count, int x0
     for (size_t i = 0; i < count; ++i)
         paint(*spans[i].segment, y, spans[i].x0, spans[i].x1 - spans[i].x0 + 1, row + (spans[i].x0 - x0), false);
     if (row[0] != 0 && row[n - 1] != 0)
-        sink.row(y, x0, row, n);
+        rowRuns_.push_back({x0, n, row});
     else
-        emitTrimmed(y, x0, row, n, sink);
+        addTrimmed(x0, row, n);
 }
 
-void StrokeRasterizer::emitTrimmed(int y, int x0, const uint8_t *row, int n, CoverageSink &sink)
+void StrokeRasterizer::addTrimmed(int x0, const uint8_t *row, int n)
 {
     const int first = firstNonZero(row, n);
     if (first < n)
-        sink.row(y, x0 + first, row + first, endNonZero(row, n) - first);
+        rowRuns_.push_back({x0 + first, endNonZero(row, n) - first, row + first});
 }
 
 } // namespace overlayd

@@ -71,12 +71,12 @@ private:
     void addSegment(glm::dvec2 a, glm::dvec2 b, bool roundStart, bool roundEnd);
     void sweep(CoverageSink &sink);
     bool rowSpan(const Segment &g, int y, Span &span) const;
-    // Paints and emits the row's runs spans[0, count) (sorted by x0).
+    // Paints the row's runs spans[0, count) (sorted by x0) and hands them to the sink in one rowRuns() call.
     void emitRow(int y, const Span *spans, size_t count, CoverageSink &sink);
-    // Paints the overlapping or touching runs spans[0, count) into one scratch run from x0 and emits it.
-    void emitMerged(int y, const Span *spans, size_t count, int x0, int x1, CoverageSink &sink);
-    // Emits the scratch run row[0, n) from x0, trimmed of its zero ends.
-    static void emitTrimmed(int y, int x0, const uint8_t *row, int n, CoverageSink &sink);
+    // Paints the overlapping or touching runs spans[0, count) into one scratch run from x0 and adds it.
+    void addMerged(int y, const Span *spans, size_t count, int x0, int x1);
+    // Adds the scratch run row[0, n) from x0, trimmed of its zero ends.
+    void addTrimmed(int x0, const uint8_t *row, int n);
     // Max-es the segment's coverage of pixels [x0, x0 + count) of row y into out, or writes it when `overwrite`.
     void paint(const Segment &g, int y, int x0, int count, uint8_t *out, bool overwrite) const;
     // paint(overwrite) for the usual run, at most 8 pixels between the segment's ends: false (nothing written)
@@ -93,6 +93,7 @@ private:
     std::vector<Segment> segments_;
     std::vector<Span> active_; // the segments crossing the current row, with their runs in it, in x order
     std::vector<uint8_t> row_;
+    std::vector<CoverageRun> rowRuns_; // the current row's runs, pointing into row_
 };
 
 } // namespace overlayd
