@@ -77,15 +77,12 @@ void FrameCoverageSink::begin(Rgba colour)
     opaque.add(pixel);
     const YcbcrBlendSamples samples = encoder_.encode(opaque);
     colour_.luma = samples.y.value, colour_.cb = samples.cb.value, colour_.cr = samples.cr.value;
+    // The chroma byte at the lower offset of a macropixel comes first (YUYV, UYVY, NV12: Cb; YVYU, NV21: Cr).
     const bool cbFirst = format_->cbOffset < format_->crOffset;
     colour_.pairCodes[0] = cbFirst ? colour_.cb : colour_.cr;
     colour_.pairCodes[1] = cbFirst ? colour_.cr : colour_.cb;
-    if (layout_.packed422) {
-        // The chroma byte at the lower offset of a macropixel comes first (YUYV, UYVY: Cb; YVYU: Cr).
-        for (unsigned k = 0; k < 8; ++k)
-            colour_.packedChroma[k] =
-                uint16_t(k % 2 == 0 ? (cbFirst ? colour_.cb : colour_.cr) : (cbFirst ? colour_.cr : colour_.cb));
-    }
+    for (unsigned k = 0; k < 8; ++k)
+        colour_.packedChroma[k] = uint16_t(colour_.pairCodes[k % 2]);
 }
 
 void FrameCoverageSink::stage(const uint8_t *coverage, unsigned count, uint8_t *alpha) const

@@ -51,8 +51,8 @@ private:
     // are linear in alpha for a fixed colour).
     struct ItemColour {
         unsigned luma = 0, cb = 0, cr = 0;
-        unsigned pairCodes[2] = {};    // NV12/NV21: the codes of a group's first and second chroma byte
-        uint16_t packedChroma[8] = {}; // packed 4:2:2: a macropixel's first and second chroma byte's codes, x4
+        unsigned pairCodes[2] = {};    // codes of a macropixel's first and second chroma byte (by offset)
+        uint16_t packedChroma[8] = {}; // pairCodes four times, as the packed 4:2:2 kernel's chroma lanes
         uint8_t rgb[4] = {};           // per byte of an RGB pixel; an alpha byte composes "over" as 255
         uint8_t rgbMask[4] = {};       // 0xff for a byte the blend writes, 0 for an X byte
         uint8_t alpha = 255;

@@ -146,10 +146,8 @@ void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8
 void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
     const size_t start = size_t(x0) * layout_.lumaStep;
-    if (layout_.lumaStep == 1 && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes
+    if (layout_.lumaStep == 1 && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes, inline
         lumaEight(row + start, alpha, colour_.luma);
-    else if (unsigned(count) * layout_.lumaStep <= 16 && rowBytes_ - start >= 16)
-        lumaShort(row + start, layout_.lumaStep, layout_.lumaOffset, alpha, colour_.luma);
     else
         blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
     if (!layout_.chroma)

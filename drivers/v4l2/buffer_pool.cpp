@@ -95,11 +95,8 @@ int BufferPool::dequeue(Dequeued &out)
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> planes;
-    prepareBuffer(buffer, planes, device_.bufferType(), V4L2_MEMORY_MMAP, 0);
-    if (const int r = device_.ioctl(VIDIOC_DQBUF, &buffer); r < 0)
+    if (const int r = device_.dequeue(V4L2_MEMORY_MMAP, unsigned(buffers_.size()), buffer, planes); r < 0)
         return r;
-    if (buffer.index >= buffers_.size())
-        return -EINVAL;
     --queued_;
     out = {buffer.index,
            buffer.sequence,

@@ -55,11 +55,8 @@ int DmabufQueue::dequeue(unsigned &index)
 {
     v4l2_buffer buffer;
     std::array<v4l2_plane, VIDEO_MAX_PLANES> raw;
-    prepareBuffer(buffer, raw, device_.bufferType(), V4L2_MEMORY_DMABUF, 0);
-    if (const int r = device_.ioctl(VIDIOC_DQBUF, &buffer); r < 0)
+    if (const int r = device_.dequeue(V4L2_MEMORY_DMABUF, count_, buffer, raw); r < 0)
         return r;
-    if (buffer.index >= count_)
-        return -EINVAL;
     index = buffer.index;
     return 0;
 }

@@ -135,4 +135,13 @@ Status VideoDevice::streamOff() const
     return Ok{};
 }
 
+int VideoDevice::dequeue(uint32_t memory, unsigned count, v4l2_buffer &buffer,
+                         std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes) const
+{
+    prepareBuffer(buffer, planes, bufferType_, memory, 0);
+    if (const int r = ioctl(VIDIOC_DQBUF, &buffer); r < 0)
+        return r;
+    return buffer.index < count ? 0 : -EINVAL;
+}
+
 } // namespace overlayd::v4l2

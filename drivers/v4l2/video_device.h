@@ -42,6 +42,10 @@ public:
     double setRate(double fps) const;
     Status streamOn() const;
     Status streamOff() const;
+    // VIDIOC_DQBUF of a `memory` buffer into buffer/planes (prepared here): 0, -errno, or -EINVAL for an index at or
+    // past `count` (a driver that answers a buffer it was never given).
+    int dequeue(uint32_t memory, unsigned count, v4l2_buffer &buffer,
+                std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes) const;
 
 private:
     VideoDevice(Syscalls &syscalls, UniqueFd fd, std::string path, std::string card, uint32_t bufferType)

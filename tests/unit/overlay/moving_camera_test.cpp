@@ -61,13 +61,26 @@ std::unique_ptr<SceneRenderer> movingRenderer(const std::string &format, const O
                               test::streamFormat(format, kWidth, kHeight));
 }
 
+// The demo scene in one format: the cached reference for the ground camera, and a renderer that starts elsewhere.
+struct MovingDemo {
+    explicit MovingDemo(const std::string &name)
+        : format(name), cached(cachedFrame(format, scene, camera)), moving(movingRenderer(format, scene))
+    {}
+
+    std::string format;
+    Camera camera = test::groundCamera(kWidth, kHeight);
+    OverlayScene scene = test::demoScene(true);
+    TestFrame cached;
+    std::unique_ptr<SceneRenderer> moving;
+};
+
 TEST_P(MovingCamera, DirectFrameMatchesCachedFrame)
 {
-    const std::string &format = GetParam();
-    const Camera camera = test::groundCamera(kWidth, kHeight);
-    const OverlayScene scene = test::demoScene(true);
-    const TestFrame cached = cachedFrame(format, scene, camera);
-    auto moving = movingRenderer(format, scene);
+    MovingDemo demo(GetParam());
+    const std::string &format = demo.format;
+    const TestFrame &cached = demo.cached;
+    SceneRenderer *moving = demo.moving.get();
+    const Camera &camera = demo.camera;
     const TestFrame before = greyFrame(format);
     TestFrame direct = blendMoving(*moving, format, camera);
     ASSERT_TRUE(moving->drewDirectly());
@@ -103,18 +116,15 @@ TEST_P(MovingCamera, DirectFrameMatchesCachedFrame)
 // renderer's.
 TEST_P(MovingCamera, HoldingStillReturnsToTheCache)
 {
-    const std::string &format = GetParam();
-    const Camera camera = test::groundCamera(kWidth, kHeight);
-    const OverlayScene scene = test::demoScene(true);
-    const TestFrame cached = cachedFrame(format, scene, camera);
-    auto moving = movingRenderer(format, scene);
-    blendMoving(*moving, format, camera);
-    ASSERT_TRUE(moving->drewDirectly());
+    MovingDemo demo(GetParam());
+    SceneRenderer &moving = *demo.moving;
+    blendMoving(moving, demo.format, demo.camera);
+    ASSERT_TRUE(moving.drewDirectly());
     for (int i = 0; i < 2; ++i) {
-        TestFrame again = greyFrame(format);
-        ASSERT_TRUE(moving->blend(again.view(), FrameMetadata{}, 30.0));
-        EXPECT_FALSE(moving->drewDirectly());
-        EXPECT_EQ(again.bytes, cached.bytes) << format << " frame " << i;
+        TestFrame again = greyFrame(demo.format);
+        ASSERT_TRUE(moving.blend(again.view(), FrameMetadata{}, 30.0));
+        EXPECT_FALSE(moving.drewDirectly());
+        EXPECT_EQ(again.bytes, demo.cached.bytes) << demo.format << " frame " << i;
     }
 }
 

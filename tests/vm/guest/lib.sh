@@ -125,6 +125,27 @@ axis_probe() { # "U V" WANT NAME
     near "$_got" "$2" 12
 }
 
+# vivid_hdmi_loop: two vivid instances, instance 1's HDMI output looped back (loop_video=1) to its HDMI capture
+# input at 1280x720 YUYV, instance 0 a black source; sets SRC, CAP, OUT, W and H. Same type, size, fourcc and field
+# on both ends, as vivid's loop requires; no OSD text on the looped frames.
+vivid_hdmi_loop() {
+    vivid_load n_devs=2 node_types=0x1,0x101 multiplanar=1,1 || return 1
+    SRC=$(node vivid-000-vid-cap) CAP=$(node vivid-001-vid-cap) OUT=$(node vivid-001-vid-out)
+    W=1280 H=720
+    black_pattern "$SRC"
+    v4l2-ctl -d "$CAP" -i 3 >/dev/null && v4l2-ctl -d "$OUT" -o 1 >/dev/null
+    v4l2-ctl -d "$CAP" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
+    v4l2-ctl -d "$CAP" -c loop_video=1 -c osd_text_mode=2
+}
+
+# stop_overlayd PID: SIGTERM, SIGKILL after 20 s (a daemon that does not stop must not hang the tier); returns its
+# exit status.
+stop_overlayd() {
+    kill -TERM "$1" 2>/dev/null
+    (sleep 20 && kill -KILL "$1" 2>/dev/null) &
+    wait "$1"
+}
+
 # black_pattern DEVICE: vivid's "100% Black" test pattern and no OSD text, so that only overlay pixels have colour.
 black_pattern() {
     black=$(v4l2-ctl -d "$1" --list-ctrls-menus | sed -n 's/^[[:space:]]*\([0-9]*\): 100% Black.*/\1/p' | head -1)

@@ -5,14 +5,7 @@
 . /vm/lib.sh
 
 have_overlayd || { fail loopback "no overlayd binary was staged (build the overlayd target)"; exit 0; }
-vivid_load n_devs=2 node_types=0x1,0x101 multiplanar=1,1 || { fail loopback "modprobe vivid failed"; exit 0; }
-SRC=$(node vivid-000-vid-cap) CAP=$(node vivid-001-vid-cap) OUT=$(node vivid-001-vid-out)
-W=1280 H=720
-black_pattern "$SRC"
-# HDMI in and out: same type, size, fourcc and field, as vivid's loop requires; no OSD text on the looped frames.
-v4l2-ctl -d "$CAP" -i 3 >/dev/null && v4l2-ctl -d "$OUT" -o 1 >/dev/null
-v4l2-ctl -d "$CAP" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
-v4l2-ctl -d "$CAP" -c loop_video=1 -c osd_text_mode=2
+vivid_hdmi_loop || { fail loopback "modprobe vivid failed"; exit 0; }
 config_for loopback.toml /tmp/loop.toml "device=\"$SRC\"" "path=\"$OUT\""
 overlayd run --config /tmp/loop.toml >/tmp/loop-run.log 2>&1 &
 pid=$!
@@ -35,9 +28,7 @@ verdict loopback-compliance $? "v4l2-compliance -s on $CAP while overlayd writes
     tr '\n' ';') (all of its report: $(grep '^Total' /tmp/compliance.log | tail -1))"
 grep -E 'fail:' /tmp/compliance.log | sort | uniq -c | head -5
 
-kill -TERM $pid 2>/dev/null
-(sleep 20 && kill -KILL $pid 2>/dev/null) &
-wait $pid
+stop_overlayd $pid
 rc=$?
 [ $rc = 0 ]
 verdict loopback-exit $rc "overlayd run exited with $rc after SIGTERM"

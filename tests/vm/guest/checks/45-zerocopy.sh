@@ -7,13 +7,7 @@
 . /vm/lib.sh
 
 have_overlayd || { fail zerocopy "no overlayd binary was staged (build the overlayd target)"; exit 0; }
-vivid_load n_devs=2 node_types=0x1,0x101 multiplanar=1,1 || { fail zerocopy "modprobe vivid failed"; exit 0; }
-SRC=$(node vivid-000-vid-cap) CAP=$(node vivid-001-vid-cap) OUT=$(node vivid-001-vid-out)
-W=1280 H=720
-black_pattern "$SRC"
-v4l2-ctl -d "$CAP" -i 3 >/dev/null && v4l2-ctl -d "$OUT" -o 1 >/dev/null
-v4l2-ctl -d "$CAP" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
-v4l2-ctl -d "$CAP" -c loop_video=1 -c osd_text_mode=2
+vivid_hdmi_loop || { fail zerocopy "modprobe vivid failed"; exit 0; }
 
 v4l2-ctl -d "$SRC" --set-fmt-video=width=$W,height=$H,pixelformat=YUYV
 v4l2-ctl -d "$OUT" --set-fmt-video-out=width=$W,height=$H,pixelformat=YUYV
@@ -34,9 +28,7 @@ kill -0 $pid 2>/dev/null || ok=1
 verdict zerocopy-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, zero_copy = on, try $try, looped frame:$summary"
 cp /tmp/zc.yuv "$ART/zerocopy-${W}x$H.yuyv" 2>/dev/null
 
-kill -TERM $pid 2>/dev/null
-(sleep 20 && kill -KILL $pid 2>/dev/null) &
-wait $pid
+stop_overlayd $pid
 rc=$?
 # The sink's own account at close: "<device>: N frames out: Z zero-copy, C copied, D dropped".
 counts=$(sed -n 's/.*: \([0-9]*\) frames out: \([0-9]*\) zero-copy, \([0-9]*\) copied, \([0-9]*\) dropped.*/\1 \2 \3 \4/p' \

@@ -49,10 +49,7 @@ ok=$?
 kill -0 $pid 2>/dev/null || ok=1
 verdict unplug-recovered $ok "after modprobe vivid: $(frames) frames, last pixel ($(probe))"
 
-kill -TERM $pid 2>/dev/null
-# SIGKILL after 20 s: a daemon that does not stop must not hang the tier
-(sleep 20 && kill -KILL $pid 2>/dev/null) &
-wait $pid
+stop_overlayd $pid
 rc=$?
 [ $rc = 0 ]
 verdict unplug-exit $rc "overlayd run exited with $rc after SIGTERM"
