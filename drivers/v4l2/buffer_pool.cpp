@@ -12,18 +12,15 @@ namespace overlayd::v4l2 {
 Result<std::unique_ptr<BufferPool>> BufferPool::create(const VideoDevice &device, unsigned count,
                                                        const DeviceFormat &format, const PixelFormatInfo *info)
 {
-    v4l2_requestbuffers request{};
-    request.count = count;
-    request.type = device.bufferType();
-    request.memory = V4L2_MEMORY_MMAP;
-    if (const int r = device.ioctl(VIDIOC_REQBUFS, &request); r < 0)
-        return ioctlError(device.describe() + ": VIDIOC_REQBUFS " + std::to_string(count) + " MMAP buffers", r);
+    const Result<unsigned> granted = device.requestBuffers(count, V4L2_MEMORY_MMAP);
+    if (!granted)
+        return granted.error();
     std::unique_ptr<BufferPool> pool(new BufferPool(device));
-    pool->buffers_.resize(request.count);
-    if (request.count < 2)
-        return makeError(ErrorCode::Io, device.describe() + " granted " + std::to_string(request.count) +
+    pool->buffers_.resize(*granted);
+    if (*granted < 2)
+        return makeError(ErrorCode::Io, device.describe() + " granted " + std::to_string(*granted) +
                                             " buffers; streaming needs at least 2");
-    for (unsigned i = 0; i < request.count; ++i) {
+    for (unsigned i = 0; i < *granted; ++i) {
         if (auto mapped = pool->mapBuffer(i, format, info); !mapped)
             return mapped.error();
     }
@@ -60,11 +57,8 @@ Status BufferPool::mapBuffer(unsigned index, const DeviceFormat &format, const P
 
 BufferPool::~BufferPool()
 {
-    buffers_.clear();
-    v4l2_requestbuffers request{};
-    request.type = device_.bufferType();
-    request.memory = V4L2_MEMORY_MMAP;
-    (void)device_.ioctl(VIDIOC_REQBUFS, &request); // nothing to do if the device is already gone
+    buffers_.clear(); // unmapped first: the driver frees only buffers nobody maps
+    device_.releaseBuffers(V4L2_MEMORY_MMAP);
 }
 
 PlaneMemory BufferPool::memory(unsigned index, unsigned plane) const

@@ -8,24 +8,18 @@ namespace overlayd::v4l2 {
 
 Result<std::unique_ptr<DmabufQueue>> DmabufQueue::create(const VideoDevice &device, unsigned count)
 {
-    v4l2_requestbuffers request{};
-    request.count = count;
-    request.type = device.bufferType();
-    request.memory = V4L2_MEMORY_DMABUF;
-    if (const int r = device.ioctl(VIDIOC_REQBUFS, &request); r < 0)
-        return ioctlError(device.describe() + ": VIDIOC_REQBUFS " + std::to_string(count) + " DMABUF buffers", r);
-    std::unique_ptr<DmabufQueue> queue(new DmabufQueue(device, request.count));
-    if (request.count == 0)
+    const Result<unsigned> granted = device.requestBuffers(count, V4L2_MEMORY_DMABUF);
+    if (!granted)
+        return granted.error();
+    std::unique_ptr<DmabufQueue> queue(new DmabufQueue(device, *granted));
+    if (*granted == 0)
         return makeError(ErrorCode::Io, device.describe() + " granted no DMABUF buffers");
     return queue;
 }
 
 DmabufQueue::~DmabufQueue()
 {
-    v4l2_requestbuffers request{};
-    request.type = device_.bufferType();
-    request.memory = V4L2_MEMORY_DMABUF;
-    (void)device_.ioctl(VIDIOC_REQBUFS, &request); // nothing to do if the device is already gone
+    device_.releaseBuffers(V4L2_MEMORY_DMABUF);
 }
 
 Status DmabufQueue::queue(unsigned index, const std::array<DmabufPlane, 3> &planes, unsigned planeCount)

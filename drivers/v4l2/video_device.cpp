@@ -135,6 +135,27 @@ Status VideoDevice::streamOff() const
     return Ok{};
 }
 
+Result<unsigned> VideoDevice::requestBuffers(unsigned count, uint32_t memory) const
+{
+    v4l2_requestbuffers request{};
+    request.count = count;
+    request.type = bufferType_;
+    request.memory = memory;
+    if (const int r = ioctl(VIDIOC_REQBUFS, &request); r < 0)
+        return ioctlError(describe() + ": VIDIOC_REQBUFS " + std::to_string(count) +
+                              (memory == V4L2_MEMORY_DMABUF ? " DMABUF" : " MMAP") + " buffers",
+                          r);
+    return unsigned(request.count);
+}
+
+void VideoDevice::releaseBuffers(uint32_t memory) const
+{
+    v4l2_requestbuffers request{};
+    request.type = bufferType_;
+    request.memory = memory;
+    (void)ioctl(VIDIOC_REQBUFS, &request);
+}
+
 int VideoDevice::dequeue(uint32_t memory, unsigned count, v4l2_buffer &buffer,
                          std::array<v4l2_plane, VIDEO_MAX_PLANES> &planes) const
 {

@@ -42,6 +42,10 @@ public:
     double setRate(double fps) const;
     Status streamOn() const;
     Status streamOff() const;
+    // VIDIOC_REQBUFS `count` buffers of `memory` (V4L2_MEMORY_MMAP or _DMABUF): the count the driver granted.
+    Result<unsigned> requestBuffers(unsigned count, uint32_t memory) const;
+    // VIDIOC_REQBUFS 0: frees the driver's buffers (stream off first); nothing to do if the device is gone.
+    void releaseBuffers(uint32_t memory) const;
     // VIDIOC_DQBUF of a `memory` buffer into buffer/planes (prepared here): 0, -errno, or -EINVAL for an index at or
     // past `count` (a driver that answers a buffer it was never given).
     int dequeue(uint32_t memory, unsigned count, v4l2_buffer &buffer,

@@ -138,6 +138,20 @@ vivid_hdmi_loop() {
     v4l2-ctl -d "$CAP" -c loop_video=1 -c osd_text_mode=2
 }
 
+# loop_overlay_run NAME TEMPLATE DETAIL: overlayd on TEMPLATE (device SRC, path OUT) in the background ($pid, log
+# /tmp/NAME-run.log), then the verdict NAME-overlay on its overlay read back from the looped CAP; the frame is kept
+# as $ART/NAME-WxH.yuyv.
+loop_overlay_run() {
+    config_for "$2" "/tmp/$1.toml" "device=\"$SRC\"" "path=\"$OUT\""
+    overlayd run --config "/tmp/$1.toml" >"/tmp/$1-run.log" 2>&1 &
+    pid=$!
+    await_loop_overlay "$CAP" "/tmp/$1.yuv" "/tmp/$1.toml" $W $H
+    _ok=$?
+    kill -0 $pid 2>/dev/null || _ok=1
+    verdict "$1-overlay" $_ok "$OUT -> $CAP ${W}x$H YUYV$3, try $try, looped frame:$summary"
+    cp "/tmp/$1.yuv" "$ART/$1-${W}x$H.yuyv" 2>/dev/null
+}
+
 # stop_overlayd PID: SIGTERM, SIGKILL after 20 s (a daemon that does not stop must not hang the tier); returns its
 # exit status.
 stop_overlayd() {

@@ -6,15 +6,7 @@
 
 have_overlayd || { fail loopback "no overlayd binary was staged (build the overlayd target)"; exit 0; }
 vivid_hdmi_loop || { fail loopback "modprobe vivid failed"; exit 0; }
-config_for loopback.toml /tmp/loop.toml "device=\"$SRC\"" "path=\"$OUT\""
-overlayd run --config /tmp/loop.toml >/tmp/loop-run.log 2>&1 &
-pid=$!
-
-await_loop_overlay "$CAP" /tmp/loop.yuv /tmp/loop.toml $W $H
-ok=$?
-kill -0 $pid 2>/dev/null || ok=1
-verdict loopback-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, try $try, looped frame:$summary"
-cp /tmp/loop.yuv "$ART/loopback-${W}x$H.yuyv" 2>/dev/null
+loop_overlay_run loopback loopback.toml ""
 
 # v4l2-compliance as an independent client of the frames we write: its streaming tests (MMAP with select and
 # epoll: sequence numbers, timestamps, field, bytesused) on the looped capture node while overlayd feeds the
@@ -32,6 +24,6 @@ stop_overlayd $pid
 rc=$?
 [ $rc = 0 ]
 verdict loopback-exit $rc "overlayd run exited with $rc after SIGTERM"
-tail -5 /tmp/loop-run.log
+tail -5 /tmp/loopback-run.log
 rmmod vivid
 exit 0

@@ -19,26 +19,19 @@ verdict zerocopy-vivid-dmabuf $? "v4l2-ctl: $SRC MMAP capture, buffers exported 
 $caps captured, $outs output; $(grep -m1 'failed' /tmp/zc-base.log)"
 cp /tmp/zc-base.log "$ART/zerocopy-v4l2ctl.log"
 
-config_for zerocopy.toml /tmp/zc.toml "device=\"$SRC\"" "path=\"$OUT\""
-overlayd run --config /tmp/zc.toml >/tmp/zc-run.log 2>&1 &
-pid=$!
-await_loop_overlay "$CAP" /tmp/zc.yuv /tmp/zc.toml $W $H
-ok=$?
-kill -0 $pid 2>/dev/null || ok=1
-verdict zerocopy-overlay $ok "$OUT -> $CAP ${W}x$H YUYV, zero_copy = on, try $try, looped frame:$summary"
-cp /tmp/zc.yuv "$ART/zerocopy-${W}x$H.yuyv" 2>/dev/null
+loop_overlay_run zerocopy zerocopy.toml ", zero_copy = on"
 
 stop_overlayd $pid
 rc=$?
 # The sink's own account at close: "<device>: N frames out: Z zero-copy, C copied, D dropped".
 counts=$(sed -n 's/.*: \([0-9]*\) frames out: \([0-9]*\) zero-copy, \([0-9]*\) copied, \([0-9]*\) dropped.*/\1 \2 \3 \4/p' \
-    /tmp/zc-run.log | tail -1)
+    /tmp/zerocopy-run.log | tail -1)
 set -- $counts 0 0 0 0
-stats=$(grep -c ' zero-copy; \| zero-copy$' /tmp/zc-run.log)
-[ $rc = 0 ] && grep -q 'zero copy: the capture buffers are queued by DMABUF' /tmp/zc-run.log &&
+stats=$(grep -c ' zero-copy; \| zero-copy$' /tmp/zerocopy-run.log)
+[ $rc = 0 ] && grep -q 'zero copy: the capture buffers are queued by DMABUF' /tmp/zerocopy-run.log &&
     [ "$1" -gt 0 ] && [ "$2" = "$1" ] && [ "$3" = 0 ] && [ "$stats" -gt 0 ]
 verdict zerocopy-log $? "exit $rc; $1 frames out: $2 zero-copy, $3 copied, $4 dropped; $stats stats lines with a \
 zero-copy count"
-grep -E 'v4l2|zero|stats' /tmp/zc-run.log | tail -4
+grep -E 'v4l2|zero|stats' /tmp/zerocopy-run.log | tail -4
 rmmod vivid
 exit 0
