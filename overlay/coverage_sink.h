@@ -9,6 +9,10 @@
 
 namespace overlayd {
 
+// How far past a rowRuns() run's last pixel its coverage array may be read (not used): a sink may load whole
+// vectors of a short run straight from the producer's row.
+inline constexpr int kCoverageReadAhead = 16;
+
 // One run of a row: pixels [x0, x0 + count) take coverage[0 .. count).
 struct CoverageRun {
     int x0, count;
@@ -30,7 +34,8 @@ public:
     // Pixels [x0, x0 + count) of row y take coverage[0 .. count).
     virtual void row(int y, int x0, const uint8_t *coverage, int count) = 0;
     // All of an item's runs in row y at once (in increasing x, a pixel apart at least): the same as row() for
-    // each in turn, but a sink may hoist its per-row work out of the loop.
+    // each in turn, but a sink may hoist its per-row work out of the loop. Unlike row()'s, each run's coverage
+    // can be read kCoverageReadAhead bytes past its last pixel (whatever those bytes hold).
     virtual void rowRuns(int y, const CoverageRun *runs, size_t count)
     {
         for (size_t i = 0; i < count; ++i)

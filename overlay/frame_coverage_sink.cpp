@@ -114,18 +114,24 @@ void FrameCoverageSink::stage(const uint8_t *coverage, unsigned count, uint8_t *
 void FrameCoverageSink::row(int y, int x0, const uint8_t *coverage, int count)
 {
     const CoverageRun run{x0, count, coverage};
-    rowRuns(y, &run, 1);
+    blendRuns(y, &run, 1, false);
 }
 
 void FrameCoverageSink::rowRuns(int y, const CoverageRun *runs, size_t count)
 {
-    // The row's address and the format's path are found once for all of its runs.
+    blendRuns(y, runs, count, true);
+}
+
+inline void FrameCoverageSink::blendRuns(int y, const CoverageRun *runs, size_t count, bool readAhead)
+{
     const PlaneView &plane = frame_.planes[0];
     uint8_t *const row = plane.data + size_t(y) * plane.stride;
     uint8_t *const alpha = alpha_.data() + 1;
     for (size_t i = 0; i < count; ++i) {
         const CoverageRun &run = runs[i];
         if (run.count <= 0)
+            continue;
+        if (readAhead && (layout_.packed422 ? blendShortPacked(row, run) : blendShortYuv(row, y, run)))
             continue;
         stage(run.coverage, unsigned(run.count), alpha);
         if (layout_.packed422)

@@ -62,18 +62,26 @@ private:
     // Writes a row() call's opacities with pixel x0's at alpha, 0 before it and in the 16 bytes after the last: the
     // kernels read whole vectors and whole macropixels, and a zero opacity leaves a byte as it is.
     void stage(const uint8_t *coverage, unsigned count, uint8_t *alpha) const;
+    // row() and rowRuns(): the row's address and the format's path found once; readAhead says the runs' coverage
+    // may be read kCoverageReadAhead bytes past their ends (rowRuns), so short runs skip the staging.
+    void blendRuns(int y, const CoverageRun *runs, size_t count, bool readAhead);
+    // A thin line's run (its pixels and the one before an odd x0 within eight) from its coverage array, unstaged,
+    // in packed 4:2:2 or in a format with one-byte luma: false, having done nothing, for any other run.
+    bool blendShortPacked(uint8_t *row, const CoverageRun &run) const;
+    bool blendShortYuv(uint8_t *row, int y, const CoverageRun &run);
     void blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
     void blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count);
+    // A luma row's run of chroma groups, after its opacities were added to alphaSums_: blended now if the chroma
+    // row is complete with this luma row, else left to wait for the next.
+    void addChromaGroups(int y, int chromaRow, Interval groups);
+    // The chroma row of luma row y, with the previous one flushed if it was left pending.
+    int enterChromaRow(int y);
     void flushChroma();
     void blendLastRowGroups(unsigned chromaRow, Interval groups);
     void blendChromaInterval(unsigned chromaRow, Interval interval);
 
     // The pixel loops, in 16-bit vector lanes (frame_coverage_sink_kernels.cpp; blendChroma with the chroma
     // bookkeeping in frame_coverage_sink_chroma.cpp).
-    // Packed 4:2:2: luma and chroma of `windows` runs of four macropixels (16 bytes) at once; alpha holds the
-    // opacity of each of their pixels.
-    static void blendPackedWindows(uint8_t *bytes, const uint8_t *alpha, unsigned windows, const ItemColour &colour,
-                                   unsigned lumaOffset);
     // pixels: the first byte of pixel x0's bytes; room: visible bytes of the row from there (a short run is one
     // 16-byte vector operation when they suffice); alpha is staged.
     static void blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count, unsigned value,

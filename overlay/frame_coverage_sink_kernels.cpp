@@ -48,16 +48,39 @@ inline void lumaShort(uint8_t *pixels, unsigned step, unsigned offset, const uin
     __builtin_memcpy(pixels, &out, 16);
 }
 
-// lumaShort for up to 8 one-byte luma samples (planar and semi-planar formats, GREY): half the lanes.
-inline void lumaEight(uint8_t *pixels, const uint8_t *alpha, unsigned value)
+// lumaShort for up to 8 one-byte luma samples (planar and semi-planar formats, GREY), opacities in 16-bit lanes.
+inline void lumaEight(uint8_t *pixels, Words8 a8, unsigned value)
 {
-    Bytes16 a{}, in{};
-    __builtin_memcpy(&a, alpha, 8);
-    __builtin_memcpy(&in, pixels, 8);
-    const Words8 a8 = lowWords(a);
+    const Bytes16 in = lowBytes(pixels);
     const Words8 out = div255(Words8(a8 * uint16_t(value))) + div255(Words8(lowWords(in) * (255 - a8)));
     const Bytes8 packed = __builtin_convertvector(out, Bytes8);
     __builtin_memcpy(pixels, &packed, 8);
+}
+
+// Eight staged opacities as 16-bit lanes.
+inline Words8 eightOpacities(const uint8_t *alpha)
+{
+    return lowWords(lowBytes(alpha));
+}
+
+// A short run's coverage (1..8 bytes) read straight from the producer's row as one word, the bytes past the run
+// (there to be read, whatever they hold) cleared: byte k is pixel x0 + k.
+inline uint64_t shortCoverage(const uint8_t *coverage, unsigned count)
+{
+    uint64_t word;
+    __builtin_memcpy(&word, coverage, sizeof word);
+    return word & (~uint64_t(0) >> (64 - 8 * count));
+}
+
+// Coverage bytes (pixel k in byte k) as opacities, scaled by the item's alpha exactly as stage() scales them.
+inline Bytes16 opacities(uint64_t coverage, unsigned alpha)
+{
+    if (alpha != 255) {
+        const Bytes16 bytes = (Bytes16)Longs2{coverage, 0};
+        const Bytes8 scaled = __builtin_convertvector(div255(Words8(lowWords(bytes) * uint16_t(alpha))), Bytes8);
+        __builtin_memcpy(&coverage, &scaled, sizeof coverage);
+    }
+    return (Bytes16)Longs2{coverage, 0};
 }
 
 template<unsigned Step>
@@ -80,35 +103,31 @@ void rgbLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned 
     }
 }
 
-} // namespace
-
 // Each 16-bit word of packed 4:2:2 is one pixel's luma byte and one chroma byte of its macropixel (YUYV: Y0 Cb,
-// Y1 Cr, ...), so a window splits into eight luma lanes and eight chroma lanes by shifts. Luma takes over()'s rule,
-// chroma chromaLoop's with the macropixel's two opacities summed (shift 1): byte for byte the two-pass result.
-[[gnu::always_inline]] inline void FrameCoverageSink::blendPackedWindows(uint8_t *bytes, const uint8_t *alpha,
-                                                                         unsigned windows, const ItemColour &colour,
-                                                                         unsigned lumaOffset)
+// Y1 Cr, ...), so a window of four macropixels splits into eight luma lanes and eight chroma lanes by shifts. Luma
+// takes over()'s rule, chroma chromaLoop's with the macropixel's two opacities summed (shift 1): byte for byte the
+// two-pass result. a: the opacities of the window's eight pixels.
+// packedChroma: the chroma lanes' codes at full opacity.
+[[gnu::always_inline]] inline void blendPackedWindow(uint8_t *bytes, Words8 a, const uint16_t *packedChroma,
+                                                     unsigned lumaCode, unsigned lumaOffset)
 {
     Words8 chromaCode;
-    __builtin_memcpy(&chromaCode, colour.packedChroma, 16);
-    const uint16_t luma = uint16_t(colour.luma);
+    __builtin_memcpy(&chromaCode, packedChroma, 16);
+    const uint16_t luma = uint16_t(lumaCode);
     const unsigned lumaShift = 8 * lumaOffset, chromaShift = 8 - lumaShift;
-    for (unsigned w = 0; w < windows; ++w, bytes += 16, alpha += 8) {
-        Bytes16 raw{};
-        __builtin_memcpy(&raw, alpha, 8);
-        const Words8 a = lowWords(raw);
-        // Chroma lanes 2g and 2g + 1 belong to macropixel g: pixels 2g and 2g + 1.
-        const Words8 pair = a + __builtin_shufflevector(a, a, 1, 0, 3, 2, 5, 4, 7, 6);
-        Words8 words;
-        __builtin_memcpy(&words, bytes, 16);
-        const Words8 y = (words >> lumaShift) & 0xff, c = (words >> chromaShift) & 0xff;
-        const Words8 yOut = div255(Words8(a * luma)) + div255(Words8(y * (255 - a)));
-        const Words8 sum4 = pair << 1, cAlpha = meanAlpha8(sum4);
-        const Words8 cOut = scaledBySum(sum4, chromaCode, cAlpha) + div255(Words8(c * (255 - cAlpha)));
-        const Words8 out = (yOut << lumaShift) | (cOut << chromaShift);
-        __builtin_memcpy(bytes, &out, 16);
-    }
+    // Chroma lanes 2g and 2g + 1 belong to macropixel g: pixels 2g and 2g + 1.
+    const Words8 pair = a + __builtin_shufflevector(a, a, 1, 0, 3, 2, 5, 4, 7, 6);
+    Words8 words;
+    __builtin_memcpy(&words, bytes, 16);
+    const Words8 y = (words >> lumaShift) & 0xff, c = (words >> chromaShift) & 0xff;
+    const Words8 yOut = div255(Words8(a * luma)) + div255(Words8(y * (255 - a)));
+    const Words8 sum4 = pair << 1, cAlpha = meanAlpha8(sum4);
+    const Words8 cOut = scaledBySum(sum4, chromaCode, cAlpha) + div255(Words8(c * (255 - cAlpha)));
+    const Words8 out = (yOut << lumaShift) | (cOut << chromaShift);
+    __builtin_memcpy(bytes, &out, 16);
 }
+
+} // namespace
 
 void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
@@ -116,7 +135,10 @@ void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_
     // one-pixel macropixel at an odd right edge; the groups past the last window go the general way.
     const unsigned g0 = unsigned(x0) / 2, gEnd = unsigned(x0 + count + 1) / 2, wholeGroups = frame_.width / 2;
     const unsigned windows = std::min((gEnd - g0 + 3) / 4, (wholeGroups - std::min(g0, wholeGroups)) / 4);
-    blendPackedWindows(row + size_t(g0) * 4, alpha - x0 % 2, windows, colour_, layout_.lumaOffset);
+    const uint8_t *pixels = alpha - x0 % 2; // staged: the pixel before an odd x0 reads 0
+    for (unsigned w = 0; w < windows; ++w, pixels += 8)
+        blendPackedWindow(row + size_t(g0 + 4 * w) * 4, eightOpacities(pixels), colour_.packedChroma, colour_.luma,
+                          layout_.lumaOffset);
     const int rest = std::max(x0, int(2 * (g0 + 4 * windows)));
     if (rest >= x0 + count)
         return;
@@ -142,29 +164,74 @@ void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8
     }
 }
 
-// Luma (or GREY) and planar or semi-planar chroma of one row() call.
-void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
+inline int FrameCoverageSink::enterChromaRow(int y)
 {
-    const size_t start = size_t(x0) * layout_.lumaStep;
-    if (layout_.lumaStep == 1 && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes, inline
-        lumaEight(row + start, alpha, colour_.luma);
-    else
-        blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
-    if (!layout_.chroma)
-        return;
-    // A chroma row's opacities add up in alphaSums_ until its last luma row: the first row's groups wait in
-    // intervals_, the last row's are blended as they come, with the waiting ones beside them.
     const int chromaRow = y >> (layout_.vSub - 1); // vSub is 1 or 2: no division per call
     if (chromaRow != pendingChromaRow_)
         flushChroma();
-    accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
-    const Interval groups{unsigned(x0) / 2, unsigned(x0 + count + 1) / 2};
+    return chromaRow;
+}
+
+// A chroma row's opacities add up in alphaSums_ until its last luma row: the first row's groups wait in intervals_,
+// the last row's are blended as they come, with the waiting ones beside them.
+inline void FrameCoverageSink::addChromaGroups(int y, int chromaRow, Interval groups)
+{
     if (((y + 1) & int(layout_.vSub - 1)) == 0 || unsigned(y + 1) == frame_.height) {
         blendLastRowGroups(unsigned(chromaRow), groups);
         return;
     }
     pendingChromaRow_ = chromaRow;
     intervals_.push_back(groups);
+}
+
+bool FrameCoverageSink::blendShortPacked(uint8_t *row, const CoverageRun &run) const
+{
+    // One window from the run's first macropixel, if the run fits in it and its four macropixels are whole ones
+    // of the row.
+    const unsigned x0 = unsigned(run.x0), count = unsigned(run.count), parity = x0 % 2, g0 = x0 / 2;
+    if (parity + count > 8 || g0 + 4 > frame_.width / 2)
+        return false;
+    const uint64_t coverage = shortCoverage(run.coverage, count) << (8 * parity);
+    blendPackedWindow(row + size_t(g0) * 4, lowWords(opacities(coverage, colour_.alpha)), colour_.packedChroma,
+                      colour_.luma, layout_.lumaOffset);
+    return true;
+}
+
+bool FrameCoverageSink::blendShortYuv(uint8_t *row, int y, const CoverageRun &run)
+{
+    const unsigned x0 = unsigned(run.x0), count = unsigned(run.count), parity = x0 % 2;
+    if (parity + count > 8 || layout_.rgb || layout_.lumaStep != 1 || rowBytes_ - x0 < 8)
+        return false;
+    const uint64_t coverage = shortCoverage(run.coverage, count);
+    lumaEight(row + x0, lowWords(opacities(coverage, colour_.alpha)), colour_.luma);
+    if (!layout_.chroma)
+        return true;
+    const int chromaRow = enterChromaRow(y);
+    // The run's (at most four) groups' opacity sums, added in one step: a 16-bit word of the bytes from the first
+    // group's first pixel holds one group's two opacities.
+    const Words8 pairs = (Words8)opacities(coverage << (8 * parity), colour_.alpha);
+    uint16_t *const group = alphaSums_.data() + x0 / 2;
+    Words8 sum;
+    __builtin_memcpy(&sum, group, 16);
+    sum += (pairs & 0xff) + (pairs >> 8);
+    __builtin_memcpy(group, &sum, 16);
+    addChromaGroups(y, chromaRow, {x0 / 2, (x0 + count + 1) / 2});
+    return true;
+}
+
+// Luma (or GREY) and planar or semi-planar chroma of one row() call.
+void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
+{
+    const size_t start = size_t(x0) * layout_.lumaStep;
+    if (layout_.lumaStep == 1 && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes, inline
+        lumaEight(row + start, eightOpacities(alpha), colour_.luma);
+    else
+        blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);
+    if (!layout_.chroma)
+        return;
+    const int chromaRow = enterChromaRow(y);
+    accumulateAlpha(alphaSums_.data(), unsigned(x0), alpha, unsigned(count));
+    addChromaGroups(y, chromaRow, {unsigned(x0) / 2, unsigned(x0 + count + 1) / 2});
 }
 
 void FrameCoverageSink::blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count,

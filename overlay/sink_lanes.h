@@ -12,6 +12,7 @@ using Bytes8 = uint8_t __attribute__((vector_size(8)));
 using Words16 = uint16_t __attribute__((vector_size(32)));
 using Words8 = uint16_t __attribute__((vector_size(16)));
 using Shorts8 = int16_t __attribute__((vector_size(16)));
+using Longs2 = uint64_t __attribute__((vector_size(16)));
 
 // Opacity scaled to a four-pixel sum, rounded half to even as the cached path's lrintf rounds the mean.
 inline unsigned meanAlpha(unsigned sum4)
@@ -39,6 +40,14 @@ inline Words8 scaledBySum(Words8 s, Words8 code, Words8 alpha)
 inline Words8 meanAlpha8(Words8 sum4)
 {
     return (sum4 + 1 + ((sum4 >> 2) & 1)) >> 2;
+}
+
+// Eight bytes from p in the low half of a vector, the high half 0 (one 64-bit load).
+inline Bytes16 lowBytes(const uint8_t *p)
+{
+    uint64_t word;
+    __builtin_memcpy(&word, p, sizeof word);
+    return (Bytes16)Longs2{word, 0};
 }
 
 // Bytes 0-7 of v as 16-bit lanes.
