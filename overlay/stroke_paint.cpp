@@ -47,21 +47,30 @@ using Bytes16 [[gnu::vector_size(16)]] = uint8_t;
 
 // The profile's lanes and the signed distance across at the run's first pixel and its step per pixel.
 struct Across {
-    Floats4 gain, reach, peak, s, ds;
+    Floats4 negGain, reach, peak, half, s, ds;
 };
 
-// The coverage (plus 0.5, to be truncated) of the pixels `lane`; when Masked, lanes at or past n get 0.
+// The coverage (plus 0.5, to be truncated) of the pixels whose lane * ds is given: clamp(gain * (reach - |x|), 0,
+// peak) computed as -gain * (|x| - reach), the same number (negation is exact; a zero's sign goes with the clamp),
+// which SSE2's two-operand instructions take without copies.
+inline Floats4 acrossSteps(const Across &a, Floats4 laneTimesDs)
+{
+    const Floats4 x = a.s + laneTimesDs, distance = (Floats4)((Ints4)x & 0x7fffffff); // |x|: clear the sign bit
+    Floats4 c = a.negGain * (distance - a.reach);
+    c = c > 0 ? c : 0;
+    c = c < a.peak ? c : a.peak;
+    return c + a.half;
+}
+
+// acrossSteps of the pixels `lane`; when Masked, lanes at or past n get 0.
 template<bool Masked>
 inline Floats4 across4(const Across &a, Floats4 lane, float n)
 {
-    const Floats4 x = a.s + lane * a.ds, distance = (Floats4)((Ints4)x & 0x7fffffff); // |x|: clear the sign bit
-    Floats4 c = a.gain * (a.reach - distance);
-    c = c > 0 ? c : 0;
-    c = c < a.peak ? c : a.peak;
+    const Floats4 c = acrossSteps(a, lane * a.ds);
     if constexpr (Masked)
-        return lane < n ? c + 0.5f : 0;
+        return lane < n ? c : 0;
     else
-        return c + 0.5f;
+        return c;
 }
 
 // Four 32-bit lanes (each 0..255) as four bytes in a word: bytes 0 and 4 of each half side by side (two 64-bit
@@ -127,8 +136,10 @@ void paintShort(const Across &a, int n, uint8_t *out)
 }
 
 template<bool Overwrite>
-void paintAcross(const Across &a, int n, uint8_t *out)
+void paintAcross(const Across &across, int n, uint8_t *out)
 {
+    // A local copy: the byte stores could alias the caller's, which would be reloaded at every step.
+    const Across a = across;
     if (n <= 8)
         paintShort<Overwrite>(a, n, out);
     else
@@ -199,7 +210,11 @@ void StrokeRasterizer::paint(const Segment &g, int y, int x0, int count, uint8_t
     for (int k = 0; k < f0; ++k)
         out[k] =
             overwrite ? coverage(g, t + k * dt, s + k * ds) : std::max(out[k], coverage(g, t + k * dt, s + k * ds));
-    const Across across{profile_.gainLanes, profile_.reachLanes, profile_.peakLanes, float(s + f0 * ds) + Floats4{},
+    const Across across{profile_.negGainLanes,
+                        profile_.reachLanes,
+                        profile_.peakLanes,
+                        profile_.halfLanes,
+                        float(s + f0 * ds) + Floats4{},
                         g.dsLanes};
     if (overwrite)
         paintAcross<true>(across, f1 - f0, out + f0);
@@ -210,65 +225,59 @@ void StrokeRasterizer::paint(const Segment &g, int y, int x0, int count, uint8_t
             overwrite ? coverage(g, t + k * dt, s + k * ds) : std::max(out[k], coverage(g, t + k * dt, s + k * ds));
 }
 
-// The short kernel's steps for the usual run, inlined with the profile's lanes read in place: 4 lanes (or 8) and
-// no lane mask, as pixels past the run are never read (a later run overwrites or zeroes its own pixels first).
-// t, s and the lanes as paint() computes them (s + 0 * ds is s but for the sign of a zero, which |x| drops).
-inline bool StrokeRasterizer::paintShortRun(const Segment &g, int y, int x0, int count, uint8_t *out) const
-{
-    if (count > 8 || profile_.binary)
-        return false;
-    const double dy = y - g.a.y, dx = x0 - g.a.x;
-    const double t = dy * g.u.y + dx * g.u.x, s = dy * g.u.x - dx * g.u.y;
-    const double tEnd = t + (count - 1) * g.u.x;
-    if (std::min(t, tEnd) < g.innerLo || std::max(t, tEnd) > g.innerHi)
-        return false;
-    const float s0 = float(s);
-    const Across across{profile_.gainLanes, profile_.reachLanes, profile_.peakLanes, Floats4{s0, s0, s0, s0},
-                        g.dsLanes};
-    static constexpr Floats4 kLane = {0, 1, 2, 3};
-    const uint32_t low = packBytes(__builtin_convertvector(across4<false>(across, kLane, 8.0f), Ints4));
-    __builtin_memcpy(out, &low, sizeof low);
-    if (count > 4) {
-        const uint32_t high = packBytes(__builtin_convertvector(across4<false>(across, kLane + 4.0f, 8.0f), Ints4));
-        __builtin_memcpy(out + 4, &high, sizeof high);
-    }
-    return true;
-}
-
 void StrokeRasterizer::emitRow(int y, const Span *spans, size_t count, CoverageSink &sink)
 {
     // Runs are painted in x order and a paint writes only from its own x0 on, so a run's bytes stay as painted
-    // until the row is handed over (the short kernel's extra lanes land where later runs paint).
+    // until the row is handed over (the short kernel's extra lanes land where later runs paint). The row scratch
+    // has kStrokeRowSlack bytes past the clip's last pixel, so every run is readable that far past its end.
     uint8_t *const scratch = row_.data();
     const int clipX0 = clip_.x0;
-    rowRuns_.clear();
-    for (size_t i = 0; i < count;) {
-        const Span &span = spans[i];
-        size_t j = i + 1;
-        if (j < count && spans[j].x0 <= span.x1 + 1) {
+    CoverageRun *const runs = rowRuns_.data(), *out = runs;
+    Across across{profile_.negGainLanes, profile_.reachLanes, profile_.peakLanes, profile_.halfLanes, {}, {}};
+    const Span *const end = spans + count;
+    for (const Span *span = spans; span < end;) {
+        // spans[count] is idle (kIdle), so the next span can be read without a bound check.
+        const Span *next = span + 1;
+        if (next->x0 <= span->x1 + 1) {
             // Overlapping or touching runs share one scratch run (max per pixel) and one sink run.
-            int x1 = span.x1;
-            for (; j < count && spans[j].x0 <= x1 + 1; ++j)
-                x1 = std::max(x1, spans[j].x1);
-            addMerged(y, spans + i, j - i, span.x0, x1);
-            i = j;
+            int x1 = span->x1;
+            for (; next < end && next->x0 <= x1 + 1; ++next)
+                x1 = std::max(x1, next->x1);
+            out = addMerged(y, span, size_t(next - span), span->x0, x1, out);
+            span = next;
             continue;
         }
-        uint8_t *const row = scratch + (span.x0 - clipX0);
-        const int n = span.x1 - span.x0 + 1;
-        if (!paintShortRun(*span.segment, y, span.x0, n, row))
-            paint(*span.segment, y, span.x0, n, row, true);
-        if (row[0] != 0 && row[n - 1] != 0) // the usual case: a run's end pixels are covered
-            rowRuns_.push_back({span.x0, n, row});
-        else
-            addTrimmed(span.x0, row, n);
-        i = j;
+        const int x0 = span->x0, n = span->x1 - x0 + 1;
+        uint8_t *const row = scratch + (x0 - clipX0);
+        if (span->fast) {
+            // paint(overwrite)'s short kernel, inlined: 4 lanes (or 8) and no lane mask, as pixels past the run are
+            // never read (a later run overwrites or zeroes its own pixels first). s + 0 * ds is s but for the sign
+            // of a zero, which |x| drops; lane * ds comes from the segment, the same product.
+            const float s0 = span->s0;
+            across.s = Floats4{s0, s0, s0, s0};
+            const Floats4 *const steps = span->segment->laneSteps;
+            const uint32_t low = packBytes(__builtin_convertvector(acrossSteps(across, steps[0]), Ints4));
+            __builtin_memcpy(row, &low, sizeof low);
+            if (n > 4) {
+                const uint32_t high = packBytes(__builtin_convertvector(acrossSteps(across, steps[1]), Ints4));
+                __builtin_memcpy(row + 4, &high, sizeof high);
+            }
+        } else {
+            paint(*span->segment, y, x0, n, row, true);
+        }
+        if (row[0] != 0 && row[n - 1] != 0) { // the usual case: a run's end pixels are covered
+            out->x0 = x0, out->count = n, out->coverage = row;
+            ++out;
+        } else {
+            out = addTrimmed(x0, row, n, out);
+        }
+        span = next;
     }
-    if (!rowRuns_.empty())
-        sink.rowRuns(y, rowRuns_.data(), rowRuns_.size());
+    if (out != runs)
+        sink.rowRuns(y, runs, size_t(out - runs));
 }
 
-void StrokeRasterizer::addMerged(int y, const Span *spans, size_t count, int x0, int x1)
+CoverageRun *StrokeRasterizer::addMerged(int y, const Span *spans, size_t count, int x0, int x1, CoverageRun *out)
 {
     uint8_t *const row = row_.data() + (x0 - clip_.x0);
     const int n = x1 - x0 + 1;
@@ -276,16 +285,18 @@ void StrokeRasterizer::addMerged(int y, const Span *spans, size_t count, int x0,
     for (size_t i = 0; i < count; ++i)
         paint(*spans[i].segment, y, spans[i].x0, spans[i].x1 - spans[i].x0 + 1, row + (spans[i].x0 - x0), false);
     if (row[0] != 0 && row[n - 1] != 0)
-        rowRuns_.push_back({x0, n, row});
+        *out++ = {x0, n, row};
     else
-        addTrimmed(x0, row, n);
+        out = addTrimmed(x0, row, n, out);
+    return out;
 }
 
-void StrokeRasterizer::addTrimmed(int x0, const uint8_t *row, int n)
+CoverageRun *StrokeRasterizer::addTrimmed(int x0, const uint8_t *row, int n, CoverageRun *out)
 {
     const int first = firstNonZero(row, n);
     if (first < n)
-        rowRuns_.push_back({x0 + first, endNonZero(row, n) - first, row + first});
+        *out++ = {x0 + first, endNonZero(row, n) - first, row + first};
+    return out;
 }
 
 } // namespace overlayd
