@@ -4,8 +4,10 @@
 //   dynamic      the pose changes every frame: re-project, re-rasterize, convert, blend;
 //   opencv_naive native -> BGR (cvtColor), cv::line LINE_AA + cv::putText, BGR -> native (what most users write);
 //   memcpy       one frame copy over a ring of frames larger than the caches (cold), the floor.
+//   touch        one read and one write of each cache line the cached overlay's runs touch, nothing else: what
+//                reaching those lines of a cold frame costs, the floor under `static`.
 // Ratios are printed at the end from the same run; targets: static/memcpy <= 0.5, opencv_naive/static >= 25,
-// dynamic/memcpy <= 2.
+// dynamic/memcpy <= 2; static/touch says how far the static blend is from its own floor.
 #include <cstring>
 #include <map>
 #include <memory>
@@ -18,6 +20,7 @@
 
 #include "cold_frames.h"
 #include "overlay/overlay_renderer.h"
+#include "overlay/scene_renderer.h"
 
 namespace overlayd {
 namespace {
@@ -81,6 +84,52 @@ void staticBench(benchmark::State &state, const char *formatName, unsigned width
     size_t i = 0;
     for (auto _ : state)
         benchmark::DoNotOptimize((*renderer)->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
+}
+
+// Offsets from the frame's start of the cache lines the cached overlay's runs touch, in the runs' order.
+std::vector<size_t> touchedLines(const SceneRenderer &renderer, const FrameView &frame)
+{
+    const uint8_t *const base = frame.planes[0].data;
+    std::vector<size_t> lines;
+    for (const std::string &name : renderer.layerNames()) {
+        const auto native = NativeLayer::convert(*renderer.layerPixels(name), *frame.format, Colorimetry{});
+        if (!native)
+            continue;
+        for (const NativeRun &run : native->runs()) {
+            const PlaneView &plane = frame.planes[run.plane];
+            const size_t start = size_t(plane.data - base) + size_t(run.row) * plane.stride + run.byteOffset;
+            for (size_t line = start / 64; line <= (start + run.length - 1) / 64; ++line) {
+                if (lines.empty() || line * 64 > lines.back())
+                    lines.push_back(line * 64);
+            }
+        }
+    }
+    return lines;
+}
+
+void touchBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    auto renderer =
+        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
+    if (!renderer) {
+        state.SkipWithError(renderer.error().message.c_str());
+        return;
+    }
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    const std::vector<size_t> lines =
+        touchedLines(dynamic_cast<const SceneRenderer &>(**renderer), ring.layout.view(ring.frame(0)));
+    constexpr size_t kAhead = 16; // prefetched as far ahead as the blend prefetches its runs
+    size_t i = 0;
+    for (auto _ : state) {
+        uint8_t *frame = ring.frame(i++);
+        for (size_t k = 0; k < lines.size(); ++k) {
+            if (k + kAhead < lines.size())
+                __builtin_prefetch(frame + lines[k + kAhead], 1);
+            frame[lines[k]] += 1;
+        }
+        benchmark::ClobberMemory();
+    }
+    state.counters["touched_lines_%"] = 100.0 * double(lines.size()) * 64 / double(ring.layout.totalSize);
 }
 
 void dynamicBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
@@ -192,15 +241,16 @@ public:
     void Finalize() override
     {
         ConsoleReporter::Finalize();
-        std::printf("\n%-22s %14s %18s %15s\n", "case", "static/memcpy", "naive/static", "dynamic/memcpy");
+        std::printf("\n%-22s %14s %18s %15s %13s\n", "case", "static/memcpy", "naive/static", "dynamic/memcpy",
+                    "static/touch");
         for (const auto &[name, time] : seconds_) {
             if (name.rfind("memcpy/", 0) != 0)
                 continue;
             const std::string which = name.substr(7);
             const double copy = time, fixed = get("static/" + which), naive = get("opencv_naive/" + which),
-                         dynamic = get("dynamic/" + which);
-            std::printf("%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2)\n", which.c_str(), fixed / copy, naive / fixed,
-                        dynamic / copy);
+                         dynamic = get("dynamic/" + which), touch = get("touch/" + which);
+            std::printf("%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2) %13.2f\n", which.c_str(), fixed / copy,
+                        naive / fixed, dynamic / copy, fixed / touch);
         }
     }
 
@@ -221,6 +271,7 @@ int main(int argc, char **argv)
     using namespace overlayd;
     for (const bench::FrameCase &c : bench::kFrameCases) {
         bench::registerCase("memcpy", memcpyBench, c);
+        bench::registerCase("touch", touchBench, c);
         bench::registerCase("static", staticBench, c);
         bench::registerCase("dynamic", dynamicBench, c);
         bench::registerCase("opencv_naive", opencvNaiveBench, c);
