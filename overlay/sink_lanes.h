@@ -1,5 +1,5 @@
-// The 16-bit lane arithmetic FrameCoverageSink's kernels share (frame_coverage_sink_kernels.cpp and
-// frame_coverage_sink_chroma.cpp): vector types, and the chroma rule on scalars and on eight lanes.
+// The 16-bit lane arithmetic the overlay's blend kernels share (FrameCoverageSink's, and blend_kernel.cpp's short
+// runs): vector types, loads, and the chroma rule on scalars and on eight lanes.
 #pragma once
 
 #include <algorithm>
