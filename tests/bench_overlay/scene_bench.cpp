@@ -72,18 +72,28 @@ StreamFormat streamFormat(const char *name, unsigned width, unsigned height)
     return format;
 }
 
-void staticBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+// The bench scene's renderer, seen by the still camera; nullptr (the benchmark skipped) if it cannot be made.
+std::unique_ptr<OverlayRenderer> benchRenderer(benchmark::State &state, const char *formatName, unsigned width,
+                                               unsigned height)
 {
     auto renderer =
         OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());
-        return;
+        return nullptr;
     }
+    return std::move(*renderer);
+}
+
+void staticBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    const auto renderer = benchRenderer(state, formatName, width, height);
+    if (!renderer)
+        return;
     Ring ring(*pixelFormatFromName(formatName), width, height);
     size_t i = 0;
     for (auto _ : state)
-        benchmark::DoNotOptimize((*renderer)->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
+        benchmark::DoNotOptimize(renderer->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
 }
 
 // Offsets from the frame's start of the cache lines the cached overlay's runs touch, in the runs' order.
@@ -109,15 +119,12 @@ std::vector<size_t> touchedLines(const SceneRenderer &renderer, const FrameView 
 
 void touchBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
 {
-    auto renderer =
-        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
-    if (!renderer) {
-        state.SkipWithError(renderer.error().message.c_str());
+    const auto renderer = benchRenderer(state, formatName, width, height);
+    if (!renderer)
         return;
-    }
     Ring ring(*pixelFormatFromName(formatName), width, height);
     const std::vector<size_t> lines =
-        touchedLines(dynamic_cast<const SceneRenderer &>(**renderer), ring.layout.view(ring.frame(0)));
+        touchedLines(dynamic_cast<const SceneRenderer &>(*renderer), ring.layout.view(ring.frame(0)));
     constexpr size_t kAhead = 16; // prefetched as far ahead as the blend prefetches its runs
     size_t i = 0;
     for (auto _ : state) {
@@ -134,20 +141,17 @@ void touchBench(benchmark::State &state, const char *formatName, unsigned width,
 
 void dynamicBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
 {
-    auto renderer =
-        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
-    if (!renderer) {
-        state.SkipWithError(renderer.error().message.c_str());
+    const auto renderer = benchRenderer(state, formatName, width, height);
+    if (!renderer)
         return;
-    }
     std::vector<Camera> cameras; // made beforehand: the camera's own set-up is not the overlay's cost
     for (int k = 0; k < 64; ++k)
         cameras.push_back(benchCamera(width, height, 0.1 * (k % 16) - 0.8));
     Ring ring(*pixelFormatFromName(formatName), width, height);
     size_t i = 0;
     for (auto _ : state) {
-        benchmark::DoNotOptimize((*renderer)->setCamera(cameras[i % cameras.size()]).ok());
-        benchmark::DoNotOptimize((*renderer)->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
+        benchmark::DoNotOptimize(renderer->setCamera(cameras[i % cameras.size()]).ok());
+        benchmark::DoNotOptimize(renderer->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
     }
 }
 
