@@ -21,6 +21,7 @@ FrameCoverageSink::Layout FrameCoverageSink::layoutOf(const PixelFormatInfo &for
     layout.pixelBytes = format.planes[0].bytesPerGroup / format.pixelsPerGroup;
     layout.lumaStep = layout.pixelBytes;
     layout.lumaOffset = format.yOffset[0];
+    layout.byteLuma = !layout.rgb && layout.lumaStep == 1;
     // Luma bytes sit at a fixed step in every YUV entry of the table (Y0 and Y1 of a group one pixel step apart).
     assert(layout.rgb || format.pixelsPerGroup == 1 || format.yOffset[1] == format.yOffset[0] + layout.lumaStep);
     layout.chroma = !layout.rgb && format.cbOffset != kNoComponent;

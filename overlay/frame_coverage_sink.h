@@ -40,6 +40,7 @@ private:
         bool rgb = false, chroma = false;
         bool packed422 = false; // YUYV, UYVY, YVYU: a macropixel's luma and chroma in four consecutive bytes
         unsigned lumaStep = 1, lumaOffset = 0; // luma byte of pixel x: x * lumaStep + lumaOffset (plane 0)
+        bool byteLuma = false;                 // YUV with one-byte luma samples side by side (planar, NV12, GREY)
         unsigned chromaStep = 0;               // bytes between chroma groups in the Cb/Cr plane(s)
         unsigned cbPlane = 0, crPlane = 0, cbOffset = 0, crOffset = 0;
         unsigned vSub = 1;              // luma rows per chroma row
@@ -79,6 +80,8 @@ private:
     void flushChroma();
     void blendLastRowGroups(unsigned chromaRow, Interval groups);
     void blendChromaInterval(unsigned chromaRow, Interval interval);
+    void blendChromaRange(unsigned chromaRow, Interval interval);
+    unsigned chromaShift(unsigned chromaRow) const;
 
     // The pixel loops, in 16-bit vector lanes (frame_coverage_sink_kernels.cpp; blendChroma with the chroma
     // bookkeeping in frame_coverage_sink_chroma.cpp).

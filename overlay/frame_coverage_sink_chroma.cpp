@@ -92,6 +92,25 @@ void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uin
         chromaLoop<4>(cb, cr, sums, count, shift, colour.cb, colour.cr);
 }
 
+// A macropixel averages the pixels that exist: a sum over 2 x rows pixels scales to four pixels' worth by 2 - rows
+// bits (one more for the single-pixel column at an odd right edge).
+inline unsigned FrameCoverageSink::chromaShift(unsigned chromaRow) const
+{
+    return 2 - std::min(layout_.vSub, frame_.height - chromaRow * layout_.vSub);
+}
+
+// The usual NV12/NV21 interval, a thin line's few groups away from the right edge, in one step, inline; any other
+// by blendChromaRange.
+inline void FrameCoverageSink::blendChromaInterval(unsigned chromaRow, Interval interval)
+{
+    if (layout_.pairOffset == kNoPairs || interval.g1 - interval.g0 >= 8 || interval.g0 + 8 > frame_.width / 2)
+        return blendChromaRange(chromaRow, interval);
+    const PlaneView &plane = frame_.planes[layout_.cbPlane];
+    uint8_t *pairs = plane.data + size_t(chromaRow) * plane.stride + layout_.pairOffset + 2 * interval.g0;
+    blendFewPairs(pairs, alphaSums_.data() + interval.g0, interval.g1 - interval.g0, chromaShift(chromaRow),
+                  colour_.pairCodes[0], colour_.pairCodes[1]);
+}
+
 void FrameCoverageSink::flushChroma()
 {
     if (pendingChromaRow_ < 0)
@@ -123,19 +142,9 @@ void FrameCoverageSink::blendLastRowGroups(unsigned chromaRow, Interval groups)
     blendChromaInterval(chromaRow, span);
 }
 
-void FrameCoverageSink::blendChromaInterval(unsigned chromaRow, Interval interval)
+void FrameCoverageSink::blendChromaRange(unsigned chromaRow, Interval interval)
 {
-    // A macropixel averages the pixels that exist: a sum over 2 x rows pixels scales to four pixels' worth by
-    // 2 - rows bits, one more for the single-pixel column at an odd right edge.
-    const unsigned rows = std::min(layout_.vSub, frame_.height - chromaRow * layout_.vSub);
-    const unsigned shift = 2 - rows;
-    // The usual NV12/NV21 interval, a thin line's few groups away from the right edge, in one step.
-    if (layout_.pairOffset != kNoPairs && interval.g1 - interval.g0 < 8 && interval.g0 + 8 <= frame_.width / 2) {
-        const PlaneView &plane = frame_.planes[layout_.cbPlane];
-        uint8_t *pairs = plane.data + size_t(chromaRow) * plane.stride + layout_.pairOffset + 2 * interval.g0;
-        return blendFewPairs(pairs, alphaSums_.data() + interval.g0, interval.g1 - interval.g0, shift,
-                             colour_.pairCodes[0], colour_.pairCodes[1]);
-    }
+    const unsigned shift = chromaShift(chromaRow);
     const PlaneView &cbPlane = frame_.planes[layout_.cbPlane], &crPlane = frame_.planes[layout_.crPlane];
     const unsigned step = layout_.chromaStep;
     uint8_t *cb = cbPlane.data + size_t(chromaRow) * cbPlane.stride + layout_.cbOffset + interval.g0 * step;

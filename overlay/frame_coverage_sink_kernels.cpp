@@ -73,14 +73,20 @@ inline uint64_t shortCoverage(const uint8_t *coverage, unsigned count)
 }
 
 // Coverage bytes (pixel k in byte k) as opacities, scaled by the item's alpha exactly as stage() scales them.
-inline Bytes16 opacities(uint64_t coverage, unsigned alpha)
+inline uint64_t opacities(uint64_t coverage, unsigned alpha)
 {
     if (alpha != 255) {
-        const Bytes16 bytes = (Bytes16)Longs2{coverage, 0};
-        const Bytes8 scaled = __builtin_convertvector(div255(Words8(lowWords(bytes) * uint16_t(alpha))), Bytes8);
+        const Bytes8 scaled =
+            __builtin_convertvector(div255(Words8(lowWords((Bytes16)Longs2{coverage, 0}) * uint16_t(alpha))), Bytes8);
         __builtin_memcpy(&coverage, &scaled, sizeof coverage);
     }
-    return (Bytes16)Longs2{coverage, 0};
+    return coverage;
+}
+
+// Eight bytes of a word as 16-bit lanes.
+inline Words8 wordLanes(uint64_t bytes)
+{
+    return lowWords((Bytes16)Longs2{bytes, 0});
 }
 
 template<unsigned Step>
@@ -146,7 +152,7 @@ void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_
     blendLuma(row + size_t(rest) * 2, layout_, alpha + done, unsigned(count - done), colour_.luma,
               rowBytes_ - size_t(rest) * 2);
     accumulateAlpha(alphaSums_.data(), unsigned(rest), alpha + done, unsigned(count - done));
-    blendChromaInterval(unsigned(y), {unsigned(rest) / 2, gEnd});
+    blendChromaRange(unsigned(y), {unsigned(rest) / 2, gEnd});
 }
 
 void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count)
@@ -192,7 +198,7 @@ bool FrameCoverageSink::blendShortPacked(uint8_t *row, const CoverageRun &run) c
     if (parity + count > 8 || g0 + 4 > frame_.width / 2)
         return false;
     const uint64_t coverage = shortCoverage(run.coverage, count) << (8 * parity);
-    blendPackedWindow(row + size_t(g0) * 4, lowWords(opacities(coverage, colour_.alpha)), colour_.packedChroma,
+    blendPackedWindow(row + size_t(g0) * 4, wordLanes(opacities(coverage, colour_.alpha)), colour_.packedChroma,
                       colour_.luma, layout_.lumaOffset);
     return true;
 }
@@ -200,16 +206,16 @@ bool FrameCoverageSink::blendShortPacked(uint8_t *row, const CoverageRun &run) c
 bool FrameCoverageSink::blendShortYuv(uint8_t *row, int y, const CoverageRun &run)
 {
     const unsigned x0 = unsigned(run.x0), count = unsigned(run.count), parity = x0 % 2;
-    if (parity + count > 8 || layout_.rgb || layout_.lumaStep != 1 || rowBytes_ - x0 < 8)
+    if (parity + count > 8 || !layout_.byteLuma || rowBytes_ - x0 < 8)
         return false;
-    const uint64_t coverage = shortCoverage(run.coverage, count);
-    lumaEight(row + x0, lowWords(opacities(coverage, colour_.alpha)), colour_.luma);
+    const uint64_t alpha = opacities(shortCoverage(run.coverage, count), colour_.alpha);
+    lumaEight(row + x0, wordLanes(alpha), colour_.luma);
     if (!layout_.chroma)
         return true;
     const int chromaRow = enterChromaRow(y);
     // The run's (at most four) groups' opacity sums, added in one step: a 16-bit word of the bytes from the first
     // group's first pixel holds one group's two opacities.
-    const Words8 pairs = (Words8)opacities(coverage << (8 * parity), colour_.alpha);
+    const Words8 pairs = (Words8)Longs2{alpha << (8 * parity), 0};
     uint16_t *const group = alphaSums_.data() + x0 / 2;
     Words8 sum;
     __builtin_memcpy(&sum, group, 16);
