@@ -79,8 +79,11 @@ private:
     int enterChromaRow(int y);
     void flushChroma();
     void blendLastRowGroups(unsigned chromaRow, Interval groups);
+    // Groups [g0, g1) of a chroma row blended with their opacity sums, which are zeroed: NV12/NV21's few groups in
+    // one inline step (frame_coverage_sink_chroma.cpp only), any other interval by blendChromaRange.
     void blendChromaInterval(unsigned chromaRow, Interval interval);
     void blendChromaRange(unsigned chromaRow, Interval interval);
+    // The bits by which a chroma row's opacity sums scale to four pixels' worth (2 - its luma rows).
     unsigned chromaShift(unsigned chromaRow) const;
 
     // The pixel loops, in 16-bit vector lanes (frame_coverage_sink_kernels.cpp; blendChroma with the chroma
