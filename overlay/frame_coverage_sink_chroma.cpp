@@ -130,11 +130,17 @@ void FrameCoverageSink::blendLastRowGroups(unsigned chromaRow, Interval groups)
     if (int(chromaRow) != pendingChromaRow_)
         return blendChromaInterval(chromaRow, groups);
     size_t &next = nextInterval_;
-    while (next < intervals_.size() && intervals_[next].g1 <= groups.g0)
-        blendChromaInterval(chromaRow, intervals_[next++]);
     Interval span = groups;
+    for (; next < intervals_.size() && intervals_[next].g1 <= groups.g0; ++next) {
+        // Final: no later run of the last row reaches left of this one. One within eight groups of the run's end
+        // joins its blend (the groups between hold no opacity and keep their bytes).
+        if (intervals_[next].g0 + 8 > groups.g1)
+            span.g0 = std::min(span.g0, intervals_[next].g0);
+        else
+            blendChromaInterval(chromaRow, intervals_[next]);
+    }
     if (next < intervals_.size() && intervals_[next].g0 < groups.g0)
-        span.g0 = intervals_[next].g0;
+        span.g0 = std::min(span.g0, intervals_[next].g0);
     while (next < intervals_.size() && intervals_[next].g1 <= groups.g1)
         ++next;
     if (next < intervals_.size() && intervals_[next].g0 < groups.g1)
