@@ -1,4 +1,4 @@
-// FrameCoverageSink: set-up per frame and per item, and row() staging each call's opacities for the kernels. Luma
+// FrameCoverageSink: set-up per frame and per item, and the staging of a row() call's opacities for the kernels. Luma
 // (or RGB) bytes and 4:2:2 chroma blend as rows arrive; 4:2:0 chroma opacity is summed over both luma rows of a
 // macropixel and each sample blended once, as its second row arrives.
 #include "overlay/frame_coverage_sink.h"
@@ -110,39 +110,6 @@ void FrameCoverageSink::stage(const uint8_t *coverage, unsigned count, uint8_t *
     const unsigned a = colour_.alpha;
     for (unsigned i = 0; i < count; ++i)
         alpha[i] = uint8_t(div255(coverage[i] * a));
-}
-
-void FrameCoverageSink::row(int y, int x0, const uint8_t *coverage, int count)
-{
-    const CoverageRun run{x0, count, coverage};
-    blendRuns(y, &run, 1, false);
-}
-
-void FrameCoverageSink::rowRuns(int y, const CoverageRun *runs, size_t count)
-{
-    blendRuns(y, runs, count, true);
-}
-
-inline void FrameCoverageSink::blendRuns(int y, const CoverageRun *runs, size_t count, bool readAhead)
-{
-    const PlaneView &plane = frame_.planes[0];
-    uint8_t *const row = plane.data + size_t(y) * plane.stride;
-    uint8_t *const alpha = alpha_.data() + 1;
-    for (size_t i = 0; i < count; ++i) {
-        const CoverageRun &run = runs[i];
-        if (run.count <= 0)
-            continue;
-        if (readAhead && (layout_.packed422 ? blendShortPacked(row, run) : blendShortYuv(row, y, run)))
-            continue;
-        stage(run.coverage, unsigned(run.count), alpha);
-        if (layout_.packed422)
-            blendPackedRow(row, y, run.x0, alpha, run.count);
-        else if (layout_.rgb)
-            blendRgb(row + size_t(run.x0) * layout_.pixelBytes, layout_.pixelBytes, alpha, unsigned(run.count),
-                     colour_);
-        else
-            blendYuvRow(row, y, run.x0, alpha, run.count);
-    }
 }
 
 void FrameCoverageSink::end()

@@ -1,10 +1,10 @@
-// FrameCoverageSink's row paths and pixel loops (packed 4:2:2, luma with planar or semi-planar chroma, RGB): the
-// premultiplied "over" of blend_kernel.cpp with the value and 255 - alpha computed from the opacity on the fly, in
-// 16-bit lanes (built with -O3).
+// FrameCoverageSink's row paths: row() and rowRuns() (a thin line's run unstaged when the producer's row may be read
+// past it), packed 4:2:2 rows, luma with planar or semi-planar chroma, RGB; the pixel steps are in sink_steps.h
+// (built with -O3).
 #include "overlay/frame_coverage_sink.h"
 
-#include "overlay/div255.h"
 #include "overlay/sink_lanes.h"
+#include "overlay/sink_steps.h"
 
 #include <algorithm>
 #include <cassert>
@@ -12,128 +12,7 @@
 namespace overlayd {
 
 using namespace sink_lanes;
-
-namespace {
-
-// out = a * value / 255 + in * (255 - a) / 255, each term rounded as the cached path rounds it.
-inline uint8_t over(uint8_t in, unsigned a, unsigned value)
-{
-    return uint8_t(div255(uint16_t(a * value)) + div255(uint16_t(in * (255 - a))));
-}
-
-// over() on 16 lanes at once; a lane with opacity 0 comes out exactly as it went in.
-inline Bytes16 over16(Bytes16 in, Bytes16 alpha, uint16_t value)
-{
-    const Words16 a = __builtin_convertvector(alpha, Words16);
-    Words16 v = a * value + 128, k = __builtin_convertvector(in, Words16) * (255 - a) + 128;
-    v = (v + (v >> 8)) >> 8;
-    k = (k + (k >> 8)) >> 8;
-    return __builtin_convertvector(v + k, Bytes16);
-}
-
-// A thin line's run of up to 16 (step 1) or 8 (step 2, luma in every other byte) pixels as one vector operation:
-// the bytes between and after the luma samples see opacity 0 (alpha is staged: zeros follow the run) and are
-// written back unchanged.
-inline void lumaShort(uint8_t *pixels, unsigned step, unsigned offset, const uint8_t *alpha, unsigned value)
-{
-    Bytes16 a, in;
-    __builtin_memcpy(&a, alpha, 16);
-    if (step == 2) {
-        const Bytes16 zero{};
-        a = offset == 0 ? __builtin_shufflevector(a, zero, 0, 16, 1, 16, 2, 16, 3, 16, 4, 16, 5, 16, 6, 16, 7, 16)
-                        : __builtin_shufflevector(a, zero, 16, 0, 16, 1, 16, 2, 16, 3, 16, 4, 16, 5, 16, 6, 16, 7);
-    }
-    __builtin_memcpy(&in, pixels, 16);
-    const Bytes16 out = over16(in, a, uint16_t(value));
-    __builtin_memcpy(pixels, &out, 16);
-}
-
-// lumaShort for up to 8 one-byte luma samples (planar and semi-planar formats, GREY), opacities in 16-bit lanes.
-inline void lumaEight(uint8_t *pixels, Words8 a8, unsigned value)
-{
-    const Bytes16 in = lowBytes(pixels);
-    const Words8 out = div255(Words8(a8 * uint16_t(value))) + div255(Words8(lowWords(in) * (255 - a8)));
-    const Bytes8 packed = __builtin_convertvector(out, Bytes8);
-    __builtin_memcpy(pixels, &packed, 8);
-}
-
-// Eight staged opacities as 16-bit lanes.
-inline Words8 eightOpacities(const uint8_t *alpha)
-{
-    return lowWords(lowBytes(alpha));
-}
-
-// A short run's coverage (1..8 bytes) read straight from the producer's row as one word, the bytes past the run
-// (there to be read, whatever they hold) cleared: byte k is pixel x0 + k.
-inline uint64_t shortCoverage(const uint8_t *coverage, unsigned count)
-{
-    uint64_t word;
-    __builtin_memcpy(&word, coverage, sizeof word);
-    return word & (~uint64_t(0) >> (64 - 8 * count));
-}
-
-// Coverage bytes (pixel k in byte k) as opacities, scaled by the item's alpha exactly as stage() scales them.
-inline uint64_t opacities(uint64_t coverage, unsigned alpha)
-{
-    if (alpha != 255) {
-        const Bytes8 scaled =
-            __builtin_convertvector(div255(Words8(lowWords((Bytes16)Longs2{coverage, 0}) * uint16_t(alpha))), Bytes8);
-        __builtin_memcpy(&coverage, &scaled, sizeof coverage);
-    }
-    return coverage;
-}
-
-// Eight bytes of a word as 16-bit lanes.
-inline Words8 wordLanes(uint64_t bytes)
-{
-    return lowWords((Bytes16)Longs2{bytes, 0});
-}
-
-template<unsigned Step>
-void lumaLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned count, unsigned value)
-{
-    for (unsigned i = 0; i < count; ++i)
-        dst[i * Step] = over(dst[i * Step], alpha[i], value);
-}
-
-template<unsigned Bytes>
-void rgbLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned count, const uint8_t *colour,
-             const uint8_t *mask)
-{
-    uint8_t value[Bytes], keep[Bytes];
-    std::copy_n(colour, Bytes, value);
-    std::copy_n(mask, Bytes, keep);
-    for (unsigned i = 0; i < count; ++i) {
-        for (unsigned k = 0; k < Bytes; ++k) // an X byte sees opacity 0: it keeps its value
-            dst[i * Bytes + k] = over(dst[i * Bytes + k], alpha[i] & keep[k], value[k]);
-    }
-}
-
-// Each 16-bit word of packed 4:2:2 is one pixel's luma byte and one chroma byte of its macropixel (YUYV: Y0 Cb,
-// Y1 Cr, ...), so a window of four macropixels splits into eight luma lanes and eight chroma lanes by shifts. Luma
-// takes over()'s rule, chroma chromaLoop's with the macropixel's two opacities summed (shift 1): byte for byte the
-// two-pass result. a: the opacities of the window's eight pixels.
-// packedChroma: the chroma lanes' codes at full opacity.
-[[gnu::always_inline]] inline void blendPackedWindow(uint8_t *bytes, Words8 a, const uint16_t *packedChroma,
-                                                     unsigned lumaCode, unsigned lumaOffset)
-{
-    Words8 chromaCode;
-    __builtin_memcpy(&chromaCode, packedChroma, 16);
-    const uint16_t luma = uint16_t(lumaCode);
-    const unsigned lumaShift = 8 * lumaOffset, chromaShift = 8 - lumaShift;
-    // Chroma lanes 2g and 2g + 1 belong to macropixel g: pixels 2g and 2g + 1.
-    const Words8 pair = a + __builtin_shufflevector(a, a, 1, 0, 3, 2, 5, 4, 7, 6);
-    Words8 words;
-    __builtin_memcpy(&words, bytes, 16);
-    const Words8 y = (words >> lumaShift) & 0xff, c = (words >> chromaShift) & 0xff;
-    const Words8 yOut = div255(Words8(a * luma)) + div255(Words8(y * (255 - a)));
-    const Words8 sum4 = pair << 1, cAlpha = meanAlpha8(sum4);
-    const Words8 cOut = scaledBySum(sum4, chromaCode, cAlpha) + div255(Words8(c * (255 - cAlpha)));
-    const Words8 out = (yOut << lumaShift) | (cOut << chromaShift);
-    __builtin_memcpy(bytes, &out, 16);
-}
-
-} // namespace
+using namespace sink_steps;
 
 void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
@@ -190,7 +69,7 @@ inline void FrameCoverageSink::addChromaGroups(int y, int chromaRow, Interval gr
     intervals_.push_back(groups);
 }
 
-bool FrameCoverageSink::blendShortPacked(uint8_t *row, const CoverageRun &run) const
+inline bool FrameCoverageSink::blendShortPacked(uint8_t *row, const CoverageRun &run) const
 {
     // One window from the run's first macropixel, if the run fits in it and its four macropixels are whole ones
     // of the row.
@@ -203,7 +82,7 @@ bool FrameCoverageSink::blendShortPacked(uint8_t *row, const CoverageRun &run) c
     return true;
 }
 
-bool FrameCoverageSink::blendShortYuv(uint8_t *row, int y, const CoverageRun &run)
+inline bool FrameCoverageSink::blendShortYuv(uint8_t *row, int y, const CoverageRun &run)
 {
     const unsigned x0 = unsigned(run.x0), count = unsigned(run.count), parity = x0 % 2;
     if (parity + count > 8 || !layout_.byteLuma || rowBytes_ - x0 < 8)
@@ -223,6 +102,39 @@ bool FrameCoverageSink::blendShortYuv(uint8_t *row, int y, const CoverageRun &ru
     __builtin_memcpy(group, &sum, 16);
     addChromaGroups(y, chromaRow, {x0 / 2, (x0 + count + 1) / 2});
     return true;
+}
+
+inline void FrameCoverageSink::blendRuns(int y, const CoverageRun *runs, size_t count, bool readAhead)
+{
+    const PlaneView &plane = frame_.planes[0];
+    uint8_t *const row = plane.data + size_t(y) * plane.stride;
+    uint8_t *const alpha = alpha_.data() + 1;
+    for (size_t i = 0; i < count; ++i) {
+        const CoverageRun &run = runs[i];
+        if (run.count <= 0)
+            continue;
+        if (readAhead && (layout_.packed422 ? blendShortPacked(row, run) : blendShortYuv(row, y, run)))
+            continue;
+        stage(run.coverage, unsigned(run.count), alpha);
+        if (layout_.packed422)
+            blendPackedRow(row, y, run.x0, alpha, run.count);
+        else if (layout_.rgb)
+            blendRgb(row + size_t(run.x0) * layout_.pixelBytes, layout_.pixelBytes, alpha, unsigned(run.count),
+                     colour_);
+        else
+            blendYuvRow(row, y, run.x0, alpha, run.count);
+    }
+}
+
+void FrameCoverageSink::row(int y, int x0, const uint8_t *coverage, int count)
+{
+    const CoverageRun run{x0, count, coverage};
+    blendRuns(y, &run, 1, false);
+}
+
+void FrameCoverageSink::rowRuns(int y, const CoverageRun *runs, size_t count)
+{
+    blendRuns(y, runs, count, true);
 }
 
 // Luma (or GREY) and planar or semi-planar chroma of one row() call.
