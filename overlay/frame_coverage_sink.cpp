@@ -33,7 +33,7 @@ FrameCoverageSink::Layout FrameCoverageSink::layoutOf(const PixelFormatInfo &for
         layout.vSub = format.vSubSampling;
         layout.packed422 = layout.vSub == 1 && layout.cbPlane == 0;
         const bool sideBySide = layout.cbOffset + 1 == layout.crOffset || layout.crOffset + 1 == layout.cbOffset;
-        if (layout.vSub == 2 && layout.chromaStep == 2 && layout.cbPlane == layout.crPlane && sideBySide)
+        if (layout.chromaStep == 2 && layout.cbPlane == layout.crPlane && sideBySide)
             layout.pairOffset = std::min(layout.cbOffset, layout.crOffset);
     }
     return layout;

@@ -44,7 +44,7 @@ private:
         unsigned chromaStep = 0;               // bytes between chroma groups in the Cb/Cr plane(s)
         unsigned cbPlane = 0, crPlane = 0, cbOffset = 0, crOffset = 0;
         unsigned vSub = 1;              // luma rows per chroma row
-        unsigned pairOffset = kNoPairs; // NV12/NV21: offset of a group's first chroma byte (Cb and Cr side by side)
+        unsigned pairOffset = kNoPairs; // NV12/NV21/NV16: offset of a group's first chroma byte (Cb, Cr side by side)
         unsigned pixelBytes = 0;        // RGB: bytes per pixel
     };
 
@@ -85,6 +85,8 @@ private:
     void blendChromaRange(unsigned chromaRow, Interval interval);
     // The bits by which a chroma row's opacity sums scale to four pixels' worth (2 - its luma rows).
     unsigned chromaShift(unsigned chromaRow) const;
+    // NV12/NV21/NV16: the first Cb/Cr pair of a chroma row.
+    uint8_t *pairRow(unsigned chromaRow) const;
 
     // The pixel loops, in 16-bit vector lanes (frame_coverage_sink_kernels.cpp; blendChroma with the chroma
     // bookkeeping in frame_coverage_sink_chroma.cpp).
@@ -96,9 +98,9 @@ private:
                          const ItemColour &colour);
     // alpha is staged (see stage()); sums has eight groups of slack past the last.
     static void accumulateAlpha(uint16_t *sums, unsigned x0, const uint8_t *alpha, unsigned count);
-    // count groups from cb/cr; room: groups of the chroma row from there.
-    static void blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count, unsigned room,
-                            unsigned shift, const ItemColour &colour);
+    // count groups from cb/cr, Cb and Cr samples `step` bytes apart (planar and packed chroma).
+    static void blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count, unsigned shift,
+                            const ItemColour &colour);
 
     const PixelFormatInfo *format_;
     Colorimetry colorimetry_;

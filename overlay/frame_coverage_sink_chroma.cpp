@@ -77,15 +77,12 @@ void chromaInterleaved(uint8_t *pairs, uint16_t *sums, unsigned count, unsigned 
 } // namespace
 
 void FrameCoverageSink::blendChroma(uint8_t *cb, uint8_t *cr, unsigned step, uint16_t *sums, unsigned count,
-                                    unsigned room, unsigned shift, const ItemColour &colour)
+                                    unsigned shift, const ItemColour &colour)
 {
     // Packed 4:2:2 keeps Cb and Cr in one plane, 2 bytes apart: the loops never write the same byte through both.
+    // (Cb and Cr side by side, NV12/NV21/NV16, go to chromaInterleaved: blendChromaRange.)
     if (step == 1)
         chromaLoop<1>(cb, cr, sums, count, shift, colour.cb, colour.cr);
-    else if (step == 2 && cr == cb + 1)
-        chromaInterleaved(cb, sums, count, room, shift, colour.cb, colour.cr);
-    else if (step == 2 && cb == cr + 1)
-        chromaInterleaved(cr, sums, count, room, shift, colour.cr, colour.cb);
     else if (step == 2)
         chromaLoop<2>(cb, cr, sums, count, shift, colour.cb, colour.cr);
     else
@@ -99,16 +96,20 @@ inline unsigned FrameCoverageSink::chromaShift(unsigned chromaRow) const
     return 2 - std::min(layout_.vSub, frame_.height - chromaRow * layout_.vSub);
 }
 
-// The usual NV12/NV21 interval, a thin line's few groups away from the right edge, in one step, inline; any other
+inline uint8_t *FrameCoverageSink::pairRow(unsigned chromaRow) const
+{
+    const PlaneView &plane = frame_.planes[layout_.cbPlane];
+    return plane.data + size_t(chromaRow) * plane.stride + layout_.pairOffset;
+}
+
+// The usual NV12/NV21/NV16 interval, a thin line's few groups away from the right edge, in one step, inline; any other
 // by blendChromaRange.
 inline void FrameCoverageSink::blendChromaInterval(unsigned chromaRow, Interval interval)
 {
     if (layout_.pairOffset == kNoPairs || interval.g1 - interval.g0 >= 8 || interval.g0 + 8 > frame_.width / 2)
         return blendChromaRange(chromaRow, interval);
-    const PlaneView &plane = frame_.planes[layout_.cbPlane];
-    uint8_t *pairs = plane.data + size_t(chromaRow) * plane.stride + layout_.pairOffset + 2 * interval.g0;
-    blendFewPairs(pairs, alphaSums_.data() + interval.g0, interval.g1 - interval.g0, chromaShift(chromaRow),
-                  colour_.pairCodes[0], colour_.pairCodes[1]);
+    blendFewPairs(pairRow(chromaRow) + 2 * interval.g0, alphaSums_.data() + interval.g0, interval.g1 - interval.g0,
+                  chromaShift(chromaRow), colour_.pairCodes[0], colour_.pairCodes[1]);
 }
 
 void FrameCoverageSink::flushChroma()
@@ -151,16 +152,24 @@ void FrameCoverageSink::blendLastRowGroups(unsigned chromaRow, Interval groups)
 void FrameCoverageSink::blendChromaRange(unsigned chromaRow, Interval interval)
 {
     const unsigned shift = chromaShift(chromaRow);
+    uint16_t *sums = alphaSums_.data() + interval.g0;
+    const bool oddEdge = frame_.width % 2 == 1 && interval.g1 == (frame_.width + 1) / 2;
+    const unsigned whole = interval.g1 - interval.g0 - (oddEdge ? 1 : 0), room = (frame_.width + 1) / 2 - interval.g0;
+    if (layout_.pairOffset != kNoPairs) {
+        uint8_t *pairs = pairRow(chromaRow) + 2 * interval.g0;
+        const unsigned first = colour_.pairCodes[0], second = colour_.pairCodes[1];
+        chromaInterleaved(pairs, sums, whole, room, shift, first, second);
+        if (oddEdge)
+            chromaInterleaved(pairs + 2 * whole, sums + whole, 1, 1, shift + 1, first, second);
+        return;
+    }
     const PlaneView &cbPlane = frame_.planes[layout_.cbPlane], &crPlane = frame_.planes[layout_.crPlane];
     const unsigned step = layout_.chromaStep;
     uint8_t *cb = cbPlane.data + size_t(chromaRow) * cbPlane.stride + layout_.cbOffset + interval.g0 * step;
     uint8_t *cr = crPlane.data + size_t(chromaRow) * crPlane.stride + layout_.crOffset + interval.g0 * step;
-    uint16_t *sums = alphaSums_.data() + interval.g0;
-    const bool oddEdge = frame_.width % 2 == 1 && interval.g1 == (frame_.width + 1) / 2;
-    const unsigned whole = interval.g1 - interval.g0 - (oddEdge ? 1 : 0), room = (frame_.width + 1) / 2 - interval.g0;
-    blendChroma(cb, cr, step, sums, whole, room, shift, colour_);
+    blendChroma(cb, cr, step, sums, whole, shift, colour_);
     if (oddEdge)
-        blendChroma(cb + whole * step, cr + whole * step, step, sums + whole, 1, 1, shift + 1, colour_);
+        blendChroma(cb + whole * step, cr + whole * step, step, sums + whole, 1, shift + 1, colour_);
 }
 
 } // namespace overlayd

@@ -41,11 +41,9 @@ void FrameCoverageSink::accumulateAlpha(uint16_t *sums, unsigned x0, const uint8
     const uint8_t *pixels = alpha - x0 % 2;
     uint16_t *group = sums + x0 / 2;
     for (unsigned i = 0; i < x0 % 2 + count; i += 16, pixels += 16, group += 8) {
-        Words8 pairs, sum;
+        Words8 pairs;
         __builtin_memcpy(&pairs, pixels, 16);
-        __builtin_memcpy(&sum, group, 16);
-        sum += (pairs & 0xff) + (pairs >> 8);
-        __builtin_memcpy(group, &sum, 16);
+        addGroupSums(group, pairs);
     }
 }
 
@@ -94,12 +92,7 @@ inline bool FrameCoverageSink::blendShortYuv(uint8_t *row, int y, const Coverage
     const int chromaRow = enterChromaRow(y);
     // The run's (at most four) groups' opacity sums, added in one step: a 16-bit word of the bytes from the first
     // group's first pixel holds one group's two opacities.
-    const Words8 pairs = (Words8)Longs2{alpha << (8 * parity), 0};
-    uint16_t *const group = alphaSums_.data() + x0 / 2;
-    Words8 sum;
-    __builtin_memcpy(&sum, group, 16);
-    sum += (pairs & 0xff) + (pairs >> 8);
-    __builtin_memcpy(group, &sum, 16);
+    addGroupSums(alphaSums_.data() + x0 / 2, (Words8)Longs2{alpha << (8 * parity), 0});
     addChromaGroups(y, chromaRow, {x0 / 2, (x0 + count + 1) / 2});
     return true;
 }
@@ -141,7 +134,7 @@ void FrameCoverageSink::rowRuns(int y, const CoverageRun *runs, size_t count)
 void FrameCoverageSink::blendYuvRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
     const size_t start = size_t(x0) * layout_.lumaStep;
-    if (layout_.lumaStep == 1 && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes, inline
+    if (layout_.byteLuma && count <= 8 && rowBytes_ - start >= 8) // the usual thin-line run: 8 lanes, inline
         lumaEight(row + start, eightOpacities(alpha), colour_.luma);
     else
         blendLuma(row + start, layout_, alpha, unsigned(count), colour_.luma, rowBytes_ - start);

@@ -82,6 +82,15 @@ inline uint64_t opacities(uint64_t coverage, unsigned alpha)
     return coverage;
 }
 
+// Adds eight groups' opacity sums from sixteen opacities, a group's two pixels in one 16-bit word (low byte first).
+inline void addGroupSums(uint16_t *groups, Words8 pairs)
+{
+    Words8 sum;
+    __builtin_memcpy(&sum, groups, 16);
+    sum += (pairs & 0xff) + (pairs >> 8);
+    __builtin_memcpy(groups, &sum, 16);
+}
+
 // Eight bytes of a word as 16-bit lanes.
 inline Words8 wordLanes(uint64_t bytes)
 {
@@ -111,8 +120,8 @@ void rgbLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned 
 // Each 16-bit word of packed 4:2:2 is one pixel's luma byte and one chroma byte of its macropixel (YUYV: Y0 Cb,
 // Y1 Cr, ...), so a window of four macropixels splits into eight luma lanes and eight chroma lanes by shifts. Luma
 // takes over()'s rule, chroma chromaLoop's with the macropixel's two opacities summed (shift 1): byte for byte the
-// two-pass result. a: the opacities of the window's eight pixels.
-// packedChroma: the chroma lanes' codes at full opacity.
+// two-pass result. a: the opacities of the window's eight pixels; packedChroma: the chroma lanes' codes at full
+// opacity.
 [[gnu::always_inline]] inline void blendPackedWindow(uint8_t *bytes, Words8 a, const uint16_t *packedChroma,
                                                      unsigned lumaCode, unsigned lumaOffset)
 {
