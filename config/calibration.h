@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
+#include "base/result.h"
 #include "projection/distortion.h"
 #include "projection/projection.h"
-#include "projection/result.h"
 
 namespace overlayd {
 

@@ -8,11 +8,11 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include "base/result.h"
 #include "projection/camera.h"
 #include "projection/distortion.h"
 #include "projection/pose.h"
 #include "projection/projection.h"
-#include "projection/result.h"
 #include "projection/viewport.h"
 
 namespace overlayd {

@@ -5,15 +5,14 @@
 #include <string_view>
 #include <vector>
 
+#include "base/logger.h"
+#include "base/result.h"
 #include "config/camera_spec.h"
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
-#include "overlay/annotation.h"
-#include "projection/result.h"
+#include "overlay/shapes/annotation.h"
 
 namespace overlayd {
-
-enum class LogLevel { Debug, Info, Notice, Warning, Error };
 
 struct DaemonSettings {
     LogLevel logLevel = LogLevel::Info;

@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "drivers/frame.h"
-#include "drivers/pixel_format.h"
+#include "media/frame.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::config {
 

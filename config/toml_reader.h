@@ -16,7 +16,7 @@
 #include <toml++/toml.h>
 
 #include "config/problems.h"
-#include "overlay/overlay_layer.h"
+#include "media/rgba.h"
 
 namespace overlayd::config {
 

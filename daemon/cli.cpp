@@ -3,7 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "daemon/logger.h"
+#include "base/logger.h"
 
 namespace overlayd {
 

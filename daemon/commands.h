@@ -8,9 +8,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "base/logger.h"
 #include "config/daemon_config.h"
 #include "daemon/daemon.h"
-#include "daemon/logger.h"
 #include "projection/camera.h"
 
 namespace overlayd {

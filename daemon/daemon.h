@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "base/logger.h"
 #include "config/daemon_config.h"
 #include "daemon/backoff.h"
 #include "daemon/event_loop.h"
-#include "daemon/logger.h"
 #include "daemon/no_signal.h"
 #include "daemon/pipeline.h"
 #include "daemon/stages.h"

@@ -1,4 +1,4 @@
-// The event loop's kernel objects: epoll, timerfd and signalfd, each owned by a ScopedFd.
+// The event loop's kernel objects: epoll, timerfd and signalfd, each owned by a UniqueFd.
 #include "daemon/event_loop.h"
 
 #include <cerrno>
@@ -27,28 +27,12 @@ timespec toTimespec(std::chrono::nanoseconds duration)
 
 } // namespace
 
-ScopedFd &ScopedFd::operator=(ScopedFd &&other) noexcept
-{
-    if (this != &other) {
-        if (fd_ >= 0)
-            ::close(fd_);
-        fd_ = std::exchange(other.fd_, -1);
-    }
-    return *this;
-}
-
-ScopedFd::~ScopedFd()
-{
-    if (fd_ >= 0)
-        ::close(fd_);
-}
-
 Result<Timer> Timer::create()
 {
     const int fd = ::timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC);
     if (fd < 0)
         return systemError("timerfd_create");
-    return Timer(ScopedFd(fd));
+    return Timer(UniqueFd(fd));
 }
 
 Status Timer::arm(std::chrono::nanoseconds first, std::chrono::nanoseconds period)
@@ -86,7 +70,7 @@ Result<SignalReader> SignalReader::create()
     const int fd = ::signalfd(-1, &signals, SFD_NONBLOCK | SFD_CLOEXEC);
     if (fd < 0)
         return systemError("signalfd");
-    return SignalReader(ScopedFd(fd));
+    return SignalReader(UniqueFd(fd));
 }
 
 int SignalReader::read()
@@ -102,7 +86,7 @@ Result<EventLoop> EventLoop::create()
     const int fd = ::epoll_create1(EPOLL_CLOEXEC);
     if (fd < 0)
         return systemError("epoll_create1");
-    return EventLoop(ScopedFd(fd));
+    return EventLoop(UniqueFd(fd));
 }
 
 Status EventLoop::add(int fd, Handler handler)

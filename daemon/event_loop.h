@@ -8,29 +8,10 @@
 #include <map>
 #include <utility>
 
-#include "projection/result.h"
+#include "base/result.h"
+#include "base/unique_fd.h"
 
 namespace overlayd {
-
-// Owns one file descriptor; closes it on destruction. Move-only.
-class ScopedFd
-{
-public:
-    ScopedFd() = default;
-    explicit ScopedFd(int fd) : fd_(fd) {}
-    ScopedFd(ScopedFd &&other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
-    ScopedFd &operator=(ScopedFd &&other) noexcept;
-    ScopedFd(const ScopedFd &) = delete;
-    ScopedFd &operator=(const ScopedFd &) = delete;
-    ~ScopedFd();
-
-    int get() const { return fd_; }
-    bool valid() const { return fd_ >= 0; }
-    [[nodiscard]] int release() { return std::exchange(fd_, -1); }
-
-private:
-    int fd_ = -1;
-};
 
 // A CLOCK_MONOTONIC timerfd. Not armed until arm() is called.
 class Timer
@@ -46,8 +27,8 @@ public:
     int fd() const { return fd_.get(); }
 
 private:
-    explicit Timer(ScopedFd fd) : fd_(std::move(fd)) {}
-    ScopedFd fd_;
+    explicit Timer(UniqueFd fd) : fd_(std::move(fd)) {}
+    UniqueFd fd_;
 };
 
 // SIGTERM, SIGINT and SIGHUP through a signalfd: they are blocked for the whole process (before any thread starts)
@@ -61,8 +42,8 @@ public:
     int fd() const { return fd_.get(); }
 
 private:
-    explicit SignalReader(ScopedFd fd) : fd_(std::move(fd)) {}
-    ScopedFd fd_;
+    explicit SignalReader(UniqueFd fd) : fd_(std::move(fd)) {}
+    UniqueFd fd_;
 };
 
 class EventLoop
@@ -83,8 +64,8 @@ public:
     bool stopped() const { return stopped_; }
 
 private:
-    explicit EventLoop(ScopedFd epoll) : epoll_(std::move(epoll)) {}
-    ScopedFd epoll_;
+    explicit EventLoop(UniqueFd epoll) : epoll_(std::move(epoll)) {}
+    UniqueFd epoll_;
     std::map<int, Handler> handlers_;
     bool stopped_ = false;
 };

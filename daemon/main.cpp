@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <exception>
 
+#include "base/logger.h"
 #include "daemon/cli.h"
 #include "daemon/commands.h"
-#include "daemon/logger.h"
 
 int main(int argc, char **argv)
 {

@@ -6,8 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "overlay/native_layer.h"
-#include "overlay/overlay_layer.h"
+#include "overlay/blend/native_layer.h"
+#include "overlay/raster/overlay_layer.h"
 
 namespace overlayd {
 

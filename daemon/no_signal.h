@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "drivers/frame_buffer.h"
-#include "drivers/stream.h"
-#include "projection/result.h"
+#include "base/result.h"
+#include "media/frame_buffer.h"
+#include "media/stream.h"
 
 namespace overlayd {
 

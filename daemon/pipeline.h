@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/logger.h"
+#include "base/logger.h"
 #include "daemon/sink_worker.h"
 #include "overlay/overlay_renderer.h"
 

@@ -13,9 +13,9 @@
 #include <thread>
 #include <vector>
 
-#include "daemon/logger.h"
-#include "drivers/frame_buffer.h"
+#include "base/logger.h"
 #include "drivers/sink_options.h"
+#include "media/frame_buffer.h"
 
 namespace overlayd {
 

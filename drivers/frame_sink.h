@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
-#include "drivers/stream.h"
-#include "projection/result.h"
+#include "base/result.h"
+#include "media/stream.h"
 
 namespace overlayd {
 

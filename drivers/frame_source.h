@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "drivers/stream.h"
-#include "projection/result.h"
+#include "base/result.h"
+#include "media/stream.h"
 
 namespace overlayd {
 

@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
+#include "base/result.h"
 #include "drivers/frame_sink.h"
-#include "projection/result.h"
 
 namespace overlayd {
 

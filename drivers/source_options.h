@@ -6,10 +6,10 @@
 #include <optional>
 #include <string>
 
-#include "drivers/colorimetry.h"
+#include "base/result.h"
 #include "drivers/frame_source.h"
+#include "media/colorimetry.h"
 #include "projection/camera.h"
-#include "projection/result.h"
 
 namespace overlayd {
 

@@ -1,8 +1,8 @@
 // OverlayRenderer::create: validates the scene, the camera and the stream format, then renders once.
 #include "overlay/overlay_renderer.h"
 
-#include "overlay/scene_checks.h"
 #include "overlay/scene_renderer.h"
+#include "overlay/shapes/scene_checks.h"
 
 namespace overlayd {
 

@@ -8,11 +8,11 @@
 #include <string_view>
 #include <vector>
 
-#include "drivers/frame.h"
-#include "drivers/stream.h"
-#include "overlay/annotation.h"
+#include "base/result.h"
+#include "media/frame.h"
+#include "media/stream.h"
+#include "overlay/shapes/annotation.h"
 #include "projection/camera.h"
-#include "projection/result.h"
 
 namespace overlayd {
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "overlay/shape_builder.h"
-#include "overlay/text_tokens.h"
+#include "overlay/shapes/shape_builder.h"
+#include "overlay/shapes/text_tokens.h"
 
 namespace overlayd {
 

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "overlay/frame_coverage_sink.h"
-#include "overlay/native_layer.h"
+#include "overlay/blend/frame_coverage_sink.h"
+#include "overlay/blend/native_layer.h"
 #include "overlay/overlay_renderer.h"
-#include "overlay/rasterizer.h"
-#include "overlay/text_renderer.h"
+#include "overlay/raster/rasterizer.h"
+#include "overlay/raster/text_renderer.h"
 
 namespace overlayd {
 

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "base/result.h"
 #include "clip.h"
 #include "distortion.h"
 #include "geometry.h"
@@ -21,7 +22,6 @@
 #include "polylines.h"
 #include "pose.h"
 #include "projection.h"
-#include "result.h"
 #include "viewport.h"
 
 namespace overlayd {

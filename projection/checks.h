@@ -7,7 +7,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "result.h"
+#include "base/result.h"
 
 namespace overlayd::checks {
 

@@ -5,7 +5,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "result.h"
+#include "base/result.h"
 
 namespace overlayd {
 

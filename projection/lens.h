@@ -5,10 +5,10 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
+#include "base/result.h"
 #include "clip.h"
 #include "distortion.h"
 #include "projection.h"
-#include "result.h"
 
 namespace overlayd {
 

@@ -7,7 +7,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
-#include "result.h"
+#include "base/result.h"
 
 namespace overlayd {
 

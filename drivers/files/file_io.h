@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "projection/result.h"
+#include "base/result.h"
 
 namespace overlayd {
 

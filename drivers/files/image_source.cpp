@@ -7,8 +7,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "drivers/convert/frame_convert.h"
 #include "drivers/files/path_pattern.h"
+#include "media/convert/frame_convert.h"
 
 namespace overlayd {
 

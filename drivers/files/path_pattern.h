@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "projection/result.h"
+#include "base/result.h"
 
 namespace overlayd {
 

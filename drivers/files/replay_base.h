@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "drivers/pool/frame_pool.h"
 #include "drivers/source_options.h"
+#include "media/frame_pool.h"
 
 namespace overlayd {
 

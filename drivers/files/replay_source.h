@@ -3,8 +3,8 @@
 
 #include <memory>
 
+#include "base/result.h"
 #include "drivers/source_options.h"
-#include "projection/result.h"
 
 namespace overlayd {
 

@@ -9,9 +9,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "drivers/convert/frame_convert.h"
 #include "drivers/files/file_io.h"
 #include "drivers/files/path_pattern.h"
+#include "media/convert/frame_convert.h"
 
 namespace overlayd {
 

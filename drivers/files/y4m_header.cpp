@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "drivers/frame.h"
+#include "media/frame.h"
 
 namespace overlayd {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "drivers/colorimetry.h"
-#include "projection/result.h"
+#include "base/result.h"
+#include "media/colorimetry.h"
 
 namespace overlayd {
 

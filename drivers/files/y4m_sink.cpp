@@ -2,9 +2,9 @@
 // planes, YUYV -> 4:2:2 planes) and RGB is encoded at 4:4:4, so that every format writes a file ffmpeg reads.
 #include "drivers/files/file_sinks.h"
 
-#include "drivers/convert/frame_convert.h"
 #include "drivers/files/file_io.h"
 #include "drivers/files/y4m_header.h"
+#include "media/convert/frame_convert.h"
 
 namespace overlayd {
 

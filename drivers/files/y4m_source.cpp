@@ -2,9 +2,9 @@
 // format in the table, so it is converted to the configured pixel format (chroma averaged per macropixel).
 #include "drivers/files/replay_base.h"
 
-#include "drivers/convert/frame_convert.h"
 #include "drivers/files/file_io.h"
 #include "drivers/files/y4m_header.h"
+#include "media/convert/frame_convert.h"
 
 namespace overlayd {
 

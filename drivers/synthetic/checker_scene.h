@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "drivers/convert/images.h"
+#include "media/convert/images.h"
 #include "projection/camera.h"
 
 namespace overlayd {

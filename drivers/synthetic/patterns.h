@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "drivers/convert/images.h"
+#include "media/convert/images.h"
 
 namespace overlayd {
 

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <optional>
 
-#include "drivers/convert/frame_convert.h"
-#include "drivers/pool/frame_pool.h"
 #include "drivers/synthetic/checker_scene.h"
 #include "drivers/synthetic/patterns.h"
+#include "media/convert/frame_convert.h"
+#include "media/frame_pool.h"
 
 namespace overlayd {
 

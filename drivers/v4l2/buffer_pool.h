@@ -8,11 +8,11 @@
 #include <optional>
 #include <vector>
 
-#include "drivers/frame.h"
+#include "base/unique_fd.h"
 #include "drivers/v4l2/frame_split.h"
 #include "drivers/v4l2/mapped_buffer.h"
-#include "drivers/v4l2/unique_fd.h"
 #include "drivers/v4l2/video_device.h"
+#include "media/frame.h"
 
 namespace overlayd::v4l2 {
 

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "drivers/frame_buffer.h"
 #include "drivers/frame_source.h"
 #include "drivers/source_options.h"
 #include "drivers/v4l2/buffer_pool.h"
 #include "drivers/v4l2/lease_hub.h"
 #include "drivers/v4l2/mjpeg_decoder.h"
 #include "drivers/v4l2/video_device.h"
+#include "media/frame_buffer.h"
 
 namespace overlayd::v4l2 {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "drivers/pixel_format.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::v4l2 {
 

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <span>
 
-#include "drivers/frame.h"
+#include "base/result.h"
 #include "drivers/v4l2/device_format.h"
-#include "projection/result.h"
+#include "media/frame.h"
 
 namespace overlayd::v4l2 {
 

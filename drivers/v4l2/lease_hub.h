@@ -5,9 +5,9 @@
 #include <optional>
 #include <vector>
 
+#include "base/result.h"
+#include "base/unique_fd.h"
 #include "drivers/v4l2/buffer_pool.h"
-#include "drivers/v4l2/unique_fd.h"
-#include "projection/result.h"
 
 namespace overlayd::v4l2 {
 

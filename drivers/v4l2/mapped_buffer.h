@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <utility>
 
+#include "base/result.h"
 #include "drivers/v4l2/v4l2_syscalls.h"
-#include "projection/result.h"
 
 namespace overlayd::v4l2 {
 

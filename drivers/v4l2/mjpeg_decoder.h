@@ -5,9 +5,9 @@
 #include <memory>
 #include <span>
 
-#include "drivers/frame.h"
-#include "drivers/pixel_format.h"
-#include "projection/result.h"
+#include "base/result.h"
+#include "media/frame.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::v4l2 {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "drivers/pixel_format.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::v4l2 {
 

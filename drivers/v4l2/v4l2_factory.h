@@ -5,11 +5,11 @@
 #include <memory>
 #include <string>
 
+#include "base/result.h"
 #include "drivers/frame_sink.h"
 #include "drivers/frame_source.h"
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
-#include "projection/result.h"
 
 namespace overlayd {
 

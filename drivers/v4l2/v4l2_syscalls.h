@@ -8,17 +8,19 @@
 #include <string>
 #include <vector>
 
+#include "base/unique_fd.h"
+
 namespace overlayd::v4l2 {
 
 // Every call returns -errno on failure (as the raw system calls do), so callers never read the global errno and a
 // fake can script any error. Modelled on sdbus-c++'s ISdBus seam.
-class Syscalls
+class Syscalls : public FdCloser
 {
 public:
     virtual ~Syscalls() = default;
 
     virtual int open(const std::string &path, int flags) = 0; // fd or -errno
-    virtual int close(int fd) = 0;
+    int close(int fd) override = 0;
     virtual int ioctl(int fd, unsigned long request, void *argument) = 0; // 0 (or a non-negative value) or -errno
     // 0 and *address set, or -errno.
     virtual int mmap(size_t length, int prot, int flags, int fd, off_t offset, void **address) = 0;

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
+#include "base/unique_fd.h"
 #include "drivers/v4l2/device_format.h"
 #include "drivers/v4l2/negotiation.h"
-#include "drivers/v4l2/unique_fd.h"
 #include "drivers/v4l2/v4l2_syscalls.h"
-#include "projection/result.h"
 
 namespace overlayd::v4l2 {
 

@@ -14,7 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cold_frames.h"
-#include "overlay/native_layer.h"
+#include "overlay/blend/native_layer.h"
 
 namespace overlayd {
 namespace {

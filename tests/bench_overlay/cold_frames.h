@@ -9,8 +9,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "drivers/frame.h"
-#include "drivers/pixel_format.h"
+#include "media/frame.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::bench {
 

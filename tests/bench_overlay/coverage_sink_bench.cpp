@@ -12,9 +12,9 @@
 #include <benchmark/benchmark.h>
 
 #include "cold_frames.h"
-#include "overlay/coverage.h"
-#include "overlay/frame_coverage_sink.h"
-#include "overlay/native_layer.h"
+#include "overlay/blend/frame_coverage_sink.h"
+#include "overlay/blend/native_layer.h"
+#include "overlay/raster/coverage.h"
 
 namespace overlayd {
 namespace {

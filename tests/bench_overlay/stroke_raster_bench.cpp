@@ -17,7 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cold_frames.h"
-#include "overlay/stroke_raster.h"
+#include "overlay/raster/stroke_raster.h"
 #include "projection/camera.h"
 
 namespace overlayd {

@@ -12,7 +12,7 @@
 
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
-#include "drivers/frame_buffer.h"
+#include "media/frame_buffer.h"
 #include "overlay/overlay_renderer.h"
 
 namespace overlayd::test {

@@ -1,5 +1,5 @@
 // Logger: journald priority prefixes, readable timestamps otherwise, level filtering and the repeat limit.
-#include "daemon/logger.h"
+#include "base/logger.h"
 
 #include <regex>
 #include <string>

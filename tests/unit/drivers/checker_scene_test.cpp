@@ -4,9 +4,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "drivers/convert/frame_convert.h"
 #include "drivers/source_options.h"
 #include "drivers/synthetic/checker_scene.h"
+#include "media/convert/frame_convert.h"
 #include "test_util.h"
 
 namespace overlayd {

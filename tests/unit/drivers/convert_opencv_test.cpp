@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "drivers/convert/frame_convert.h"
-#include "drivers/convert/packing.h"
+#include "media/convert/frame_convert.h"
+#include "media/convert/packing.h"
 #include "test_util.h"
 
 namespace overlayd {

@@ -2,9 +2,9 @@
 // colour-bar code values every broadcast reference lists (hand-checked: e.g. BT.709 limited red is 63, 102, 240).
 #include <gtest/gtest.h>
 
-#include "drivers/convert/colour_convert.h"
-#include "drivers/convert/frame_convert.h"
-#include "drivers/convert/packing.h"
+#include "media/convert/colour_convert.h"
+#include "media/convert/frame_convert.h"
+#include "media/convert/packing.h"
 #include "test_util.h"
 
 namespace overlayd {

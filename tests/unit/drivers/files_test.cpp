@@ -6,10 +6,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "drivers/convert/frame_convert.h"
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
 #include "drivers/synthetic/patterns.h"
+#include "media/convert/frame_convert.h"
 #include "test_util.h"
 
 namespace overlayd {

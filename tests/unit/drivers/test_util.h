@@ -8,9 +8,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "drivers/convert/images.h"
-#include "drivers/frame_buffer.h"
-#include "drivers/stream.h"
+#include "media/convert/images.h"
+#include "media/frame_buffer.h"
+#include "media/stream.h"
 
 namespace overlayd::test {
 

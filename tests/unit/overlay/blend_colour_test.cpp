@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "overlay/native_layer.h"
+#include "overlay/blend/native_layer.h"
 #include "test_frames.h"
 
 namespace overlayd {

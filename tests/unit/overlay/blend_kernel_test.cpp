@@ -1,5 +1,5 @@
 // The blend arithmetic, exhaustively: every frame value under every alpha and premultiplied colour.
-#include "overlay/blend_kernel.h"
+#include "overlay/blend/blend_kernel.h"
 
 #include <cmath>
 #include <vector>

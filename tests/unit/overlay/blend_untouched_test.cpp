@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "overlay/native_layer.h"
+#include "overlay/blend/native_layer.h"
 #include "test_frames.h"
 
 namespace overlayd {

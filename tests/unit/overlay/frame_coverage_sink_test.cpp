@@ -1,6 +1,6 @@
 // FrameCoverageSink against the cached path (compositeCoverage -> NativeLayer::convert -> blend) on random coverage
 // rows in every format, against OpenCV's converters for colour, and byte-compared for what it must not touch.
-#include "overlay/frame_coverage_sink.h"
+#include "overlay/blend/frame_coverage_sink.h"
 
 #include <algorithm>
 #include <bit>
@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "overlay/coverage.h"
-#include "overlay/native_layer.h"
+#include "overlay/blend/native_layer.h"
+#include "overlay/raster/coverage.h"
 #include "test_frames.h"
 
 namespace overlayd {

@@ -1,10 +1,10 @@
 // Frame layouts (tight, padded, odd) and the frame check that guards every blend; V4L2 colorimetry defaults.
-#include "drivers/frame.h"
+#include "media/frame.h"
 
 #include <gtest/gtest.h>
 #include <linux/videodev2.h>
 
-#include "drivers/colorimetry.h"
+#include "media/colorimetry.h"
 
 namespace overlayd {
 namespace {

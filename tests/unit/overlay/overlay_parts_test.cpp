@@ -7,10 +7,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "overlay/dash.h"
-#include "overlay/guide_lines.h"
-#include "overlay/rasterizer.h"
-#include "overlay/text_tokens.h"
+#include "overlay/raster/dash.h"
+#include "overlay/raster/rasterizer.h"
+#include "overlay/shapes/guide_lines.h"
+#include "overlay/shapes/text_tokens.h"
 #include "scene_fixture.h"
 
 namespace overlayd {

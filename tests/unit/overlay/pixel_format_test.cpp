@@ -1,5 +1,5 @@
 // The pixel-format table against the V4L2 UAPI: fourccs, byte orders, bits per pixel, strides of odd widths.
-#include "drivers/pixel_format.h"
+#include "media/pixel_format.h"
 
 #include <set>
 #include <string>

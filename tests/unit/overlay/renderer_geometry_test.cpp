@@ -7,7 +7,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "overlay/shape_builder.h"
+#include "overlay/shapes/shape_builder.h"
 #include "scene_fixture.h"
 
 namespace overlayd {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "overlay/scene_checks.h"
+#include "overlay/shapes/scene_checks.h"
 
 namespace overlayd::test {
 

@@ -6,8 +6,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "overlay/annotation.h"
 #include "overlay/scene_renderer.h"
+#include "overlay/shapes/annotation.h"
 #include "projection/camera.h"
 #include "test_frames.h"
 

@@ -1,6 +1,6 @@
 // StrokeRasterizer against independent references: OpenCV's non-anti-aliased fills at 16x resolution averaged down
 // (the exact covered area), cv::pointPolygonTest for pixel centres, and hand-computed widths and end positions.
-#include "overlay/stroke_raster.h"
+#include "overlay/raster/stroke_raster.h"
 
 #include <cmath>
 #include <limits>

@@ -7,9 +7,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "drivers/colorimetry.h"
-#include "drivers/frame.h"
-#include "drivers/pixel_format.h"
+#include "media/colorimetry.h"
+#include "media/frame.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::test {
 

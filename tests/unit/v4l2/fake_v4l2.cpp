@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "drivers/pixel_format.h"
 #include "drivers/v4l2/device_format.h"
+#include "media/pixel_format.h"
 
 namespace overlayd::v4l2::test {
 

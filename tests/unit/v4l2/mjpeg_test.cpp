@@ -5,8 +5,8 @@
 #include <opencv2/imgproc.hpp>
 #include <turbojpeg.h>
 
-#include "drivers/frame_buffer.h"
 #include "drivers/v4l2/mjpeg_decoder.h"
+#include "media/frame_buffer.h"
 #include "test_devices.h"
 
 namespace overlayd::v4l2::test {

@@ -1,9 +1,9 @@
 // V4L2 output: format set to the stream's, stride-aware copies into the driver's buffers, drops, errors.
 #include <gtest/gtest.h>
 
-#include "drivers/frame_buffer.h"
 #include "drivers/v4l2/output_sink.h"
 #include "fake_v4l2.h"
+#include "media/frame_buffer.h"
 
 namespace overlayd::v4l2::test {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "drivers/frame_buffer.h"
+#include "media/frame_buffer.h"
 #include "zero_copy_rig.h"
 
 namespace overlayd::v4l2::test {

@@ -1,0 +1,80 @@
+// What flows between a source, the blender and the sinks: the stream's format, each frame's metadata, and the
+// lease through which a source lends a frame's memory to the pipeline.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+
+#include "media/colorimetry.h"
+#include "media/frame.h"
+#include "media/pixel_format.h"
+
+namespace overlayd {
+
+// A stream's negotiated format. stride is plane 0's bytesperline (0: rows packed); fps 0 means "as fast as
+// frames come" (replay under `overlayd render`).
+struct StreamFormat {
+    const PixelFormatInfo *format = nullptr;
+    unsigned width = 0, height = 0;
+    unsigned stride = 0;
+    Colorimetry colorimetry{};
+    double fps = 0.0;
+    // Frames are leases of this many dmabuf-exported buffers (PlaneView::dmabufFd set); 0: no dmabuf fds. A
+    // zero-copy sink may hold up to dmabufBuffers - 2 of them, so that the source keeps two to capture into.
+    unsigned dmabufBuffers = 0;
+
+    // "1280x720 YUYV 30.0 fps", for logs and systemd STATUS=.
+    std::string describe() const;
+};
+
+struct FrameMetadata {
+    uint64_t sequence = 0;                             // counts from 0; a gap means the source dropped frames
+    std::chrono::nanoseconds timestamp{0};             // CLOCK_MONOTONIC, when the frame was captured or made
+    std::chrono::system_clock::time_point wallClock{}; // for timestamp text on the overlay
+    Colorimetry colorimetry{};
+};
+
+// A frame lent by its source. Destroying (or resetting) the lease gives the buffer back; the view stays valid
+// until then. Move-only, so exactly one owner returns it.
+class FrameLease
+{
+public:
+    FrameLease() = default;
+    FrameLease(FrameView view, FrameMetadata metadata, std::function<void()> giveBack)
+        : view_(view), metadata_(metadata), giveBack_(std::move(giveBack))
+    {}
+    FrameLease(FrameLease &&other) noexcept { *this = std::move(other); }
+    FrameLease &operator=(FrameLease &&other) noexcept
+    {
+        if (this != &other) {
+            reset();
+            view_ = other.view_;
+            metadata_ = other.metadata_;
+            giveBack_ = std::exchange(other.giveBack_, nullptr);
+        }
+        return *this;
+    }
+    FrameLease(const FrameLease &) = delete;
+    FrameLease &operator=(const FrameLease &) = delete;
+    ~FrameLease() { reset(); }
+
+    void reset()
+    {
+        if (giveBack_)
+            std::exchange(giveBack_, nullptr)();
+    }
+
+    const FrameView &view() const { return view_; }
+    const FrameMetadata &metadata() const { return metadata_; }
+    FrameMetadata &metadata() { return metadata_; }
+
+private:
+    FrameView view_{};
+    FrameMetadata metadata_{};
+    std::function<void()> giveBack_;
+};
+
+} // namespace overlayd

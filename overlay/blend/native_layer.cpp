@@ -1,0 +1,92 @@
+// NativeLayer: conversion at configure time, and the per-frame blend over its runs.
+#include "overlay/blend/native_layer.h"
+
+#include <string>
+
+#include "overlay/blend/blend_kernel.h"
+#include "overlay/blend/layer_converters.h"
+
+namespace overlayd {
+
+namespace {
+
+Status checkPlacement(const OverlayLayer &layer, const PixelFormatInfo &format, const LayerPlacement &p)
+{
+    const bool fits = p.x + layer.width() <= p.frameWidth && p.y + layer.height() <= p.frameHeight;
+    const bool aligned = p.x % format.hSubSampling == 0 && p.y % format.vSubSampling == 0;
+    const bool wholeRight = layer.width() % format.hSubSampling == 0 || p.x + layer.width() == p.frameWidth;
+    const bool wholeBottom = layer.height() % format.vSubSampling == 0 || p.y + layer.height() == p.frameHeight;
+    if (fits && aligned && wholeRight && wholeBottom)
+        return Ok{};
+    return makeError(ErrorCode::InvalidArgument,
+                     "a " + std::to_string(layer.width()) + "x" + std::to_string(layer.height()) + " layer at " +
+                         std::to_string(p.x) + "," + std::to_string(p.y) + " does not fit " + std::string(format.name) +
+                         " macropixels of a " + std::to_string(p.frameWidth) + "x" + std::to_string(p.frameHeight) +
+                         " frame");
+}
+
+} // namespace
+
+Result<NativeLayer> NativeLayer::convert(const OverlayLayer &layer, const PixelFormatInfo &format,
+                                         Colorimetry colorimetry)
+{
+    return convert(layer, format, colorimetry, {0, 0, layer.width(), layer.height()});
+}
+
+Result<NativeLayer> NativeLayer::convert(const OverlayLayer &layer, const PixelFormatInfo &format,
+                                         Colorimetry colorimetry, const LayerPlacement &placement)
+{
+    if (layer.width() == 0 || layer.height() == 0)
+        return makeError(ErrorCode::InvalidArgument, "overlay layer is empty");
+    if (Status status = checkPlacement(layer, format, placement); !status)
+        return status.error();
+    NativeLayer out(format, placement);
+    if (Status status = out.update(layer, colorimetry); !status)
+        return status.error();
+    return out;
+}
+
+Status NativeLayer::update(const OverlayLayer &layer, Colorimetry colorimetry)
+{
+    if (layer.width() + placement_.x > width_ || layer.height() + placement_.y > height_)
+        return makeError(ErrorCode::InvalidArgument, "layer does not fit the frame it was converted for");
+    runs_.clear();
+    values_.clear();
+    inverseAlpha_.clear();
+    // Covered pixels times bytes per pixel, plus whole macropixels at span ends: enough for one allocation.
+    const size_t estimate = layer.coveredPixels() * (format_->bitsPerPixel + 7) / 8 * 3 / 2 + 64 + kBlendReadAhead;
+    values_.reserve(estimate);
+    inverseAlpha_.reserve(estimate);
+    runs_.reserve(layer.spans().size() * 2);
+    layerConverter(format_->layout)(layer, *format_, YcbcrEncoder(colorimetry), *this);
+    values_.insert(values_.end(), kBlendReadAhead, 0);
+    inverseAlpha_.insert(inverseAlpha_.end(), kBlendReadAhead, 255);
+    return Ok{};
+}
+
+void NativeLayer::beginRun(unsigned plane, unsigned row, unsigned byteOffset)
+{
+    // Converters count in layer pixels; a placed layer's runs move by whole groups and whole plane rows.
+    const unsigned rowShift = placement_.y / format_->planes[plane].verticalSubSampling;
+    const unsigned byteShift = placement_.x / format_->pixelsPerGroup * format_->planes[plane].bytesPerGroup;
+    runs_.push_back({plane, row + rowShift, byteOffset + byteShift, 0, uint32_t(values_.size())});
+}
+
+Status NativeLayer::blend(const FrameView &frame) const
+{
+    if (!frame.format || frame.format->fourcc != format_->fourcc || frame.width != width_ || frame.height != height_)
+        return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " +
+                                                         std::string(format_->name) + " " + std::to_string(width_) +
+                                                         "x" + std::to_string(height_));
+    if (Status status = checkFrame(frame); !status)
+        return status;
+    blendChecked(frame);
+    return Ok{};
+}
+
+void NativeLayer::blendChecked(const FrameView &frame) const
+{
+    blendRuns(frame, runs_, values_.data(), inverseAlpha_.data());
+}
+
+} // namespace overlayd

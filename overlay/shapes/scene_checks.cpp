@@ -1,0 +1,181 @@
+// The rules each shape's numbers must follow; the message names the annotation and the value.
+#include "overlay/shapes/scene_checks.h"
+
+#include <cmath>
+#include <string>
+
+#include "overlay/shapes/shape_builder.h"
+#include "overlay/shapes/text_tokens.h"
+
+namespace overlayd {
+
+namespace {
+
+// Sizes beyond this (pixels, or lines in a grid) are refused: they would only be typing mistakes, and they keep
+// every pixel coordinate far inside int range.
+constexpr double kMaxPixels = 1e5;
+constexpr double kMaxGridLines = 2000;
+
+bool finite(double v)
+{
+    return std::isfinite(v);
+}
+bool finite(const glm::dvec2 &v)
+{
+    return finite(v.x) && finite(v.y);
+}
+bool finite(const glm::dvec3 &v)
+{
+    return finite(v.x) && finite(v.y) && finite(v.z);
+}
+bool positive(double v, double limit = kMaxPixels)
+{
+    return finite(v) && v > 0.0 && v <= limit;
+}
+
+struct Checker {
+    std::string problem; // the first problem found
+
+    void require(bool ok, const std::string &what)
+    {
+        if (!ok && problem.empty())
+            problem = what;
+    }
+    void style(const Style &s)
+    {
+        require(positive(s.width, 1000.0), "line width must be in (0, 1000] px (got " + std::to_string(s.width) + ")");
+        for (double d : s.dash)
+            require(finite(d) && d >= 0.0 && d <= kMaxPixels, "dash lengths must be >= 0 px");
+    }
+    void points(const std::vector<glm::dvec3> &ps)
+    {
+        for (const glm::dvec3 &p : ps)
+            require(finite(p), "points must be finite");
+    }
+    void text(const std::string &t, double sizePx)
+    {
+        require(positive(sizePx, 1000.0), "text size must be in (0, 1000] px");
+        if (Status s = checkTokens(t); !s)
+            require(false, s.error().message);
+    }
+    void check(const AxesShape &s);
+    void check(const GridShape &s);
+    void check(const PolylineShape &s);
+    void check(const MarkersShape &s);
+    void check(const BoxShape &s);
+    void check(const ArcShape &s);
+    void check(const LabelShape &s);
+    void check(const HorizonShape &s);
+    void check(const GuideLinesShape &s);
+    void check(const FrustumShape &s);
+    void check(const ScreenTextShape &s);
+    void check(const CrosshairShape &s);
+    void check(const RectShape &s);
+};
+
+void Checker::check(const AxesShape &s)
+{
+    require(positive(s.length, 1e9), "axes length must be > 0");
+}
+
+void Checker::check(const GridShape &s)
+{
+    require(finite(s.origin) && finite(s.axisU) && finite(s.axisV), "grid vectors must be finite");
+    require(positive(s.spacing, 1e9) && finite(s.extentU) && finite(s.extentV) && s.extentU >= 0 && s.extentV >= 0,
+            "grid spacing must be > 0 and extents >= 0");
+    require(s.spacing > 0 && (s.extentU + s.extentV) / s.spacing <= kMaxGridLines,
+            "grid has more than 4000 lines (extent / spacing too large)");
+    if (s.majorStyle)
+        style(*s.majorStyle);
+}
+
+void Checker::check(const PolylineShape &s)
+{
+    points(s.points);
+}
+
+void Checker::check(const MarkersShape &s)
+{
+    points(s.points);
+    require(positive(s.sizePx), "marker size must be > 0 px");
+}
+
+void Checker::check(const BoxShape &s)
+{
+    require(finite(s.centre) && finite(s.size) && std::isfinite(glm::length(s.rotation)) && glm::length(s.rotation) > 0,
+            "box centre, size and rotation must be finite (rotation non-zero)");
+}
+
+void Checker::check(const ArcShape &s)
+{
+    require(finite(s.centre) && finite(s.axisU) && finite(s.axisV) && positive(s.radius, 1e9) && finite(s.startDeg) &&
+                finite(s.endDeg) && std::abs(s.endDeg - s.startDeg) <= 3600,
+            "arc centre/axes must be finite, radius > 0, |end - start| <= 3600 degrees");
+}
+
+void Checker::check(const LabelShape &s)
+{
+    require(finite(s.anchor) && finite(s.offsetPx) && glm::length(s.offsetPx) < kMaxPixels,
+            "label anchor and offset must be finite");
+    text(s.text, s.sizePx);
+}
+
+void Checker::check(const HorizonShape &s)
+{
+    require(finite(s.normal) && glm::length(s.normal) > 0, "horizon normal must be finite and non-zero");
+}
+
+void Checker::check(const GuideLinesShape &s)
+{
+    require(positive(s.wheelbase, 100) && positive(s.trackWidth, 100) && positive(s.length, 1000) &&
+                finite(s.steeringDeg) && std::abs(s.steeringDeg) < 89,
+            "guide lines need wheelbase, track width and length > 0 and |steering| < 89 degrees");
+    for (double d : s.distanceMarks)
+        require(finite(d), "distance marks must be finite");
+}
+
+void Checker::check(const FrustumShape &s)
+{
+    require(positive(s.farDistance, 1e9) && std::abs(glm::determinant(s.projection)) > 0 &&
+                std::isfinite(glm::determinant(s.projection)),
+            "frustum needs farDistance > 0 and an invertible projection matrix");
+}
+
+void Checker::check(const ScreenTextShape &s)
+{
+    require(finite(s.position) && glm::length(s.position) < kMaxPixels, "text position must be finite");
+    text(s.text, s.sizePx);
+}
+
+void Checker::check(const CrosshairShape &s)
+{
+    require(positive(s.sizePx) && (!s.position || (finite(*s.position) && glm::length(*s.position) < kMaxPixels)),
+            "crosshair size must be > 0 and its position finite");
+}
+
+void Checker::check(const RectShape &s)
+{
+    require(finite(s.position) && glm::length(s.position) < kMaxPixels && positive(s.size.x) && positive(s.size.y),
+            "rect position must be finite and its size > 0");
+}
+
+} // namespace
+
+Status checkScene(const OverlayScene &scene, const SceneGraph &graph)
+{
+    for (const Annotation &annotation : scene.annotations) {
+        Checker checker;
+        checker.style(annotation.style);
+        std::visit([&](const auto &shape) { checker.check(shape); }, annotation.shape);
+        const bool screen = std::holds_alternative<ScreenTextShape>(annotation.shape) ||
+                            std::holds_alternative<CrosshairShape>(annotation.shape) ||
+                            std::holds_alternative<RectShape>(annotation.shape);
+        if (!screen && !graph.contains(annotation.frame))
+            checker.require(false, "unknown frame \"" + annotation.frame + "\"");
+        if (!checker.problem.empty())
+            return makeError(ErrorCode::InvalidArgument, "annotation \"" + annotation.name + "\": " + checker.problem);
+    }
+    return Ok{};
+}
+
+} // namespace overlayd
