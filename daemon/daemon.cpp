@@ -13,7 +13,7 @@ std::chrono::nanoseconds Daemon::framePeriod(double fps)
 Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factories, ConfigLoader loader,
                DaemonOptions options)
     : logger_(logger), notifier_(notifier), factories_(std::move(factories)), loader_(std::move(loader)),
-      options_(std::move(options)), pipeline_(logger)
+      options_(std::move(options)), pipeline_(logger), scene_(factories_.renderer)
 {}
 
 Daemon::~Daemon()
@@ -52,6 +52,7 @@ Status Daemon::setUp()
         return loaded.error();
     }
     config_ = std::move(*loaded);
+    scene_.load(config_.scene, config_.camera);
     applyLogLevel();
     Status sinksBuilt = Ok{};
     pipeline_.setSinks(buildSinks(config_, sinksBuilt));
@@ -100,10 +101,10 @@ Status Daemon::openSource()
     auto format = (*source)->start();
     if (!format)
         return format.error();
-    auto renderer = factories_.renderer(config_, *format);
+    auto renderer = scene_.build(*format);
     if (!renderer) {
         (*source)->stop();
-        return makeError(renderer.error().code, "overlay: " + renderer.error().message);
+        return renderer.error();
     }
     const StreamFormat &current = pipeline_.format();
     const bool formatChanged = current.format != format->format || current.width != format->width ||
@@ -117,9 +118,9 @@ Status Daemon::openSource()
         }
     }
     pipeline_.setRenderer(std::move(*renderer));
+    scene_.attach(pipeline_.renderer(), *format);
     source_ = std::move(*source);
-    format_ = *format;
-    logger_.notice(cat("streaming from ", source_->describe(), ": ", format_.describe()));
+    logger_.notice(cat("streaming from ", source_->describe(), ": ", format->describe()));
     if (source_->eventFd() >= 0 && loop_) {
         watchedSourceFd_ = source_->eventFd();
         (void)loop_->add(watchedSourceFd_, [this] { onFrameReady(); });

@@ -15,6 +15,7 @@
 #include "daemon/event_loop.h"
 #include "daemon/no_signal.h"
 #include "daemon/pipeline.h"
+#include "daemon/scene_control.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 
@@ -57,6 +58,8 @@ public:
     State state() const { return state_; }
     const DaemonConfig &config() const { return config_; }
     const Pipeline &pipeline() const { return pipeline_; }
+    // The one path into the running scene (reload uses it too); call on the loop thread.
+    SceneControl &scene() { return scene_; }
     const std::string &waitReason() const { return waitReason_; }
     std::chrono::milliseconds nextRetryDelay() const { return backoff_.peek(); }
     int exitStatus() const { return exitStatus_; }
@@ -89,8 +92,8 @@ private:
     State state_ = State::Idle;
     int exitStatus_ = 0;
     std::unique_ptr<FrameSource> source_;
-    StreamFormat format_{};
     Pipeline pipeline_;
+    SceneControl scene_;
 
     EventLoop *loop_ = nullptr; // set while run() is running
     int watchedSourceFd_ = -1;

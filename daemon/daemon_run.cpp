@@ -103,7 +103,7 @@ void Daemon::reportStall()
 void Daemon::updateStatus()
 {
     if (state_ == State::Streaming)
-        notifier_.status(cat("streaming ", format_.describe(), ", ", totalDrops_, " drops"));
+        notifier_.status(cat("streaming ", pipeline_.format().describe(), ", ", totalDrops_, " drops"));
 }
 
 void Daemon::armStats()
@@ -144,14 +144,8 @@ bool Daemon::reload()
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
     const bool sinksChanged = !sameSinkOptions(config_.sinks, next.sinks);
 
-    // Everything that can fail is built before anything is switched.
-    std::unique_ptr<OverlayRenderer> renderer;
-    if (!sourceChanged && state_ == State::Streaming) {
-        auto built = factories_.renderer(next, format_);
-        if (!built)
-            return reject("overlay: " + built.error().message);
-        renderer = std::move(*built);
-    }
+    // Everything that can fail is built before anything is switched; the scene goes through the same SceneControl
+    // as every live change (a re-opened source builds its overlay from it when it starts).
     Status sinksBuilt = Ok{};
     std::vector<std::unique_ptr<SinkWorker>> sinks;
     if (sinksChanged) {
@@ -159,6 +153,11 @@ bool Daemon::reload()
         if (!sinksBuilt)
             return reject(sinksBuilt.error().message);
     }
+    std::unique_ptr<OverlayRenderer> renderer;
+    if (sourceChanged || state_ != State::Streaming)
+        scene_.detach(); // nothing to rebuild now: the next stream is built from the new scene
+    if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied)
+        return reject(applied.error().message);
 
     // The switch, between two frames (we are in the loop, not in the middle of one).
     if (sinksChanged) {
@@ -175,6 +174,7 @@ bool Daemon::reload()
             enterWaiting(opened.error());
     } else if (state_ == State::Streaming) {
         pipeline_.setRenderer(std::move(renderer));
+        scene_.attach(pipeline_.renderer(), pipeline_.format());
     }
     logger_.notice(cat("reloaded ", options_.configPath, sourceChanged ? " (source re-opened)" : "",
                        sinksChanged ? " (sinks re-opened)" : ""));

@@ -114,8 +114,8 @@ StreamFormat Daemon::configuredFormat() const
 double Daemon::pacingFps() const
 {
     // fps 0 means "as fast as frames come", which only `render` does; a running daemon paces at a sane default.
-    if (format_.fps > 0)
-        return format_.fps;
+    if (pipeline_.format().fps > 0)
+        return pipeline_.format().fps;
     return config_.source.fps > 0 ? config_.source.fps : 30.0;
 }
 

@@ -39,6 +39,8 @@ public:
     // The renderer may be null (no annotations, or a NO SIGNAL stream); replacing it happens between two frames.
     void setRenderer(std::unique_ptr<OverlayRenderer> renderer) { renderer_ = std::move(renderer); }
     bool hasRenderer() const { return renderer_ != nullptr; }
+    // The renderer frames are blended with, for SceneControl's changes (owned here).
+    OverlayRenderer *renderer() { return renderer_.get(); }
     // Replaces the sinks; the old ones are flushed and closed first.
     void setSinks(std::vector<std::unique_ptr<SinkWorker>> sinks);
     // (Re)opens every sink for a stream format; returns the first failure, after trying all.

@@ -99,9 +99,11 @@ int renderCommand(const std::string &configPath, uint64_t frames, const std::str
         logger.error(cat((*source)->describe(), ": ", format.error().message));
         return kExitFailure;
     }
-    auto renderer = factories.renderer(*config, *format);
+    SceneControl scene(factories.renderer);
+    scene.load(config->scene, config->camera);
+    auto renderer = scene.build(*format);
     if (!renderer) {
-        logger.error(cat(configPath, ": overlay: ", renderer.error().message));
+        logger.error(cat(configPath, ": ", renderer.error().message));
         return kExitConfigError;
     }
     Pipeline pipeline(logger);

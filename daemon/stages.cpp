@@ -24,14 +24,12 @@ Result<std::unique_ptr<FrameSource>> buildSource(const DaemonConfig &config)
     return makeSource(options);
 }
 
-Result<std::unique_ptr<OverlayRenderer>> buildRenderer(const DaemonConfig &config, const StreamFormat &format)
+Result<std::unique_ptr<OverlayRenderer>> buildRenderer(const OverlayScene &scene, const Camera &camera,
+                                                       const StreamFormat &format)
 {
-    if (config.scene.annotations.empty())
+    if (scene.annotations.empty())
         return std::unique_ptr<OverlayRenderer>();
-    auto camera = config.camera.build(format.width, format.height);
-    if (!camera)
-        return makeError(camera.error().code, "camera: " + camera.error().message);
-    return OverlayRenderer::create(config.scene, *camera, format);
+    return OverlayRenderer::create(scene, camera, format);
 }
 
 // The fields a source is built from (the synthetic camera is compared separately: it comes from [camera]).

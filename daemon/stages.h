@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/daemon_config.h"
+#include "daemon/scene_control.h"
 #include "drivers/frame_sink.h"
 #include "drivers/frame_source.h"
 #include "overlay/overlay_renderer.h"
@@ -17,12 +18,12 @@ namespace overlayd {
 struct StageFactories {
     std::function<Result<std::unique_ptr<FrameSource>>(const DaemonConfig &)> source;
     std::function<Result<std::unique_ptr<FrameSink>>(const SinkOptions &)> sink;
-    // May return a null renderer: nothing to draw.
-    std::function<Result<std::unique_ptr<OverlayRenderer>>(const DaemonConfig &, const StreamFormat &)> renderer;
+    // May return a null renderer: nothing to draw. SceneControl calls it with the live scene and camera.
+    RendererFactory renderer;
 };
 
 // makeSource (with the synthetic scene's camera built for the configured size), makeSink, and
-// CameraSpec::build + OverlayRenderer::create for the negotiated stream.
+// OverlayRenderer::create for the negotiated stream.
 StageFactories defaultStageFactories();
 
 // Whether a reload must re-open the source / the sinks: only when what they were built from changed.

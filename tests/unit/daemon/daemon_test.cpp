@@ -57,12 +57,12 @@ struct DaemonTest : ::testing::Test {
                 shared = std::make_shared<RecordingSink::Shared>();
             return std::unique_ptr<FrameSink>(std::make_unique<RecordingSink>(shared, options.path));
         };
-        f.renderer = [this](const DaemonConfig &config,
+        f.renderer = [this](const OverlayScene &scene, const Camera &,
                             const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
             if (rendererFails)
                 return makeError(ErrorCode::InvalidArgument, "annotation 'a': unknown frame 'base'");
             return std::unique_ptr<OverlayRenderer>(
-                std::make_unique<test::MarkingRenderer>(uint8_t(config.scene.annotations.size())));
+                std::make_unique<test::MarkingRenderer>(uint8_t(scene.annotations.size())));
         };
         return f;
     }

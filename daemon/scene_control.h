@@ -1,0 +1,82 @@
+// SceneControl: the one path by which the running scene changes. Every change is typed, validated by the code that
+// validates the config file, applied on the loop thread between two frames and visible in the next frame.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "base/result.h"
+#include "config/camera_spec.h"
+#include "media/stream.h"
+#include "overlay/overlay_renderer.h"
+#include "overlay/shapes/annotation.h"
+
+namespace overlayd {
+
+// The camera moved or was re-calibrated: pose, intrinsics, lens and viewport, as [camera] and [viewport] give them.
+struct CameraChange {
+    CameraSpec camera;
+};
+
+// A named layer (an annotation style's `layer`) shown or hidden; the choice outlives renderer rebuilds.
+struct LayerChange {
+    std::string layer;
+    bool visible = true;
+};
+
+// A whole new scene and camera (a reload that keeps the source): built completely before it replaces the old one.
+struct SceneReplacement {
+    OverlayScene scene;
+    CameraSpec camera;
+};
+
+using SceneChange = std::variant<CameraChange, LayerChange, SceneReplacement>;
+
+// Builds a stream's overlay from a scene and the camera resolved for the stream's frame size; null: nothing to draw.
+using RendererFactory = std::function<Result<std::unique_ptr<OverlayRenderer>>(
+    const OverlayScene &scene, const Camera &camera, const StreamFormat &format)>;
+
+class SceneControl
+{
+public:
+    explicit SceneControl(RendererFactory factory) : factory_(std::move(factory)) {}
+
+    // The scene of a freshly loaded config, before any stream is open. Layer choices made so far are kept.
+    void load(const OverlayScene &scene, const CameraSpec &camera);
+    // The overlay for a newly opened stream: the live scene and camera for its frame size, with the live layer
+    // choices applied. The caller hands it to the pipeline and then calls attach().
+    Result<std::unique_ptr<OverlayRenderer>> build(const StreamFormat &format) const;
+    // The renderer the pipeline now blends with (null: none), and its stream; changes go to it from now on.
+    void attach(OverlayRenderer *renderer, const StreamFormat &format);
+    void detach() { attach(nullptr, StreamFormat{}); }
+
+    // Validates and applies a change. Refused (nothing changes) with the reason, as a config error would give it.
+    // A SceneReplacement's new renderer is returned through `replaced` for the pipeline to take.
+    Status apply(const SceneChange &change, std::unique_ptr<OverlayRenderer> *replaced = nullptr);
+
+    const CameraSpec &camera() const { return camera_; }
+    const OverlayScene &scene() const { return scene_; }
+    // Every layer the scene draws, in the order annotations first name them.
+    std::vector<std::string> layerNames() const;
+    bool layerVisible(const std::string &layer) const;
+
+private:
+    Status applyCamera(const CameraChange &change);
+    Status applyLayer(const LayerChange &change);
+    Status applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced);
+    Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const CameraSpec &camera,
+                                                      const StreamFormat &format) const;
+
+    RendererFactory factory_;
+    OverlayScene scene_;
+    CameraSpec camera_;
+    std::map<std::string, bool, std::less<>> layerVisible_; // only the layers a change named
+    OverlayRenderer *renderer_ = nullptr;                   // owned by the pipeline
+    StreamFormat format_{};
+};
+
+} // namespace overlayd
