@@ -1,77 +1,39 @@
 // SIGHUP with `overlayd run`: a bad config is refused with every problem at file:line and the old one keeps
 // running; a good one switches sinks without a restart; SIGTERM then ends cleanly with complete files. Run with
 // JOURNAL_STREAM set, so the log lines must carry syslog priority prefixes.
-#include <chrono>
 #include <csignal>
 #include <filesystem>
-#include <functional>
-#include <thread>
 
-#include <fcntl.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include "harness.h"
+#include "process.h"
 
 namespace overlayd::replay {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Polls until the condition holds (not a timed assertion: the limit only keeps a broken daemon from hanging CI).
-bool waitFor(const std::function<bool()> &condition, std::chrono::seconds limit = std::chrono::seconds(20))
-{
-    const auto deadline = std::chrono::steady_clock::now() + limit;
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (condition())
-            return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return condition();
-}
-
-std::string text(const std::string &path)
-{
-    const auto bytes = readFile(path);
-    return std::string(bytes.begin(), bytes.end());
-}
-
-pid_t startDaemon(const std::string &dir)
-{
-    const pid_t pid = fork();
-    if (pid == 0) {
-        if (chdir(dir.c_str()) != 0)
-            _exit(127);
-        const int err = open("overlayd.stderr", O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(err, STDERR_FILENO);
-        setenv("JOURNAL_STREAM", "8:12345", 1);
-        const std::string bin = binary();
-        execl(bin.c_str(), bin.c_str(), "run", "--config", "overlayd.toml", static_cast<char *>(nullptr));
-        _exit(127);
-    }
-    return pid;
-}
-
 TEST(Sighup, BadConfigIsRefusedAndGoodConfigSwitchesSinks)
 {
     const std::string dir = scratchDir("sighup");
     const std::string config = dir + "/overlayd.toml";
     fs::copy_file(dataPath("sighup_good.toml"), config);
-    const pid_t pid = startDaemon(dir);
+    const pid_t pid = startDaemon(dir, "overlayd.toml");
     ASSERT_GT(pid, 0);
     const auto size = [&](const char *name) {
         std::error_code error;
         const auto bytes = fs::file_size(dir + "/" + name, error);
         return error ? 0 : bytes;
     };
-    EXPECT_TRUE(waitFor([&] { return size("a.y4m") > 100000; })) << text(dir + "/overlayd.stderr");
+    EXPECT_TRUE(waitFor([&] { return size("a.y4m") > 100000; })) << fileText(dir + "/overlayd.stderr");
 
     fs::copy_file(dataPath("sighup_bad.toml"), config, fs::copy_options::overwrite_existing);
     kill(pid, SIGHUP);
-    EXPECT_TRUE(waitFor([&] { return text(dir + "/overlayd.stderr").find("reload failed") != std::string::npos; }));
-    const std::string afterBad = text(dir + "/overlayd.stderr");
+    EXPECT_TRUE(waitFor([&] { return fileText(dir + "/overlayd.stderr").find("reload failed") != std::string::npos; }));
+    const std::string afterBad = fileText(dir + "/overlayd.stderr");
     EXPECT_NE(afterBad.find("<3>overlayd.toml:16:1: sink[0].knd: unknown key"), std::string::npos) << afterBad;
     const auto sizeAfterBad = size("a.y4m");
     EXPECT_TRUE(waitFor([&] { return size("a.y4m") > sizeAfterBad; })) << "the old config stopped running";
@@ -79,18 +41,18 @@ TEST(Sighup, BadConfigIsRefusedAndGoodConfigSwitchesSinks)
 
     fs::copy_file(dataPath("sighup_switched.toml"), config, fs::copy_options::overwrite_existing);
     kill(pid, SIGHUP);
-    EXPECT_TRUE(waitFor([&] { return size("b.y4m") > 100000; })) << text(dir + "/overlayd.stderr");
+    EXPECT_TRUE(waitFor([&] { return size("b.y4m") > 100000; })) << fileText(dir + "/overlayd.stderr");
     kill(pid, SIGTERM);
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 0);
 
-    const std::string log = text(dir + "/overlayd.stderr");
+    const std::string log = fileText(dir + "/overlayd.stderr");
     EXPECT_NE(log.find("<5>reloaded overlayd.toml (sinks re-opened)"), std::string::npos) << log;
     // Both files end on a whole frame: 160x120 YUYV is 38400 bytes, plus "FRAME\n", after the header line.
     for (const char *name : {"a.y4m", "b.y4m"}) {
-        const std::string y4m = text(dir + "/" + name);
+        const std::string y4m = fileText(dir + "/" + name);
         const size_t header = y4m.find('\n') + 1;
         ASSERT_GT(header, 1u) << name;
         EXPECT_EQ((y4m.size() - header) % (38400 + 6), 0u) << name;

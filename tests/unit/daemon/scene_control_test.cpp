@@ -1,0 +1,142 @@
+// SceneControl: each change is validated before anything changes, reaches the live renderer, and survives the
+// renderer being rebuilt for a new stream.
+#include "daemon/scene_control.h"
+
+#include <gtest/gtest.h>
+
+#include "fakes.h"
+
+namespace overlayd {
+namespace {
+
+// Records what SceneControl asked of it.
+class RecordingRenderer : public OverlayRenderer
+{
+public:
+    Status setCamera(const Camera &camera) override
+    {
+        cameras.push_back(camera.projection().matrix());
+        return Ok{};
+    }
+    Status setLayerEnabled(std::string_view layer, bool enabled) override
+    {
+        layers.emplace_back(std::string(layer), enabled);
+        return Ok{};
+    }
+    std::vector<std::string> layerNames() const override { return {"grid", "labels"}; }
+    Status blend(const FrameView &, const FrameMetadata &, double) override { return Ok{}; }
+
+    std::vector<glm::dmat4> cameras;
+    std::vector<std::pair<std::string, bool>> layers;
+};
+
+OverlayScene twoLayers()
+{
+    OverlayScene scene;
+    Annotation grid{"grid", "world", {}, GridShape{}};
+    grid.style.layer = "grid";
+    Annotation label{"label", "world", {}, AxesShape{}};
+    label.style.layer = "labels";
+    scene.annotations = {grid, label, grid};
+    return scene;
+}
+
+struct SceneControlTest : ::testing::Test {
+    bool factoryFails = false;
+    RecordingRenderer *last = nullptr; // the renderer the factory made last
+    SceneControl control{[this](const OverlayScene &scene, const Camera &,
+                                const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
+        if (factoryFails)
+            return makeError(ErrorCode::InvalidArgument, "annotation 'x': unknown frame 'base'");
+        if (scene.annotations.empty())
+            return std::unique_ptr<OverlayRenderer>();
+        auto renderer = std::make_unique<RecordingRenderer>();
+        last = renderer.get();
+        return std::unique_ptr<OverlayRenderer>(std::move(renderer));
+    }};
+    std::unique_ptr<OverlayRenderer> live;
+
+    void SetUp() override
+    {
+        control.load(twoLayers(), CameraSpec{});
+        open();
+    }
+    // A stream opens: the pipeline takes the built renderer and SceneControl is attached to it.
+    void open()
+    {
+        auto built = control.build(test::greyFormat());
+        ASSERT_TRUE(built.ok());
+        live = std::move(*built);
+        control.attach(live.get(), test::greyFormat());
+    }
+};
+
+TEST_F(SceneControlTest, CameraChangeIsValidatedAsTheConfigIsAndRefusedWhole)
+{
+    CameraSpec bad;
+    bad.fovDeg = 190.0; // what check-config refuses for [camera] fov
+    const Status refused = control.apply(CameraChange{bad});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("camera: "), std::string::npos) << refused.error().message;
+    EXPECT_TRUE(last->cameras.empty());
+    EXPECT_EQ(control.camera().fovDeg, 60.0);
+
+    CameraSpec narrower;
+    narrower.fovDeg = 30.0;
+    ASSERT_TRUE(control.apply(CameraChange{narrower}).ok());
+    ASSERT_EQ(last->cameras.size(), 1u);
+    // A narrower field of view: a larger focal term in the projection matrix (cot(15 deg) = 3.73).
+    EXPECT_NEAR(last->cameras[0][1][1], 1.0 / std::tan(15.0 * M_PI / 180.0), 1e-12);
+    EXPECT_EQ(control.camera().fovDeg, 30.0);
+}
+
+TEST_F(SceneControlTest, UnknownLayerIsRefusedNamingTheSceneLayers)
+{
+    const Status refused = control.apply(LayerChange{"guides", false});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(refused.error().message, "unknown layer 'guides' (the scene has: grid, labels)");
+    EXPECT_TRUE(last->layers.empty());
+    EXPECT_TRUE(control.layerVisible("grid"));
+}
+
+TEST_F(SceneControlTest, LayerChoiceReachesTheRendererAndSurvivesARebuild)
+{
+    ASSERT_TRUE(control.apply(LayerChange{"labels", false}).ok());
+    ASSERT_EQ(last->layers.size(), 1u);
+    EXPECT_EQ(last->layers[0], std::pair(std::string("labels"), false));
+    EXPECT_FALSE(control.layerVisible("labels"));
+
+    open(); // the source re-opened: a new renderer for the new stream
+    ASSERT_EQ(last->layers.size(), 1u);
+    EXPECT_EQ(last->layers[0], std::pair(std::string("labels"), false));
+}
+
+TEST_F(SceneControlTest, SceneThatCannotBeBuiltChangesNothing)
+{
+    OverlayScene next = twoLayers();
+    next.annotations.pop_back();
+    factoryFails = true;
+    std::unique_ptr<OverlayRenderer> replaced;
+    const Status refused = control.apply(SceneReplacement{next, CameraSpec{}}, &replaced);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().message, "overlay: annotation 'x': unknown frame 'base'");
+    EXPECT_EQ(replaced, nullptr);
+    EXPECT_EQ(control.scene().annotations.size(), 3u);
+
+    factoryFails = false;
+    ASSERT_TRUE(control.apply(SceneReplacement{next, CameraSpec{}}, &replaced).ok());
+    EXPECT_NE(replaced, nullptr);
+    EXPECT_EQ(control.scene().annotations.size(), 2u);
+}
+
+TEST_F(SceneControlTest, CameraChangeWithoutAStreamIsRefused)
+{
+    control.detach();
+    const Status refused = control.apply(CameraChange{CameraSpec{}});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::TryAgain);
+}
+
+} // namespace
+} // namespace overlayd
