@@ -1,24 +1,17 @@
-// Daemon: start-up, opening and closing the source, and the frame path while streaming.
+// Daemon: start-up (signals, timers, config, sinks, the first open of the source) and stopping.
 #include "daemon/daemon.h"
-
-#include <cmath>
 
 namespace overlayd {
 
-std::chrono::nanoseconds Daemon::framePeriod(double fps)
-{
-    return std::chrono::nanoseconds(int64_t(std::llround(1e9 / fps)));
-}
-
 Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factories, ConfigLoader loader,
                DaemonOptions options)
-    : logger_(logger), notifier_(notifier), factories_(std::move(factories)), loader_(std::move(loader)),
-      options_(std::move(options)), pipeline_(logger), scene_(factories_.renderer)
+    : logger_(logger), factories_(std::move(factories)), loader_(std::move(loader)), options_(std::move(options)),
+      pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier)
 {}
 
 Daemon::~Daemon()
 {
-    closeSource();
+    source_.reset();
 }
 
 Status Daemon::start()
@@ -31,7 +24,7 @@ Status Daemon::start()
     return status;
 }
 
-Status Daemon::setUp()
+Status Daemon::createTimers()
 {
     auto signals = SignalReader::create();
     if (!signals)
@@ -43,6 +36,17 @@ Status Daemon::setUp()
             return created.error();
         timer->emplace(std::move(*created));
     }
+    source_ = std::make_unique<SourceSupervisor>(
+        logger_, config_, factories_.source, pipeline_, scene_, health_,
+        SourceSupervisor::Timers{*pacing_, *retry_, *noSignalTimer_}, [this] { onFrameDelivered(); },
+        [this](int exitStatus) { requestStop(exitStatus); });
+    return Ok{};
+}
+
+Status Daemon::setUp()
+{
+    if (auto created = createTimers(); !created)
+        return created;
     std::vector<ConfigProblem> problems;
     auto loaded = loader_(options_.configPath, problems);
     if (!loaded) {
@@ -58,15 +62,15 @@ Status Daemon::setUp()
     pipeline_.setSinks(buildSinks(config_, sinksBuilt));
     if (!sinksBuilt)
         return sinksBuilt;
-    if (auto opened = openSource(); !opened) {
-        if (!isRetryable(opened.error()))
+    if (auto opened = source_->open(); !opened) {
+        if (!source_->isRetryable(opened.error()))
             return opened;
-        enterWaiting(opened.error());
+        source_->enterWaiting(opened.error());
     }
     if (pipeline_.format().format == nullptr)
         return makeError(ErrorCode::InvalidArgument, "no stream format");
     armStats();
-    if (auto interval = notifier_.watchdogInterval())
+    if (auto interval = health_.notifier().watchdogInterval())
         (void)watchdog_->arm(*interval, *interval);
     return Ok{};
 }
@@ -93,105 +97,19 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
     return sinks;
 }
 
-Status Daemon::openSource()
+void Daemon::onFrameDelivered()
 {
-    auto source = factories_.source(config_);
-    if (!source)
-        return source.error();
-    auto format = (*source)->start();
-    if (!format)
-        return format.error();
-    auto renderer = scene_.build(*format);
-    if (!renderer) {
-        (*source)->stop();
-        return renderer.error();
-    }
-    const StreamFormat &current = pipeline_.format();
-    const bool formatChanged = current.format != format->format || current.width != format->width ||
-                               current.height != format->height || current.stride != format->stride ||
-                               !(current.colorimetry == format->colorimetry) || current.fps != format->fps ||
-                               current.dmabufBuffers != format->dmabufBuffers;
-    if (formatChanged) {
-        if (auto opened = pipeline_.openSinks(*format); !opened && state_ == State::Idle) {
-            (*source)->stop();
-            return opened;
-        }
-    }
-    pipeline_.setRenderer(std::move(*renderer));
-    scene_.attach(pipeline_.renderer(), *format);
-    source_ = std::move(*source);
-    logger_.notice(cat("streaming from ", source_->describe(), ": ", format->describe()));
-    if (source_->eventFd() >= 0 && loop_) {
-        watchedSourceFd_ = source_->eventFd();
-        (void)loop_->add(watchedSourceFd_, [this] { onFrameReady(); });
-    } else if (source_->eventFd() < 0) {
-        (void)pacing_->arm(framePeriod(pacingFps()), framePeriod(pacingFps()));
-    }
-    noSignalTimer_->disarm();
-    retry_->disarm();
-    noSignal_.reset();
-    waitReason_.clear();
-    backoff_.reset();
-    state_ = State::Streaming;
-    updateStatus();
-    return Ok{};
-}
-
-void Daemon::closeSource()
-{
-    if (loop_ && watchedSourceFd_ >= 0)
-        loop_->remove(watchedSourceFd_);
-    watchedSourceFd_ = -1;
-    if (pacing_)
-        pacing_->disarm();
-    if (source_)
-        source_->stop();
-    source_.reset();
-}
-
-void Daemon::onFrameReady()
-{
-    // A paced source gets one frame per tick (a late loop skips ticks rather than bursting); a device fd is drained.
-    const int budget = watchedSourceFd_ >= 0 ? 8 : 1;
-    for (int i = 0; i < budget && state_ == State::Streaming; ++i) {
-        auto frame = source_->nextFrame();
-        if (!frame) {
-            handleSourceError(frame.error());
-            return;
-        }
-        pipeline_.process(std::move(*frame));
-        ++framesSincePet_;
-        if (!readySent_) {
-            readySent_ = true;
-            notifier_.ready();
-            updateStatus();
-        }
-        if (options_.maxFrames && pipeline_.framesIn() >= options_.maxFrames) {
-            logger_.info(cat("frame limit reached (", options_.maxFrames, " frames)"));
-            requestStop(0);
-        }
-    }
-}
-
-void Daemon::handleSourceError(const Error &error)
-{
-    if (error.code == ErrorCode::TryAgain)
-        return;
-    if (error.code == ErrorCode::EndOfStream) {
-        logger_.notice(cat("source ended after ", pipeline_.framesIn(), " frames"));
+    if (options_.maxFrames && pipeline_.framesIn() >= options_.maxFrames) {
+        logger_.info(cat("frame limit reached (", options_.maxFrames, " frames)"));
         requestStop(0);
-    } else if (isRetryable(error)) {
-        enterWaiting(error);
-    } else {
-        logger_.error(cat("source: ", error.message));
-        requestStop(1);
     }
 }
 
 void Daemon::requestStop(int exitStatus)
 {
     exitStatus_ = std::max(exitStatus_, exitStatus);
-    state_ = State::Finished;
+    if (source_)
+        source_->finish();
     if (loop_)
         loop_->stop();
 }

@@ -1,5 +1,6 @@
-// Daemon: `overlayd run`. One event loop drives the source (paced by a timer, or woken by its fd), the NO SIGNAL
-// frames and reconnect back-off while it is down, SIGHUP reloads, periodic stats and the systemd watchdog.
+// Daemon: `overlayd run`. It loads the config, builds the sinks, and wires one event loop to the three parts that do
+// the work: the SourceSupervisor (the source, NO SIGNAL and reconnects), the HealthReporter (readiness, watchdog,
+// STATUS=, stats) and SceneControl (every change to the running scene, SIGHUP reloads among them).
 #pragma once
 
 #include <cstdint>
@@ -11,11 +12,11 @@
 
 #include "base/logger.h"
 #include "config/daemon_config.h"
-#include "daemon/backoff.h"
 #include "daemon/event_loop.h"
-#include "daemon/no_signal.h"
+#include "daemon/health_reporter.h"
 #include "daemon/pipeline.h"
 #include "daemon/scene_control.h"
+#include "daemon/source_supervisor.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 
@@ -32,7 +33,7 @@ struct DaemonOptions {
 class Daemon
 {
 public:
-    enum class State { Idle, Streaming, Waiting, Finished };
+    using State = SourceSupervisor::State;
 
     Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factories, ConfigLoader loader,
            DaemonOptions options);
@@ -46,69 +47,49 @@ public:
     int run();
 
     // The event handlers run() wires to its fds; public so that tests drive them without a loop or signals.
-    void onFrameReady();
-    void onRetry();
-    void onNoSignalTick();
+    void onFrameReady() { source_->onFrameReady(); }
+    void onRetry() { source_->onRetry(); }
+    void onNoSignalTick() { source_->onNoSignalTick(); }
     void onStats();
     void onWatchdog();
     // Validates the new file completely before switching; false (old config kept) when anything is wrong.
     bool reload();
     void requestStop(int exitStatus);
 
-    State state() const { return state_; }
+    State state() const { return source_ ? source_->state() : State::Idle; }
     const DaemonConfig &config() const { return config_; }
     const Pipeline &pipeline() const { return pipeline_; }
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
-    const std::string &waitReason() const { return waitReason_; }
-    std::chrono::milliseconds nextRetryDelay() const { return backoff_.peek(); }
+    const std::string &waitReason() const { return source_->waitReason(); }
+    std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }
 
 private:
     Status setUp();
-    static std::chrono::nanoseconds framePeriod(double fps);
-    Status openSource();
-    void closeSource();
-    void enterWaiting(const Error &error);
-    void scheduleRetry();
-    void handleSourceError(const Error &error);
-    bool isRetryable(const Error &error) const;
-    StreamFormat configuredFormat() const;
-    double pacingFps() const;
+    Status createTimers();
+    void onFrameDelivered();
     void armStats();
-    void updateStatus();
-    void reportStall();
     std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);
     void applyLogLevel();
     void shutdown();
 
     Logger &logger_;
-    SystemdNotifier &notifier_;
     StageFactories factories_;
     ConfigLoader loader_;
     DaemonOptions options_;
 
     DaemonConfig config_;
-    State state_ = State::Idle;
     int exitStatus_ = 0;
-    std::unique_ptr<FrameSource> source_;
     Pipeline pipeline_;
     SceneControl scene_;
+    HealthReporter health_;
 
-    EventLoop *loop_ = nullptr; // set while run() is running
-    int watchedSourceFd_ = -1;
+    EventLoop *loop_ = nullptr;           // set while run() is running
     std::optional<SignalReader> signals_; // created before any sink thread, so that every thread blocks them
     std::optional<Timer> pacing_, retry_, noSignalTimer_, stats_, watchdog_;
-
-    Backoff backoff_;
-    std::string waitReason_;
-    std::optional<NoSignalFrame> noSignal_;
-    uint64_t noSignalSequence_ = 0;
-    uint64_t framesSincePet_ = 0;
-    unsigned idleWatchdogTicks_ = 0; // watchdog ticks in a row without a frame while streaming (for STATUS=)
-    bool readySent_ = false;
+    std::unique_ptr<SourceSupervisor> source_; // after the timers it arms
     bool configProblemsLogged_ = false;
-    uint64_t totalDrops_ = 0;
 };
 
 } // namespace overlayd

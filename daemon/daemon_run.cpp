@@ -1,4 +1,4 @@
-// Daemon: the event loop's wiring, periodic stats, the watchdog, STATUS= lines and shutdown.
+// Daemon: the event loop's wiring, SIGHUP reloads, periodic stats, the watchdog and shutdown.
 #include "daemon/daemon.h"
 
 #include <csignal>
@@ -33,28 +33,23 @@ int Daemon::run()
     (void)loop->add(noSignalTimer_->fd(), [this] { onNoSignalTick(); });
     (void)loop->add(stats_->fd(), [this] { onStats(); });
     (void)loop->add(watchdog_->fd(), [this] { onWatchdog(); });
-    if (source_ && source_->eventFd() >= 0) {
-        watchedSourceFd_ = source_->eventFd();
-        (void)loop->add(watchedSourceFd_, [this] { onFrameReady(); });
-    }
-    while (state_ != State::Finished) {
+    source_->attachLoop(loop_);
+    while (state() != State::Finished) {
         if (auto status = loop->runOnce(); !status) {
             logger_.error(status.error().message);
             requestStop(1);
         }
     }
     shutdown();
+    source_->attachLoop(nullptr);
     loop_ = nullptr;
     return exitStatus_;
 }
 
 void Daemon::shutdown()
 {
-    notifier_.stopping();
-    if (loop_ && watchedSourceFd_ >= 0)
-        loop_->remove(watchedSourceFd_);
-    watchedSourceFd_ = -1;
-    closeSource();
+    health_.notifier().stopping();
+    source_->close();
     pipeline_.closeSinks();
     const PipelineStats stats = pipeline_.takeStats();
     logger_.info(cat("stopped after ", pipeline_.framesIn(), " frames; last period: ", stats.describe()));
@@ -64,46 +59,13 @@ void Daemon::shutdown()
 void Daemon::onStats()
 {
     stats_->consume();
-    const PipelineStats stats = pipeline_.takeStats();
-    totalDrops_ = stats.totalDrops;
-    logger_.info(cat("stats: ", stats.describe()));
-    updateStatus();
+    health_.onStats(pipeline_, state() == State::Streaming);
 }
 
 void Daemon::onWatchdog()
 {
     watchdog_->consume();
-    // A wedged source must make systemd restart us: pet only when frames flowed since the last pet, or while a
-    // deliberate reconnect is in progress (the NO SIGNAL frames prove the loop itself is alive).
-    if (framesSincePet_ > 0 || state_ == State::Waiting)
-        notifier_.watchdog();
-    reportStall();
-    framesSincePet_ = 0;
-}
-
-// A stalled stream stops the watchdog; STATUS= says why, so `systemctl status` does not keep claiming "streaming".
-void Daemon::reportStall()
-{
-    const bool stalled = state_ == State::Streaming && framesSincePet_ == 0;
-    if (!stalled) {
-        if (idleWatchdogTicks_ > 0)
-            updateStatus();
-        idleWatchdogTicks_ = 0;
-        return;
-    }
-    ++idleWatchdogTicks_;
-    const auto interval = notifier_.watchdogInterval().value_or(std::chrono::microseconds(0));
-    const double idleSec = double(idleWatchdogTicks_) * double(interval.count()) * 1e-6;
-    char line[160];
-    std::snprintf(line, sizeof(line), "stalled: no frame from %s for %.1f s",
-                  source_ ? source_->describe().c_str() : "the source", idleSec);
-    notifier_.status(line);
-}
-
-void Daemon::updateStatus()
-{
-    if (state_ == State::Streaming)
-        notifier_.status(cat("streaming ", pipeline_.format().describe(), ", ", totalDrops_, " drops"));
+    health_.onWatchdog(state() == State::Streaming, state() == State::Waiting, pipeline_.format(), source_->describe());
 }
 
 void Daemon::armStats()
@@ -124,12 +86,13 @@ void Daemon::applyLogLevel()
 
 bool Daemon::reload()
 {
-    notifier_.reloading();
+    SystemdNotifier &notifier = health_.notifier();
+    notifier.reloading();
     logger_.notice(cat("reloading ", options_.configPath));
-    const auto reject = [this](const std::string &why) {
+    const auto reject = [this, &notifier](const std::string &why) {
         logger_.error(cat("reload failed, keeping the previous config: ", why));
-        notifier_.status(cat("reload failed, kept the previous config: ", why));
-        notifier_.ready();
+        notifier.status(cat("reload failed, kept the previous config: ", why));
+        notifier.ready();
         return false;
     };
     std::vector<ConfigProblem> problems;
@@ -154,7 +117,7 @@ bool Daemon::reload()
             return reject(sinksBuilt.error().message);
     }
     std::unique_ptr<OverlayRenderer> renderer;
-    if (sourceChanged || state_ != State::Streaming)
+    if (sourceChanged || state() != State::Streaming)
         scene_.detach(); // nothing to rebuild now: the next stream is built from the new scene
     if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied)
         return reject(applied.error().message);
@@ -169,17 +132,16 @@ bool Daemon::reload()
     applyLogLevel();
     armStats();
     if (sourceChanged) {
-        closeSource();
-        if (auto opened = openSource(); !opened)
-            enterWaiting(opened.error());
-    } else if (state_ == State::Streaming) {
+        source_->reopen();
+    } else if (state() == State::Streaming) {
         pipeline_.setRenderer(std::move(renderer));
         scene_.attach(pipeline_.renderer(), pipeline_.format());
     }
     logger_.notice(cat("reloaded ", options_.configPath, sourceChanged ? " (source re-opened)" : "",
                        sinksChanged ? " (sinks re-opened)" : ""));
-    updateStatus();
-    notifier_.ready();
+    if (state() == State::Streaming)
+        health_.streaming(pipeline_.format());
+    notifier.ready();
     return true;
 }
 

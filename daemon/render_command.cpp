@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <thread>
 
+#include "daemon/open_stream.h"
 #include "daemon/pipeline.h"
 #include "daemon/stages.h"
 
@@ -89,32 +90,32 @@ int renderCommand(const std::string &configPath, uint64_t frames, const std::str
     logger.setLevel(logLevel.value_or(config->daemon.logLevel));
     const StageFactories factories = defaultStageFactories();
     auto sink = factories.sink(*sinkOptions);
-    auto source = sink ? factories.source(*config) : Result<std::unique_ptr<FrameSource>>(sink.error());
-    if (!source) {
-        logger.error(source.error().message);
+    if (!sink) {
+        logger.error(sink.error().message);
         return kExitFailure;
-    }
-    auto format = (*source)->start();
-    if (!format) {
-        logger.error(cat((*source)->describe(), ": ", format.error().message));
-        return kExitFailure;
-    }
-    SceneControl scene(factories.renderer);
-    scene.load(config->scene, config->camera);
-    auto renderer = scene.build(*format);
-    if (!renderer) {
-        logger.error(cat(configPath, ": ", renderer.error().message));
-        return kExitConfigError;
     }
     Pipeline pipeline(logger);
-    pipeline.setRenderer(std::move(*renderer));
     std::vector<std::unique_ptr<SinkWorker>> sinks;
     sinks.push_back(std::make_unique<SinkWorker>(std::move(*sink), *sinkOptions, logger, /*lossless=*/true));
     pipeline.setSinks(std::move(sinks));
-    if (auto opened = pipeline.openSinks(*format); !opened)
-        return kExitFailure;
+    SceneControl scene(factories.renderer);
+    scene.load(config->scene, config->camera);
+    OpenFailure failure;
+    auto source = openStream(factories.source, *config, scene, pipeline, /*sinksMustOpen=*/true, &failure);
+    if (!source) {
+        if (failure.step == OpenStep::BuildOverlay) {
+            logger.error(cat(configPath, ": ", source.error().message));
+            return kExitConfigError;
+        }
+        if (failure.step == OpenStep::StartSource)
+            logger.error(cat(failure.source, ": ", source.error().message));
+        else if (failure.step == OpenStep::CreateSource)
+            logger.error(source.error().message);
+        return kExitFailure; // a sink that cannot open has said why
+    }
+    const StreamFormat format = pipeline.format();
     logger.info(
-        cat("rendering ", frames, " frames of ", (*source)->describe(), " (", format->describe(), ") to ", output));
+        cat("rendering ", frames, " frames of ", (*source)->describe(), " (", format.describe(), ") to ", output));
     const auto start = std::chrono::steady_clock::now();
     const Status pumped = pump(**source, pipeline, frames, logger);
     (*source)->stop();

@@ -15,8 +15,10 @@
 
 namespace overlayd {
 
+using SourceFactory = std::function<Result<std::unique_ptr<FrameSource>>(const DaemonConfig &)>;
+
 struct StageFactories {
-    std::function<Result<std::unique_ptr<FrameSource>>(const DaemonConfig &)> source;
+    SourceFactory source;
     std::function<Result<std::unique_ptr<FrameSink>>(const SinkOptions &)> sink;
     // May return a null renderer: nothing to draw. SceneControl calls it with the live scene and camera.
     RendererFactory renderer;

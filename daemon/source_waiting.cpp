@@ -1,5 +1,5 @@
-// Daemon: the source's error handling: back-off retries and NO SIGNAL frames while it is down, the end of a stream.
-#include "daemon/daemon.h"
+// SourceSupervisor while the source is down: back-off retries, NO SIGNAL frames, and what systemd is told meanwhile.
+#include "daemon/source_supervisor.h"
 
 #include <cstdio>
 
@@ -16,7 +16,7 @@ std::string seconds(std::chrono::milliseconds delay)
 
 } // namespace
 
-bool Daemon::isRetryable(const Error &error) const
+bool SourceSupervisor::isRetryable(const Error &error) const
 {
     // A camera that is unplugged, not yet plugged or misbehaving comes back by itself; a file that is missing or
     // malformed does not, except that a reload may fix it.
@@ -26,51 +26,53 @@ bool Daemon::isRetryable(const Error &error) const
            (error.code == ErrorCode::NotFound || error.code == ErrorCode::Io);
 }
 
-void Daemon::enterWaiting(const Error &error)
+void SourceSupervisor::enterWaiting(const Error &error)
 {
-    closeSource();
+    close();
     state_ = State::Waiting;
     if (error.message != waitReason_)
         logger_.warning(cat("source lost: ", error.message));
     waitReason_ = error.message;
-    const StreamFormat format = pipeline_.format().format ? pipeline_.format() : configuredFormat();
     if (!pipeline_.format().format)
-        (void)pipeline_.openSinks(format);
-    if (!noSignal_ || noSignal_->reason() != waitReason_) {
-        auto frame = NoSignalFrame::create(format, waitReason_);
-        if (frame)
-            noSignal_.emplace(std::move(*frame));
-        else
-            logger_.error(cat("NO SIGNAL frame: ", frame.error().message));
-    }
-    (void)noSignalTimer_->arm(framePeriod(pacingFps()), framePeriod(pacingFps()));
+        (void)pipeline_.openSinks(configuredFormat());
+    if (!noSignal_ || noSignal_->reason() != waitReason_)
+        replaceNoSignal(pipeline_.format());
+    (void)timers_.noSignal.arm(pacingPeriod(), pacingPeriod());
     scheduleRetry();
 }
 
-void Daemon::scheduleRetry()
+void SourceSupervisor::replaceNoSignal(const StreamFormat &format)
+{
+    noSignal_.reset();
+    auto frame = NoSignalFrame::create(format, waitReason_);
+    if (frame)
+        noSignal_.emplace(std::move(*frame));
+    else
+        logger_.error(cat("NO SIGNAL frame: ", frame.error().message));
+}
+
+void SourceSupervisor::scheduleRetry()
 {
     const auto delay = backoff_.next();
-    (void)retry_->arm(delay);
+    (void)timers_.retry.arm(delay);
     logger_.debug(cat("retrying the source in ", seconds(delay)));
     // Before the first frame systemd is still waiting for READY=1: a camera that is late at boot must not fail the
     // unit's start-up timeout, so ask for time until the retry plus a margin.
-    if (!readySent_)
-        notifier_.extendTimeout(std::chrono::duration_cast<std::chrono::microseconds>(delay) +
-                                std::chrono::seconds(10));
-    updateStatus();
-    if (state_ == State::Waiting)
-        notifier_.status(
-            cat("waiting for ",
-                config_.source.kind == SourceKind::V4l2 ? config_.source.v4l2.device : std::string("the source"), ": ",
-                waitReason_, ", retry in ", seconds(delay)));
+    if (!health_.readySent())
+        health_.notifier().extendTimeout(std::chrono::duration_cast<std::chrono::microseconds>(delay) +
+                                         std::chrono::seconds(10));
+    health_.waiting(
+        cat("waiting for ",
+            config_.source.kind == SourceKind::V4l2 ? config_.source.v4l2.device : std::string("the source"), ": ",
+            waitReason_, ", retry in ", seconds(delay)));
 }
 
-void Daemon::onRetry()
+void SourceSupervisor::onRetry()
 {
-    retry_->consume();
+    timers_.retry.consume();
     if (state_ != State::Waiting)
         return;
-    auto opened = openSource();
+    auto opened = open();
     if (opened) {
         logger_.notice("source is back");
         return;
@@ -78,16 +80,14 @@ void Daemon::onRetry()
     if (opened.error().message != waitReason_) {
         logger_.warning(cat("source still down: ", opened.error().message));
         waitReason_ = opened.error().message;
-        noSignal_.reset();
-        if (auto frame = NoSignalFrame::create(pipeline_.format(), waitReason_))
-            noSignal_.emplace(std::move(*frame));
+        replaceNoSignal(pipeline_.format());
     }
     scheduleRetry();
 }
 
-void Daemon::onNoSignalTick()
+void SourceSupervisor::onNoSignalTick()
 {
-    noSignalTimer_->consume();
+    timers_.noSignal.consume();
     if (state_ != State::Waiting || !noSignal_)
         return;
     FrameMetadata metadata;
@@ -98,7 +98,7 @@ void Daemon::onNoSignalTick()
     pipeline_.pushToSinks(noSignal_->view(), metadata);
 }
 
-StreamFormat Daemon::configuredFormat() const
+StreamFormat SourceSupervisor::configuredFormat() const
 {
     StreamFormat format;
     format.format = pixelFormatFromName(config_.source.pixelFormat);
@@ -109,14 +109,6 @@ StreamFormat Daemon::configuredFormat() const
     format.fps = config_.source.fps;
     format.colorimetry = config_.source.colorimetry.value_or(Colorimetry{});
     return format;
-}
-
-double Daemon::pacingFps() const
-{
-    // fps 0 means "as fast as frames come", which only `render` does; a running daemon paces at a sane default.
-    if (pipeline_.format().fps > 0)
-        return pipeline_.format().fps;
-    return config_.source.fps > 0 ? config_.source.fps : 30.0;
 }
 
 } // namespace overlayd
