@@ -7,7 +7,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "overlay/raster/overlay_layer.h"
+#include "media/rgba.h"
 #include "projection/polylines.h"
 
 namespace overlayd {

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""The folder layering of docs/architecture.md, checked: every #include "folder/..." in a production folder must name
+a folder that the table below lets it use. A new edge is a design decision: change the table and the document
+together. Exit status 1 lists every offending include as file:line."""
+import os
+import re
+import sys
+
+# folder -> the project folders its files may include (its own folder is always allowed).
+ALLOWED = {
+    "base": set(),
+    "projection": {"base"},
+    "media": {"base"},
+    "overlay": {"base", "media", "projection"},
+    "drivers": {"base", "media", "projection"},
+    "config": {"base", "media", "projection", "overlay", "drivers"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "config"},
+}
+# Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
+# the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.
+OVERLAY_WINGS = {
+    "shapes": {"shapes"},
+    "raster": {"raster", "shapes", "blend"},
+    "blend": {"blend", "raster", "shapes"},
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
+
+
+def problems(root):
+    found = []
+    for folder, allowed in ALLOWED.items():
+        for directory, _, files in os.walk(os.path.join(root, folder)):
+            for name in sorted(files):
+                if not name.endswith((".h", ".cpp")):
+                    continue
+                path = os.path.join(directory, name)
+                relative = os.path.relpath(path, root)
+                parts = relative.split(os.sep)
+                wing = parts[1] if folder == "overlay" and len(parts) > 2 else None
+                with open(path, encoding="utf-8") as source:
+                    for number, line in enumerate(source, 1):
+                        match = INCLUDE.match(line)
+                        if not match or "/" not in match.group(1):
+                            continue
+                        target = match.group(1).split("/")
+                        if target[0] not in ALLOWED:
+                            continue  # a sibling header of a test or a third-party path
+                        if target[0] != folder and target[0] not in allowed:
+                            found.append(f"{relative}:{number}: {folder}/ may not include {match.group(1)}")
+                        elif wing and target[0] == "overlay" and len(target) > 2 and target[1] not in OVERLAY_WINGS[wing]:
+                            found.append(f"{relative}:{number}: overlay/{wing}/ may not include {match.group(1)}")
+                        elif wing and target[0] == "overlay" and len(target) == 2:
+                            found.append(f"{relative}:{number}: overlay/{wing}/ may not include the renderer "
+                                         f"({match.group(1)})")
+    return found
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
+    found = problems(os.path.abspath(root))
+    for problem in found:
+        print(problem)
+    if found:
+        print(f"{len(found)} include(s) against the layering in docs/architecture.md")
+        return 1
+    print("layering ok: " + ", ".join(f"{folder} -> {{{', '.join(sorted(allowed))}}}" for folder, allowed in
+                                      ALLOWED.items()))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
