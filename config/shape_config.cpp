@@ -1,4 +1,4 @@
-// The shape keys of an [[annotation]], one reader per type of overlay/annotation.h.
+// The shape keys of an [[annotation]], one reader per type of overlay/shapes/annotation.h.
 #include "config/config_sections.h"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // the pitched-down camera of scene_bench.cpp) at 1920x1080, the camera yawing between frames:
 //   stroke_raster  coverage rows into a sink that sums them (what a frame sink would blend);
 //   opencv_fill    cv::fillConvexPoly LINE_AA of each segment's inset quad into a full-frame CV_8UC1 mask, as
-//                  overlay/rasterizer.cpp draws a translucent stroke (opencv_fill_clear also clears the mask after,
+//                  overlay/raster/rasterizer.cpp draws a translucent stroke (opencv_fill_clear also clears the mask after,
 //                  as that path must before the next item);
 //   memcpy         one cold 1920x1080 YUYV frame copy, the floor the targets are measured against.
 // ns_per_px is the time per covered pixel (pixels with coverage > 0 in StrokeRasterizer's output).
@@ -114,7 +114,7 @@ void strokeRasterBench(benchmark::State &state)
     setCounters(state);
 }
 
-// overlay/rasterizer.cpp's stroke: quads inset by 0.675 px (OpenCV's anti-aliased edge adds about that much on
+// overlay/raster/rasterizer.cpp's stroke: quads inset by 0.675 px (OpenCV's anti-aliased edge adds about that much on
 // each side), 8 fractional bits; interior joints overlap by max(half, 1) px.
 void fillStrokes(const Polylines &lines, cv::Mat &mask)
 {
