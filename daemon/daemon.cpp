@@ -47,12 +47,10 @@ Status Daemon::setUp()
 {
     if (auto created = createTimers(); !created)
         return created;
-    std::vector<ConfigProblem> problems;
-    auto loaded = loader_(options_.configPath, problems);
+    size_t problems = 0;
+    auto loaded = loadConfig(problems);
     if (!loaded) {
-        for (const ConfigProblem &problem : problems)
-            logger_.error(problem.format());
-        configProblemsLogged_ = !problems.empty();
+        configProblemsLogged_ = problems > 0;
         return loaded.error();
     }
     config_ = std::move(*loaded);
@@ -73,6 +71,16 @@ Status Daemon::setUp()
     if (auto interval = health_.notifier().watchdogInterval())
         (void)watchdog_->arm(*interval, *interval);
     return Ok{};
+}
+
+Result<DaemonConfig> Daemon::loadConfig(size_t &problemCount)
+{
+    std::vector<ConfigProblem> problems;
+    auto loaded = loader_(options_.configPath, problems);
+    for (const ConfigProblem &problem : problems)
+        logger_.error(problem.format());
+    problemCount = problems.size();
+    return loaded;
 }
 
 std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &config, Status &status)

@@ -68,6 +68,8 @@ public:
 private:
     Status setUp();
     Status createTimers();
+    // Loads the config file; every problem is logged (one line each, at file:line:column) and counted.
+    Result<DaemonConfig> loadConfig(size_t &problemCount);
     void onFrameDelivered();
     void armStats();
     std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);

@@ -95,13 +95,10 @@ bool Daemon::reload()
         notifier.ready();
         return false;
     };
-    std::vector<ConfigProblem> problems;
-    auto loaded = loader_(options_.configPath, problems);
-    if (!loaded) {
-        for (const ConfigProblem &problem : problems)
-            logger_.error(problem.format());
-        return reject(cat(problems.size(), " problem(s) in ", options_.configPath));
-    }
+    size_t problems = 0;
+    auto loaded = loadConfig(problems);
+    if (!loaded)
+        return reject(cat(problems, " problem(s) in ", options_.configPath));
     DaemonConfig next = std::move(*loaded);
     const bool sourceChanged = !sameSourceOptions(config_.source, next.source) || sceneCameraChanged(config_, next) ||
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
