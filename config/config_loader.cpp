@@ -52,6 +52,7 @@ std::optional<SceneGraph> checkFrames(TableReader &root, DaemonConfig &config)
         root.problem("frame", graph.error().message);
         return std::nullopt;
     }
+    config.scene.graph = *graph;
     return graph.value();
 }
 

@@ -17,7 +17,7 @@ Result<std::unique_ptr<OverlayRenderer>> OverlayRenderer::create(const OverlaySc
                          "the camera's viewport is " + std::to_string(camera.viewport().frameWidth()) + "x" +
                              std::to_string(camera.viewport().frameHeight()) + ", the stream " +
                              std::to_string(format.width) + "x" + std::to_string(format.height));
-    Result<SceneGraph> graph = SceneGraph::create(scene.frames);
+    Result<SceneGraph> graph = scene.graph ? Result<SceneGraph>(*scene.graph) : SceneGraph::create(scene.frames);
     if (!graph)
         return graph.error();
     if (Status status = checkScene(scene, *graph); !status)

@@ -139,6 +139,9 @@ struct Annotation {
 struct OverlayScene {
     std::vector<FrameSpec> frames;
     std::vector<Annotation> annotations;
+    // `frames` resolved, by the config loader (which has to, to check frame names); a scene made in code leaves it
+    // empty and the renderer resolves the frames itself.
+    std::optional<SceneGraph> graph{};
 };
 
 } // namespace overlayd
