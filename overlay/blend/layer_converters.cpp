@@ -157,33 +157,11 @@ void convertPacked422(const OverlayLayer &layer, const PixelFormatInfo &format, 
     }
 }
 
-void convertSemiPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                       NativeLayer &out)
+// Each chroma row's covered group intervals with their groups' chroma encoded: the walk both 4:2:x layouts share.
+template<typename EmitInterval>
+void forChromaIntervals(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
+                        EmitInterval emit)
 {
-    convertLumaPlane(layer, format, encoder, out);
-    Scratch scratch;
-    ChromaCache encode(encoder);
-    for (unsigned row = 0; row < format.planeHeight(1, layer.height()); ++row) {
-        const unsigned y0 = row * format.vSubSampling, y1 = std::min(y0 + format.vSubSampling, layer.height());
-        for (const Interval &interval : groupIntervals(layer, y0, y1, format.hSubSampling, scratch)) {
-            out.beginRun(1, row, interval.g0 * 2);
-            for (unsigned g = interval.g0; g < interval.g1; ++g) {
-                const YcbcrBlendSamples chroma = encode(layer, g, format, row);
-                std::array<BlendSample, 2> samples{};
-                samples[format.cbOffset] = chroma.cb;
-                samples[format.crOffset] = chroma.cr;
-                out.push(samples[0]);
-                out.push(samples[1]);
-            }
-            out.endRun();
-        }
-    }
-}
-
-void convertPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                   NativeLayer &out)
-{
-    convertLumaPlane(layer, format, encoder, out);
     Scratch scratch;
     ChromaCache encode(encoder);
     std::vector<YcbcrBlendSamples> chroma;
@@ -193,16 +171,44 @@ void convertPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, con
             chroma.clear();
             for (unsigned g = interval.g0; g < interval.g1; ++g)
                 chroma.push_back(encode(layer, g, format, row));
-            out.beginRun(format.cbPlane, row, interval.g0);
-            for (const YcbcrBlendSamples &samples : chroma)
-                out.push(samples.cb);
-            out.endRun();
-            out.beginRun(format.crPlane, row, interval.g0);
-            for (const YcbcrBlendSamples &samples : chroma)
-                out.push(samples.cr);
-            out.endRun();
+            emit(row, interval.g0, chroma);
         }
     }
+}
+
+void convertSemiPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
+                       NativeLayer &out)
+{
+    convertLumaPlane(layer, format, encoder, out);
+    forChromaIntervals(layer, format, encoder,
+                       [&](unsigned row, unsigned g0, const std::vector<YcbcrBlendSamples> &chroma) {
+                           out.beginRun(1, row, g0 * 2);
+                           for (const YcbcrBlendSamples &group : chroma) {
+                               std::array<BlendSample, 2> samples{};
+                               samples[format.cbOffset] = group.cb;
+                               samples[format.crOffset] = group.cr;
+                               out.push(samples[0]);
+                               out.push(samples[1]);
+                           }
+                           out.endRun();
+                       });
+}
+
+void convertPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
+                   NativeLayer &out)
+{
+    convertLumaPlane(layer, format, encoder, out);
+    forChromaIntervals(layer, format, encoder,
+                       [&](unsigned row, unsigned g0, const std::vector<YcbcrBlendSamples> &chroma) {
+                           out.beginRun(format.cbPlane, row, g0);
+                           for (const YcbcrBlendSamples &samples : chroma)
+                               out.push(samples.cb);
+                           out.endRun();
+                           out.beginRun(format.crPlane, row, g0);
+                           for (const YcbcrBlendSamples &samples : chroma)
+                               out.push(samples.cr);
+                           out.endRun();
+                       });
 }
 
 // Indexed by PixelLayout.
