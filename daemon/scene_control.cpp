@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "overlay/shapes/scene_checks.h"
+
 namespace overlayd {
 
 void SceneControl::load(const OverlayScene &scene, const CameraSpec &camera)
@@ -26,9 +28,13 @@ Result<std::unique_ptr<OverlayRenderer>> SceneControl::buildFor(const OverlaySce
     auto renderer = factory_(scene, *built, format);
     if (!renderer)
         return makeError(renderer.error().code, "overlay: " + renderer.error().message);
-    if (*renderer)
+    if (*renderer) {
+        // A layer or slot the new scene lacks has nothing to hide or show.
         for (const auto &[layer, visible] : layerVisible_)
-            (void)(*renderer)->setLayerEnabled(layer, visible); // a layer the new scene lacks has nothing to hide
+            (void)(*renderer)->setLayerEnabled(layer, visible);
+        for (const auto &[slot, text] : slotTexts_)
+            (void)(*renderer)->setSlotText(slot, text);
+    }
     return renderer;
 }
 
@@ -44,6 +50,8 @@ Status SceneControl::apply(const SceneChange &change, std::unique_ptr<OverlayRen
         return applyCamera(*camera);
     if (const auto *layer = std::get_if<LayerChange>(&change))
         return applyLayer(*layer);
+    if (const auto *text = std::get_if<TextChange>(&change))
+        return applyText(*text);
     return applyScene(std::get<SceneReplacement>(change), replaced);
 }
 
@@ -61,16 +69,26 @@ Status SceneControl::applyCamera(const CameraChange &change)
     return Ok{};
 }
 
+namespace {
+
+// "unknown layer 'x' (the scene has: a, b)": a refusal that says what would have been accepted.
+Status requireKnown(const char *what, const std::string &name, const std::vector<std::string> &known)
+{
+    if (std::find(known.begin(), known.end(), name) != known.end())
+        return Ok{};
+    std::string list;
+    for (const std::string &each : known)
+        list += (list.empty() ? "" : ", ") + each;
+    return makeError(ErrorCode::InvalidArgument, std::string("unknown ") + what + " '" + name +
+                                                     "' (the scene has: " + (list.empty() ? "none" : list) + ")");
+}
+
+} // namespace
+
 Status SceneControl::applyLayer(const LayerChange &change)
 {
-    const std::vector<std::string> names = layerNames();
-    if (std::find(names.begin(), names.end(), change.layer) == names.end()) {
-        std::string known;
-        for (const std::string &name : names)
-            known += (known.empty() ? "" : ", ") + name;
-        return makeError(ErrorCode::InvalidArgument, "unknown layer '" + change.layer +
-                                                         "' (the scene has: " + (known.empty() ? "none" : known) + ")");
-    }
+    if (Status known = requireKnown("layer", change.layer, layerNames()); !known)
+        return known;
     if (renderer_)
         if (auto set = renderer_->setLayerEnabled(change.layer, change.visible); !set)
             return set;
@@ -92,6 +110,19 @@ Status SceneControl::applyScene(const SceneReplacement &change, std::unique_ptr<
     return Ok{};
 }
 
+Status SceneControl::applyText(const TextChange &change)
+{
+    if (Status known = requireKnown("text slot", change.slot, textSlotNames(scene_)); !known)
+        return known;
+    if (Status checked = checkSlotText(change.text); !checked)
+        return checked;
+    if (renderer_)
+        if (auto set = renderer_->setSlotText(change.slot, change.text); !set)
+            return set;
+    slotTexts_.insert_or_assign(change.slot, change.text);
+    return Ok{};
+}
+
 std::vector<std::string> SceneControl::layerNames() const
 {
     std::vector<std::string> names;
@@ -99,6 +130,12 @@ std::vector<std::string> SceneControl::layerNames() const
         if (std::find(names.begin(), names.end(), annotation.style.layer) == names.end())
             names.push_back(annotation.style.layer);
     return names;
+}
+
+std::string SceneControl::slotText(const std::string &slot) const
+{
+    const auto found = slotTexts_.find(slot);
+    return found == slotTexts_.end() ? std::string() : found->second;
 }
 
 bool SceneControl::layerVisible(const std::string &layer) const

@@ -14,6 +14,7 @@
 #include "media/stream.h"
 #include "overlay/overlay_renderer.h"
 #include "overlay/shapes/annotation.h"
+#include "overlay/shapes/text_tokens.h"
 
 namespace overlayd {
 
@@ -28,13 +29,20 @@ struct LayerChange {
     bool visible = true;
 };
 
+// What a text slot shows: the scene's screen texts that hold {slot:NAME} show it from the next frame on (one line,
+// at most kMaxSlotTextBytes); the text outlives renderer rebuilds.
+struct TextChange {
+    std::string slot;
+    std::string text;
+};
+
 // A whole new scene and camera (a reload that keeps the source): built completely before it replaces the old one.
 struct SceneReplacement {
     OverlayScene scene;
     CameraSpec camera;
 };
 
-using SceneChange = std::variant<CameraChange, LayerChange, SceneReplacement>;
+using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SceneReplacement>;
 
 // Builds a stream's overlay from a scene and the camera resolved for the stream's frame size; null: nothing to draw.
 using RendererFactory = std::function<Result<std::unique_ptr<OverlayRenderer>>(
@@ -63,10 +71,13 @@ public:
     // Every layer the scene draws, in the order annotations first name them.
     std::vector<std::string> layerNames() const;
     bool layerVisible(const std::string &layer) const;
+    // What a slot shows now (empty when never set).
+    std::string slotText(const std::string &slot) const;
 
 private:
     Status applyCamera(const CameraChange &change);
     Status applyLayer(const LayerChange &change);
+    Status applyText(const TextChange &change);
     Status applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced);
     Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const CameraSpec &camera,
                                                       const StreamFormat &format) const;
@@ -75,6 +86,7 @@ private:
     OverlayScene scene_;
     CameraSpec camera_;
     std::map<std::string, bool, std::less<>> layerVisible_; // only the layers a change named
+    SlotTexts slotTexts_;                                   // only the slots a change set
     OverlayRenderer *renderer_ = nullptr;                   // owned by the pipeline
     StreamFormat format_{};
 };

@@ -32,6 +32,9 @@ public:
     // Layers are named by the annotations' styles; an unknown name is an InvalidArgument error.
     virtual Status setLayerEnabled(std::string_view layer, bool enabled) = 0;
     virtual std::vector<std::string> layerNames() const = 0;
+    // What a {slot:NAME} token shows from the next frame on (checkSlotText's rules); an unknown slot is an
+    // InvalidArgument error.
+    virtual Status setSlotText(std::string_view slot, std::string_view text) = 0;
 
     // Frame path (no exceptions; no allocation once the text layers have warmed up and while the camera holds
     // still): refreshes token text if it changed and blends every enabled layer into the frame in place. fps feeds

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
+#include "overlay/shapes/scene_checks.h"
 #include "overlay/shapes/shape_builder.h"
-#include "overlay/shapes/text_tokens.h"
 
 namespace overlayd {
 
@@ -23,6 +23,7 @@ SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const 
         else
             layers_[layer].annotations.push_back(i);
     }
+    slotNames_ = textSlotNames(scene_);
 }
 
 size_t SceneRenderer::layerIndex(const std::string &name)
@@ -134,6 +135,17 @@ Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
     return makeError(ErrorCode::InvalidArgument, "no overlay layer named \"" + std::string(name) + "\"");
 }
 
+Status SceneRenderer::setSlotText(std::string_view slot, std::string_view text)
+{
+    if (std::find(slotNames_.begin(), slotNames_.end(), slot) == slotNames_.end())
+        return makeError(ErrorCode::InvalidArgument, "no text shows a slot named \"" + std::string(slot) + "\"");
+    if (Status checked = checkSlotText(text); !checked)
+        return checked;
+    // The token texts that show it are re-rendered on the next blend, when their expanded string differs.
+    slotTexts_.insert_or_assign(std::string(slot), std::string(text));
+    return Ok{};
+}
+
 std::vector<std::string> SceneRenderer::layerNames() const
 {
     std::vector<std::string> names;
@@ -201,7 +213,7 @@ Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &me
         if (!layers_[slot.layer].enabled)
             continue;
         expandTokens(std::get<ScreenTextShape>(scene_.annotations[slot.annotation].shape).text, metadata, fps,
-                     slot.scratch);
+                     slot.scratch, &slotTexts_);
         if (!slot.rendered || slot.scratch != slot.shown) {
             if (Status status = renderText(slot); !status)
                 return status;

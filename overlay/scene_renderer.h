@@ -17,6 +17,7 @@
 #include "overlay/overlay_renderer.h"
 #include "overlay/raster/rasterizer.h"
 #include "overlay/raster/text_renderer.h"
+#include "overlay/shapes/text_tokens.h"
 
 namespace overlayd {
 
@@ -28,6 +29,7 @@ public:
     Status setCamera(const Camera &camera) override;
     Status setLayerEnabled(std::string_view layer, bool enabled) override;
     std::vector<std::string> layerNames() const override;
+    Status setSlotText(std::string_view slot, std::string_view text) override;
     Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) override;
 
     // Re-projects and re-rasterizes every world layer (called by create and setCamera).
@@ -72,6 +74,8 @@ private:
     Rasterizer rasterizer_;
     std::vector<Layer> layers_;
     std::vector<TextSlot> texts_;
+    std::vector<std::string> slotNames_; // the {slot:NAME} tokens the scene's texts use
+    SlotTexts slotTexts_;
     FrameCoverageSink frameSink_;
     bool worldStale_ = false; // the camera changed since the layers were rendered
     bool cameraChangedSinceBlend_ = false;

@@ -178,4 +178,13 @@ Status checkScene(const OverlayScene &scene, const SceneGraph &graph)
     return Ok{};
 }
 
+std::vector<std::string> textSlotNames(const OverlayScene &scene)
+{
+    std::vector<std::string> names;
+    for (const Annotation &annotation : scene.annotations)
+        if (const auto *text = std::get_if<ScreenTextShape>(&annotation.shape))
+            appendSlotNames(text->text, names);
+    return names;
+}
+
 } // namespace overlayd

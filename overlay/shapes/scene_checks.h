@@ -10,5 +10,7 @@ namespace overlayd {
 // Unknown frames, non-finite numbers, non-positive widths and sizes, bad dash patterns and text tokens; the
 // message names the annotation.
 Status checkScene(const OverlayScene &scene, const SceneGraph &graph);
+// The text slots the scene's screen texts show ({slot:NAME}), in the order they first appear.
+std::vector<std::string> textSlotNames(const OverlayScene &scene);
 
 } // namespace overlayd

@@ -1,6 +1,8 @@
 // Token expansion for screen text, checked once at configure time so that the frame path cannot fail.
 #include "overlay/shapes/text_tokens.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -37,8 +39,23 @@ bool scan(std::string_view text, Literal &&literal, Token &&token)
     return true;
 }
 
+constexpr std::string_view kSlotPrefix = "slot:";
+
+// A slot name as the control path and the config spell it: letters, digits, '_', '-' and '.'.
+bool validSlotName(std::string_view name)
+{
+    if (name.empty() || name.size() > 64)
+        return false;
+    for (const char c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.')
+            return false;
+    return true;
+}
+
 bool knownToken(std::string_view name)
 {
+    if (name.starts_with(kSlotPrefix))
+        return validSlotName(name.substr(kSlotPrefix.size()));
     return name == "frame" || name == "fps" || name == "ms" || name.starts_with("time:");
 }
 
@@ -71,7 +88,7 @@ Status checkTokens(std::string_view text)
                          "unbalanced brace in text \"" + std::string(text) + "\" (write {{ and }} for literal braces)");
     if (!unknown.empty())
         return makeError(ErrorCode::InvalidArgument, "unknown token {" + unknown + "} in text \"" + std::string(text) +
-                                                         "\" (known: frame, fps, ms, time:FORMAT)");
+                                                         "\" (known: frame, fps, ms, time:FORMAT, slot:NAME)");
     return Ok{};
 }
 
@@ -83,7 +100,32 @@ bool hasTokens(std::string_view text)
     return any;
 }
 
-void expandTokens(std::string_view text, const FrameMetadata &metadata, double fps, std::string &out)
+void appendSlotNames(std::string_view text, std::vector<std::string> &names)
+{
+    scan(
+        text, [](std::string_view) {},
+        [&](std::string_view name) {
+            if (!name.starts_with(kSlotPrefix))
+                return;
+            const std::string slot(name.substr(kSlotPrefix.size()));
+            if (std::find(names.begin(), names.end(), slot) == names.end())
+                names.push_back(slot);
+        });
+}
+
+Status checkSlotText(std::string_view text)
+{
+    if (text.size() > kMaxSlotTextBytes)
+        return makeError(ErrorCode::InvalidArgument, "slot text of " + std::to_string(text.size()) +
+                                                         " bytes: at most " + std::to_string(kMaxSlotTextBytes));
+    for (const char c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            return makeError(ErrorCode::InvalidArgument, "slot text holds a control character (one line of text)");
+    return Ok{};
+}
+
+void expandTokens(std::string_view text, const FrameMetadata &metadata, double fps, std::string &out,
+                  const SlotTexts *slots)
 {
     out.clear();
     char number[32];
@@ -101,6 +143,9 @@ void expandTokens(std::string_view text, const FrameMetadata &metadata, double f
                 out.append(number, std::snprintf(number, sizeof(number), "%03lld", (ms + 1000) % 1000));
             } else if (name.starts_with("time:")) {
                 appendTime(name.substr(5), metadata.wallClock, out);
+            } else if (name.starts_with(kSlotPrefix) && slots) {
+                if (const auto found = slots->find(name.substr(kSlotPrefix.size())); found != slots->end())
+                    out.append(found->second);
             }
         });
 }

@@ -78,6 +78,7 @@ public:
     explicit MarkingRenderer(uint8_t mark) : mark_(mark) {}
     Status setCamera(const Camera &) override { return Ok{}; }
     Status setLayerEnabled(std::string_view, bool) override { return Ok{}; }
+    Status setSlotText(std::string_view, std::string_view) override { return Ok{}; }
     std::vector<std::string> layerNames() const override { return {}; }
     Status blend(const FrameView &frame, const FrameMetadata &, double) override;
 

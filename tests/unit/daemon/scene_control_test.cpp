@@ -24,10 +24,16 @@ public:
         return Ok{};
     }
     std::vector<std::string> layerNames() const override { return {"grid", "labels"}; }
+    Status setSlotText(std::string_view slot, std::string_view text) override
+    {
+        slots.emplace_back(std::string(slot), std::string(text));
+        return Ok{};
+    }
     Status blend(const FrameView &, const FrameMetadata &, double) override { return Ok{}; }
 
     std::vector<glm::dmat4> cameras;
     std::vector<std::pair<std::string, bool>> layers;
+    std::vector<std::pair<std::string, std::string>> slots;
 };
 
 OverlayScene twoLayers()
@@ -37,7 +43,9 @@ OverlayScene twoLayers()
     grid.style.layer = "grid";
     Annotation label{"label", "world", {}, AxesShape{}};
     label.style.layer = "labels";
-    scene.annotations = {grid, label, grid};
+    Annotation gear{"gear", "world", {}, ScreenTextShape{"gear {slot:gear} {frame}"}};
+    gear.style.layer = "labels";
+    scene.annotations = {grid, label, grid, gear};
     return scene;
 }
 
@@ -112,6 +120,25 @@ TEST_F(SceneControlTest, LayerChoiceReachesTheRendererAndSurvivesARebuild)
     EXPECT_EQ(last->layers[0], std::pair(std::string("labels"), false));
 }
 
+TEST_F(SceneControlTest, SlotTextIsCheckedReachesTheRendererAndSurvivesARebuild)
+{
+    const Status unknown = control.apply(TextChange{"speed", "12"});
+    ASSERT_FALSE(unknown.ok());
+    EXPECT_EQ(unknown.error().message, "unknown text slot 'speed' (the scene has: gear)");
+    EXPECT_FALSE(control.apply(TextChange{"gear", "R\nD"}).ok());
+    EXPECT_FALSE(control.apply(TextChange{"gear", std::string(kMaxSlotTextBytes + 1, 'R')}).ok());
+    EXPECT_TRUE(last->slots.empty());
+    EXPECT_EQ(control.slotText("gear"), "");
+
+    ASSERT_TRUE(control.apply(TextChange{"gear", "R"}).ok());
+    ASSERT_EQ(last->slots.size(), 1u);
+    EXPECT_EQ(last->slots[0], std::pair(std::string("gear"), std::string("R")));
+    EXPECT_EQ(control.slotText("gear"), "R");
+    open();
+    ASSERT_EQ(last->slots.size(), 1u);
+    EXPECT_EQ(last->slots[0], std::pair(std::string("gear"), std::string("R")));
+}
+
 TEST_F(SceneControlTest, SceneThatCannotBeBuiltChangesNothing)
 {
     OverlayScene next = twoLayers();
@@ -122,12 +149,12 @@ TEST_F(SceneControlTest, SceneThatCannotBeBuiltChangesNothing)
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.error().message, "overlay: annotation 'x': unknown frame 'base'");
     EXPECT_EQ(replaced, nullptr);
-    EXPECT_EQ(control.scene().annotations.size(), 3u);
+    EXPECT_EQ(control.scene().annotations.size(), 4u);
 
     factoryFails = false;
     ASSERT_TRUE(control.apply(SceneReplacement{next, CameraSpec{}}, &replaced).ok());
     EXPECT_NE(replaced, nullptr);
-    EXPECT_EQ(control.scene().annotations.size(), 2u);
+    EXPECT_EQ(control.scene().annotations.size(), 3u);
 }
 
 TEST_F(SceneControlTest, CameraChangeWithoutAStreamIsRefused)

@@ -35,6 +35,15 @@ TEST(TextTokens, ExpandsEveryToken)
     EXPECT_FALSE(checkTokens("{frames}").ok());
     EXPECT_FALSE(checkTokens("{frame").ok());
     EXPECT_FALSE(checkTokens("}").ok());
+    EXPECT_TRUE(checkTokens("gear {slot:gear-1.a_b}").ok());
+    EXPECT_FALSE(checkTokens("{slot:}").ok());
+    EXPECT_FALSE(checkTokens("{slot:a b}").ok());
+    const SlotTexts slots{{"gear", "R"}};
+    expandTokens("gear {slot:gear}{slot:speed}", metadata, 0, out, &slots);
+    EXPECT_EQ(out, "gear R");
+    std::vector<std::string> names;
+    appendSlotNames("{slot:a} {frame} {{slot:b}} {slot:c} {slot:a}", names);
+    EXPECT_EQ(names, (std::vector<std::string>{"a", "c"}));
 }
 
 TEST(Dash, PiecesFollowArcLength)

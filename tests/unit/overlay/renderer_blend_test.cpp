@@ -175,6 +175,29 @@ TEST(RendererText, TokenTextFollowsTheFrame)
     EXPECT_EQ(one, oneAgain);
 }
 
+// A {slot:NAME} shows what setSlotText gave it from the next frame on: the same pixels as that text written in the
+// config, nothing before it is set; unknown slots and control characters are refused and change nothing.
+TEST(RendererText, SlotTextShowsWhatWasSet)
+{
+    const auto blendScene = [](const std::string &text, const std::string &slotText) {
+        OverlayScene scene;
+        scene.annotations.push_back(annotation("gear", ScreenTextShape{text, {4.0, 4.0}, 16.0}, kWhite));
+        auto renderer = test::makeRenderer(scene, test::groundCamera(96, 32), test::streamFormat("NV12", 96, 32));
+        if (!slotText.empty())
+            EXPECT_TRUE(renderer->setSlotText("gear", slotText));
+        EXPECT_FALSE(renderer->setSlotText("speed", "12"));
+        EXPECT_FALSE(renderer->setSlotText("gear", "R\nD"));
+        EXPECT_FALSE(renderer->setSlotText("gear", std::string(kMaxSlotTextBytes + 1, 'x')));
+        TestFrame frame = test::makeFrame("NV12", 96, 32, 0);
+        test::fillRgb(frame, kBt601Limited, 0, 0, 0);
+        EXPECT_TRUE(renderer->blend(frame.view(), FrameMetadata{}, 30.0));
+        return frame.bytes;
+    };
+    EXPECT_EQ(blendScene("gear {slot:gear}", "R"), blendScene("gear R", ""));
+    EXPECT_EQ(blendScene("gear {slot:gear}", ""), blendScene("gear ", ""));
+    EXPECT_NE(blendScene("gear {slot:gear}", "D"), blendScene("gear R", ""));
+}
+
 TEST(RendererErrors, RefusesBadScenesAndMismatchedCameras)
 {
     const Camera camera = test::groundCamera(64, 48);
