@@ -58,6 +58,9 @@ public:
     DepthRange depth = DepthRange::MinusOneToOne;
     Distortion distortion{};
     ViewportSpec viewport{}; // frameWidth/frameHeight are set by build()
+
+    // Every field: a reload compares whole specs, so a field added later is never ignored.
+    bool operator==(const CameraSpec &) const = default;
 };
 
 } // namespace overlayd

@@ -10,13 +10,13 @@ namespace overlayd::config {
 
 namespace {
 
-void readPixelFormat(TableReader &source, std::string &out)
+void readPixelFormat(TableReader &source, const PixelFormatInfo *&out)
 {
     const auto name = source.string("format");
     if (!name)
         return;
-    if (pixelFormatFromName(*name)) {
-        out = *name;
+    if (const PixelFormatInfo *format = pixelFormatFromName(*name)) {
+        out = format;
         return;
     }
     std::vector<std::string> names;

@@ -100,9 +100,10 @@ bool Daemon::reload()
     if (!loaded)
         return reject(cat(problems, " problem(s) in ", options_.configPath));
     DaemonConfig next = std::move(*loaded);
-    const bool sourceChanged = !sameSourceOptions(config_.source, next.source) || sceneCameraChanged(config_, next) ||
+    // Whole option structs are compared: a field added to them later re-opens what it belongs to.
+    const bool sourceChanged = config_.source != next.source || sceneCameraChanged(config_, next) ||
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
-    const bool sinksChanged = !sameSinkOptions(config_.sinks, next.sinks);
+    const bool sinksChanged = config_.sinks != next.sinks;
 
     // Everything that can fail is built before anything is switched; the scene goes through the same SceneControl
     // as every live change (a re-opened source builds its overlay from it when it starts).

@@ -1,6 +1,8 @@
 // openStream: source, format, overlay, sinks, in that order, each failure leaving the running pipeline as it was.
 #include "daemon/open_stream.h"
 
+#include <optional>
+
 namespace overlayd {
 
 Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource, const DaemonConfig &config,
@@ -9,11 +11,21 @@ Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource,
 {
     OpenFailure unused;
     OpenFailure &failed = failure ? *failure : unused;
-    auto source = makeSource(config);
-    if (!source) {
-        failed.step = OpenStep::CreateSource;
-        return source.error();
+    failed.step = OpenStep::CreateSource;
+    SourceOptions options = config.source;
+    options.v4l2.exportDmabuf = wantsZeroCopy(config);
+    // The synthetic scene is ray-traced through the camera the overlay uses, so that the two can be compared; for
+    // a source that produces its configured size, SceneControl builds that camera once for both.
+    std::optional<Camera> sceneCamera;
+    if (drawsThroughCamera(options)) {
+        auto camera = scene.cameraFor(options.width, options.height);
+        if (!camera)
+            return makeError(camera.error().code, "camera: " + camera.error().message);
+        sceneCamera.emplace(std::move(*camera));
     }
+    auto source = makeSource(options, sceneCamera ? &*sceneCamera : nullptr);
+    if (!source)
+        return source.error();
     failed.source = (*source)->describe();
     auto format = (*source)->start();
     if (!format) {
@@ -26,12 +38,7 @@ Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource,
         failed.step = OpenStep::BuildOverlay;
         return renderer.error();
     }
-    const StreamFormat &current = pipeline.format();
-    const bool formatChanged = current.format != format->format || current.width != format->width ||
-                               current.height != format->height || current.stride != format->stride ||
-                               !(current.colorimetry == format->colorimetry) || current.fps != format->fps ||
-                               current.dmabufBuffers != format->dmabufBuffers;
-    if (formatChanged)
+    if (pipeline.format() != *format)
         if (auto opened = pipeline.openSinks(*format); !opened && sinksMustOpen) {
             (*source)->stop();
             failed.step = OpenStep::OpenSinks;

@@ -12,20 +12,33 @@ void SceneControl::load(const OverlayScene &scene, const CameraSpec &camera)
 {
     scene_ = scene;
     camera_ = camera;
+    built_.reset();
+}
+
+Result<Camera> SceneControl::cameraFor(unsigned width, unsigned height) const
+{
+    if (built_ && builtWidth_ == width && builtHeight_ == height)
+        return *built_;
+    auto camera = camera_.build(width, height);
+    if (camera) {
+        built_ = *camera;
+        builtWidth_ = width, builtHeight_ = height;
+    }
+    return camera;
 }
 
 Result<std::unique_ptr<OverlayRenderer>> SceneControl::build(const StreamFormat &format) const
 {
-    return buildFor(scene_, camera_, format);
+    auto camera = cameraFor(format.width, format.height);
+    if (!camera)
+        return makeError(camera.error().code, "overlay: camera: " + camera.error().message);
+    return buildFor(scene_, *camera, format);
 }
 
-Result<std::unique_ptr<OverlayRenderer>> SceneControl::buildFor(const OverlayScene &scene, const CameraSpec &camera,
+Result<std::unique_ptr<OverlayRenderer>> SceneControl::buildFor(const OverlayScene &scene, const Camera &camera,
                                                                 const StreamFormat &format) const
 {
-    auto built = camera.build(format.width, format.height);
-    if (!built)
-        return makeError(built.error().code, "overlay: camera: " + built.error().message);
-    auto renderer = factory_(scene, *built, format);
+    auto renderer = factory_(scene, camera, format);
     if (!renderer)
         return makeError(renderer.error().code, "overlay: " + renderer.error().message);
     if (*renderer) {
@@ -66,6 +79,8 @@ Status SceneControl::applyCamera(const CameraChange &change)
         if (auto set = renderer_->setCamera(*camera); !set)
             return makeError(set.error().code, "camera: " + set.error().message);
     camera_ = change.camera;
+    built_ = std::move(*camera);
+    builtWidth_ = format_.width, builtHeight_ = format_.height;
     return Ok{};
 }
 
@@ -99,11 +114,18 @@ Status SceneControl::applyLayer(const LayerChange &change)
 Status SceneControl::applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced)
 {
     if (format_.format) {
-        auto renderer = buildFor(change.scene, change.camera, format_);
+        auto camera = change.camera.build(format_.width, format_.height);
+        if (!camera)
+            return makeError(camera.error().code, "overlay: camera: " + camera.error().message);
+        auto renderer = buildFor(change.scene, *camera, format_);
         if (!renderer)
             return renderer.error();
         if (replaced)
             *replaced = std::move(*renderer);
+        built_ = std::move(*camera);
+        builtWidth_ = format_.width, builtHeight_ = format_.height;
+    } else {
+        built_.reset();
     }
     scene_ = change.scene;
     camera_ = change.camera;

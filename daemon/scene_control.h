@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -67,6 +68,9 @@ public:
     Status apply(const SceneChange &change, std::unique_ptr<OverlayRenderer> *replaced = nullptr);
 
     const CameraSpec &camera() const { return camera_; }
+    // The live camera for a frame size, built once per size and camera change (the source that draws through it
+    // and the overlay share one build).
+    Result<Camera> cameraFor(unsigned width, unsigned height) const;
     const OverlayScene &scene() const { return scene_; }
     // Every layer the scene draws, in the order annotations first name them.
     std::vector<std::string> layerNames() const;
@@ -79,7 +83,7 @@ private:
     Status applyLayer(const LayerChange &change);
     Status applyText(const TextChange &change);
     Status applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced);
-    Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const CameraSpec &camera,
+    Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const Camera &camera,
                                                       const StreamFormat &format) const;
 
     RendererFactory factory_;
@@ -89,6 +93,9 @@ private:
     SlotTexts slotTexts_;                                   // only the slots a change set
     OverlayRenderer *renderer_ = nullptr;                   // owned by the pipeline
     StreamFormat format_{};
+    // The last cameraFor() build, while camera_ and its size stay the same.
+    mutable std::optional<Camera> built_;
+    mutable unsigned builtWidth_ = 0, builtHeight_ = 0;
 };
 
 } // namespace overlayd

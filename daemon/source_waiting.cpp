@@ -101,9 +101,7 @@ void SourceSupervisor::onNoSignalTick()
 StreamFormat SourceSupervisor::configuredFormat() const
 {
     StreamFormat format;
-    format.format = pixelFormatFromName(config_.source.pixelFormat);
-    if (!format.format)
-        format.format = pixelFormatFromName("YUYV");
+    format.format = config_.source.pixelFormat;
     format.width = config_.source.width;
     format.height = config_.source.height;
     format.fps = config_.source.fps;

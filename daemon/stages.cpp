@@ -1,7 +1,5 @@
-// StageFactories: the production wiring, and option comparison for reloads.
+// StageFactories: the production wiring, and what a reload must re-open.
 #include "daemon/stages.h"
-
-#include <tuple>
 
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
@@ -9,20 +7,6 @@
 namespace overlayd {
 
 namespace {
-
-Result<std::unique_ptr<FrameSource>> buildSource(const DaemonConfig &config)
-{
-    SourceOptions options = config.source;
-    options.v4l2.exportDmabuf = wantsZeroCopy(config);
-    if (options.kind == SourceKind::Synthetic && options.synthetic.pattern == SyntheticPattern::CheckerboardScene) {
-        // The scene is ray-traced through the same camera the overlay uses, so that the two can be compared.
-        auto camera = config.camera.build(options.width, options.height);
-        if (!camera)
-            return makeError(camera.error().code, "camera: " + camera.error().message);
-        options.synthetic.camera = std::move(*camera);
-    }
-    return makeSource(options);
-}
 
 Result<std::unique_ptr<OverlayRenderer>> buildRenderer(const OverlayScene &scene, const Camera &camera,
                                                        const StreamFormat &format)
@@ -32,41 +16,12 @@ Result<std::unique_ptr<OverlayRenderer>> buildRenderer(const OverlayScene &scene
     return OverlayRenderer::create(scene, camera, format);
 }
 
-// The fields a source is built from (the synthetic camera is compared separately: it comes from [camera]).
-auto sourceKey(const SourceOptions &o)
-{
-    const SyntheticOptions &s = o.synthetic;
-    const ReplayOptions &r = o.replay;
-    const V4l2CaptureOptions &v = o.v4l2;
-    return std::tuple(o.kind, o.pixelFormat, o.width, o.height, o.fps, o.colorimetry, s.pattern, s.seed, s.checkerPx,
-                      s.checkerMetres, s.stallAfterFrames, r.path, r.format, r.loop, r.firstIndex, v.device,
-                      v.bufferCount, v.noSignalTimeoutSec);
-}
-
-auto sinkKey(const SinkOptions &o)
-{
-    return std::tuple(o.kind, o.path, o.every, o.jpegQuality, o.queueDepth, o.dropPolicy, o.bufferCount, o.zeroCopy);
-}
-
-bool drawsThroughCamera(const SourceOptions &o)
-{
-    return o.kind == SourceKind::Synthetic && o.synthetic.pattern == SyntheticPattern::CheckerboardScene;
-}
-
-// Two cameras that map every pixel the same way: same pose, projection, lens and viewport mapping.
-bool sameMapping(const Camera &a, const Camera &b)
-{
-    const auto lensOf = [](const Camera &c) {
-        return c.lens() ? std::pair(c.lens()->distortion().model, c.lens()->distortion().coeffs)
-                        : std::pair(DistortionModel::None, std::array<double, 8>{});
-    };
-    const Viewport &va = a.viewport(), &vb = b.viewport();
-    return a.view() == b.view() && a.projection().matrix() == b.projection().matrix() && lensOf(a) == lensOf(b) &&
-           va.window() == vb.window() && va.ndcToPixel({1, 1}) == vb.ndcToPixel({1, 1}) &&
-           va.ndcToPixel({-1, -1}) == vb.ndcToPixel({-1, -1});
-}
-
 } // namespace
+
+bool drawsThroughCamera(const SourceOptions &options)
+{
+    return options.kind == SourceKind::Synthetic && options.synthetic.pattern == SyntheticPattern::CheckerboardScene;
+}
 
 bool wantsZeroCopy(const DaemonConfig &config)
 {
@@ -106,31 +61,14 @@ Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &
 
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b)
 {
-    if (!drawsThroughCamera(b.source))
-        return false;
-    auto before = a.camera.build(a.source.width, a.source.height);
-    auto after = b.camera.build(b.source.width, b.source.height);
-    return !before || !after || !sameMapping(*before, *after);
+    return drawsThroughCamera(b.source) && a.camera != b.camera;
 }
 
 StageFactories defaultStageFactories()
 {
-    return StageFactories{buildSource, [](const SinkOptions &options) { return makeSink(options); }, buildRenderer};
-}
-
-bool sameSourceOptions(const SourceOptions &a, const SourceOptions &b)
-{
-    return sourceKey(a) == sourceKey(b);
-}
-
-bool sameSinkOptions(const std::vector<SinkOptions> &a, const std::vector<SinkOptions> &b)
-{
-    if (a.size() != b.size())
-        return false;
-    for (size_t i = 0; i < a.size(); ++i)
-        if (sinkKey(a[i]) != sinkKey(b[i]))
-            return false;
-    return true;
+    return StageFactories{
+        [](const SourceOptions &options, const Camera *sceneCamera) { return makeSource(options, sceneCamera); },
+        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer};
 }
 
 } // namespace overlayd

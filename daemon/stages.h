@@ -15,7 +15,9 @@
 
 namespace overlayd {
 
-using SourceFactory = std::function<Result<std::unique_ptr<FrameSource>>(const DaemonConfig &)>;
+// `sceneCamera`: the stream's camera when the source draws through it (drawsThroughCamera), else null.
+using SourceFactory =
+    std::function<Result<std::unique_ptr<FrameSource>>(const SourceOptions &options, const Camera *sceneCamera)>;
 
 struct StageFactories {
     SourceFactory source;
@@ -24,13 +26,11 @@ struct StageFactories {
     RendererFactory renderer;
 };
 
-// makeSource (with the synthetic scene's camera built for the configured size), makeSink, and
-// OverlayRenderer::create for the negotiated stream.
+// makeSource, makeSink, and OverlayRenderer::create for the negotiated stream.
 StageFactories defaultStageFactories();
 
-// Whether a reload must re-open the source / the sinks: only when what they were built from changed.
-bool sameSourceOptions(const SourceOptions &a, const SourceOptions &b);
-bool sameSinkOptions(const std::vector<SinkOptions> &a, const std::vector<SinkOptions> &b);
+// Whether the source renders its frames through the stream's camera (the synthetic checkerboard scene).
+bool drawsThroughCamera(const SourceOptions &options);
 // Whether a V4L2 output sink may take the capture buffers themselves (zero_copy not "off"): then the V4L2 source
 // exports its buffers (VIDIOC_EXPBUF), and a reload that changes this re-opens the source.
 bool wantsZeroCopy(const DaemonConfig &config);
@@ -39,7 +39,7 @@ bool wantsZeroCopy(const DaemonConfig &config);
 // notice each). Two "on" sinks are a ConfigError.
 Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices);
 // Whether the source draws through [camera] (the synthetic checkerboard scene) and that camera changed, so that a
-// reload must re-open the source although its own options are the same.
+// reload must re-open the source although its own options are the same (whole CameraSpecs compared).
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b);
 
 } // namespace overlayd

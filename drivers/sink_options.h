@@ -33,6 +33,9 @@ struct SinkOptions {
     DropPolicy dropPolicy = DropPolicy::DropOldest;
     unsigned bufferCount = 4;           // V4l2Output
     ZeroCopy zeroCopy = ZeroCopy::Auto; // V4l2Output
+
+    // Every field: a reload re-opens the sinks when any differs.
+    bool operator==(const SinkOptions &) const = default;
 };
 
 Result<std::unique_ptr<FrameSink>> makeSink(const SinkOptions &options);

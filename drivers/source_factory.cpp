@@ -7,13 +7,16 @@
 
 namespace overlayd {
 
-Result<std::unique_ptr<FrameSource>> makeSource(const SourceOptions &options)
+Result<std::unique_ptr<FrameSource>> makeSource(const SourceOptions &options, const Camera *sceneCamera)
 {
+    // The config loader resolves the name; options made in code must name a table entry too.
+    if (!options.pixelFormat)
+        return makeError(ErrorCode::InvalidArgument, "no pixel format");
     switch (options.kind) {
     case SourceKind::V4l2:
         return makeV4l2Source(options);
     case SourceKind::Synthetic:
-        return makeSyntheticSource(options);
+        return makeSyntheticSource(options, sceneCamera);
     case SourceKind::Replay:
         return makeReplaySource(options);
     }

@@ -9,6 +9,7 @@
 #include "base/result.h"
 #include "drivers/frame_source.h"
 #include "media/colorimetry.h"
+#include "media/pixel_format.h"
 #include "projection/camera.h"
 
 namespace overlayd {
@@ -21,13 +22,14 @@ enum class SyntheticPattern { ColourBars, Checkerboard, MovingGradient, Noise, C
 
 struct SyntheticOptions {
     SyntheticPattern pattern = SyntheticPattern::CheckerboardScene;
-    uint64_t seed = 1;            // Noise
-    unsigned checkerPx = 40;      // Checkerboard: square size in pixels
-    double checkerMetres = 1.0;   // CheckerboardScene: square size on the ground (squares have corners at k * size)
-    std::optional<Camera> camera; // CheckerboardScene: the stream's camera (its viewport is the frame size)
+    uint64_t seed = 1;          // Noise
+    unsigned checkerPx = 40;    // Checkerboard: square size in pixels
+    double checkerMetres = 1.0; // CheckerboardScene: square size on the ground (squares have corners at k * size)
     // Diagnostics and tests: after this many frames the source stops delivering (TryAgain forever, no error), as a
     // wedged camera would; the systemd watchdog must then stop being petted. 0: never.
     uint64_t stallAfterFrames = 0;
+
+    bool operator==(const SyntheticOptions &) const = default;
 };
 
 enum class ReplayFormat { Auto, Y4m, Raw, Images }; // Auto: from the path's extension (%d in it: Images)
@@ -37,6 +39,8 @@ struct ReplayOptions {
     ReplayFormat format = ReplayFormat::Auto;
     bool loop = false;
     unsigned firstIndex = 0; // Images: the number the sequence starts at
+
+    bool operator==(const ReplayOptions &) const = default;
 };
 
 struct V4l2CaptureOptions {
@@ -46,23 +50,30 @@ struct V4l2CaptureOptions {
     // VIDIOC_EXPBUF every buffer so that frames carry dmabuf fds (zero-copy sinks). Not a config key: the daemon
     // sets it when a sink wants zero copy. A driver that refuses is logged once and streams without fds.
     bool exportDmabuf = false;
+
+    bool operator==(const V4l2CaptureOptions &) const = default;
 };
 
 struct SourceOptions {
     SourceKind kind = SourceKind::Synthetic;
     // The requested stream. Raw replay and synthetic sources produce exactly this; Y4M and images take size and
     // (for Y4M) format from the file; V4L2 negotiates (Valid / Adjusted / Invalid).
-    std::string pixelFormat = "YUYV";
+    // Resolved from its name once, by the config loader; never null.
+    const PixelFormatInfo *pixelFormat = pixelFormatFromName("YUYV");
     unsigned width = 1280, height = 720;
     double fps = 30.0;
     std::optional<Colorimetry> colorimetry; // default: BT.601 limited, or what the device reports
     SyntheticOptions synthetic;
     ReplayOptions replay;
     V4l2CaptureOptions v4l2;
+
+    // Every field: a reload re-opens the source when any differs, so a field added later is never ignored.
+    bool operator==(const SourceOptions &) const = default;
 };
 
-// Validates before allocating anything (sizes, fps, format names). V4L2 support may be compiled out: then asking
-// for it is an Unsupported error, never a crash.
-Result<std::unique_ptr<FrameSource>> makeSource(const SourceOptions &options);
+// Validates before allocating anything (sizes, fps). V4L2 support may be compiled out: then asking for it is an
+// Unsupported error, never a crash. `sceneCamera`: the stream's camera, which the checkerboard-scene pattern is
+// rendered through (its viewport is the frame size); the other sources ignore it.
+Result<std::unique_ptr<FrameSource>> makeSource(const SourceOptions &options, const Camera *sceneCamera = nullptr);
 
 } // namespace overlayd

@@ -26,6 +26,9 @@ struct StreamFormat {
     // zero-copy sink may hold up to dmabufBuffers - 2 of them, so that the source keeps two to capture into.
     unsigned dmabufBuffers = 0;
 
+    // A different stream in any respect: the sinks re-open for it.
+    bool operator==(const StreamFormat &) const = default;
+
     // "1280x720 YUYV 30.0 fps", for logs and systemd STATUS=.
     std::string describe() const;
 };

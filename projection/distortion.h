@@ -19,6 +19,8 @@ enum class DistortionModel {
 struct Distortion {
     DistortionModel model = DistortionModel::None;
     std::array<double, 8> coeffs{}; // in the order listed beside each model; unused trailing entries are 0
+
+    bool operator==(const Distortion &) const = default;
 };
 
 // How many coefficients a model takes (0, 5, 8, 4).

@@ -18,6 +18,8 @@ struct Pose {
 
     glm::dmat4 viewMatrix() const;
     glm::dvec3 position() const; // the camera centre in world coordinates
+
+    bool operator==(const Pose &) const = default;
 };
 
 // How the axes of a given orientation are laid out on the camera.

@@ -21,6 +21,8 @@ inline constexpr double kInfiniteFar = std::numeric_limits<double>::infinity();
 // positive distances along the viewing direction. far may be kInfiniteFar for perspective frusta (seed 002).
 struct FrustumBounds {
     double left = 0, right = 0, bottom = 0, top = 0, near = 0, far = 0;
+
+    bool operator==(const FrustumBounds &) const = default;
 };
 
 // What a calibration produces (OpenCV/ROS): u = fx x + skew y + cx, v = fy y + cy for x = X/Z, y = Y/Z in the
@@ -28,6 +30,8 @@ struct FrustumBounds {
 struct PinholeIntrinsics {
     double fx = 0, fy = 0, cx = 0, cy = 0, skew = 0;
     int width = 0, height = 0;
+
+    bool operator==(const PinholeIntrinsics &) const = default;
 };
 
 // Seed 000's window model: a window of 2*halfWidth x 2*halfHeight at distance focal along the view direction,
@@ -37,6 +41,8 @@ struct WindowIntrinsics {
     glm::dvec2 centre{0.0};
     double halfWidth = 0, halfHeight = 0;
     double near = 0, far = 0;
+
+    bool operator==(const WindowIntrinsics &) const = default;
 };
 
 class Projection

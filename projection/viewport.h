@@ -30,6 +30,8 @@ struct ViewportSpec {
     Origin origin = Origin::TopLeft;
     double pixelAspect = 1.0;           // horizontal / vertical pixel spacing (non-square pixels)
     std::optional<PixelRect> scissor{}; // limits drawing; the window when unset
+
+    bool operator==(const ViewportSpec &) const = default;
 };
 
 class Viewport

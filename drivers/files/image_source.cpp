@@ -72,8 +72,9 @@ Result<StreamFormat> ImageSource::open()
         return first.error();
     if (first->width > kMaxFrameDimension || first->height > kMaxFrameDimension)
         return malformed(0, "image too large");
-    return StreamFormat{pixelFormatFromName(options_.pixelFormat),    first->width, first->height, 0,
-                        options_.colorimetry.value_or(Colorimetry{}), options_.fps};
+    return StreamFormat{
+        options_.pixelFormat, first->width, first->height, 0, options_.colorimetry.value_or(Colorimetry{}),
+        options_.fps};
 }
 
 Status ImageSource::read(uint64_t index, FrameBuffer &buffer)
@@ -92,8 +93,6 @@ Status ImageSource::read(uint64_t index, FrameBuffer &buffer)
 
 Result<std::unique_ptr<FrameSource>> makeImageSource(const SourceOptions &options)
 {
-    if (!pixelFormatFromName(options.pixelFormat))
-        return makeError(ErrorCode::InvalidArgument, "unknown pixel format '" + options.pixelFormat + "'");
     if (!(options.fps > 0.0 && std::isfinite(options.fps)))
         return makeError(ErrorCode::InvalidArgument,
                          "image replay needs fps > 0 (got " + std::to_string(options.fps) + ")");

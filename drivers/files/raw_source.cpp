@@ -32,8 +32,9 @@ Result<StreamFormat> RawSource::open()
     if (!file)
         return file.error();
     file_ = std::move(*file);
-    return StreamFormat{pixelFormatFromName(options_.pixelFormat),    options_.width, options_.height, 0,
-                        options_.colorimetry.value_or(Colorimetry{}), options_.fps};
+    return StreamFormat{
+        options_.pixelFormat, options_.width, options_.height, 0, options_.colorimetry.value_or(Colorimetry{}),
+        options_.fps};
 }
 
 Status RawSource::read(uint64_t index, FrameBuffer &buffer)
@@ -60,9 +61,7 @@ Status RawSource::rewind()
 
 Result<std::unique_ptr<FrameSource>> makeRawSource(const SourceOptions &options)
 {
-    const PixelFormatInfo *format = pixelFormatFromName(options.pixelFormat);
-    if (!format)
-        return makeError(ErrorCode::InvalidArgument, "unknown pixel format '" + options.pixelFormat + "'");
+    const PixelFormatInfo *format = options.pixelFormat;
     if (!(options.fps > 0.0 && std::isfinite(options.fps)))
         return makeError(ErrorCode::InvalidArgument,
                          "raw replay needs fps > 0 (got " + std::to_string(options.fps) + ")");

@@ -65,7 +65,7 @@ const PixelFormatInfo *Y4mSource::outputFormat() const
     case Y4mChroma::C444:
         break;
     }
-    return pixelFormatFromName(options_.pixelFormat);
+    return options_.pixelFormat;
 }
 
 Result<StreamFormat> Y4mSource::open()
@@ -128,8 +128,6 @@ Status Y4mSource::rewind()
 
 Result<std::unique_ptr<FrameSource>> makeY4mSource(const SourceOptions &options)
 {
-    if (!pixelFormatFromName(options.pixelFormat))
-        return makeError(ErrorCode::InvalidArgument, "unknown pixel format '" + options.pixelFormat + "'");
     return std::unique_ptr<FrameSource>(std::make_unique<Y4mSource>(options));
 }
 

@@ -32,7 +32,12 @@ bool isStatic(SyntheticPattern pattern)
 class SyntheticSource : public FrameSource
 {
 public:
-    SyntheticSource(const SourceOptions &options, StreamFormat format) : options_(options.synthetic), format_(format) {}
+    SyntheticSource(const SourceOptions &options, const Camera *camera, StreamFormat format)
+        : options_(options.synthetic), format_(format)
+    {
+        if (camera)
+            camera_.emplace(*camera);
+    }
 
     Result<StreamFormat> start() override;
     void stop() override { pool_.reset(), still_.reset(); }
@@ -48,6 +53,7 @@ private:
     Status draw(uint64_t sequence, FrameBuffer &buffer);
 
     SyntheticOptions options_;
+    std::optional<Camera> camera_; // the checkerboard scene's
     StreamFormat format_;
     std::shared_ptr<FramePool> pool_;
     std::optional<FrameBuffer> still_; // the static pattern in the stream's format
@@ -85,7 +91,7 @@ RgbImage SyntheticSource::renderStill() const
     case SyntheticPattern::Checkerboard:
         return checkerboard(format_.width, format_.height, options_.checkerPx);
     default:
-        return renderCheckerScene(*options_.camera, format_.width, format_.height, options_.checkerMetres);
+        return renderCheckerScene(*camera_, format_.width, format_.height, options_.checkerMetres);
     }
 }
 
@@ -125,7 +131,7 @@ Result<FrameLease> SyntheticSource::nextFrame()
     return pool_->lend(*index, metadata);
 }
 
-Status validate(const SourceOptions &options)
+Status validate(const SourceOptions &options, const Camera *camera)
 {
     const SyntheticOptions &synthetic = options.synthetic;
     if (synthetic.pattern == SyntheticPattern::Checkerboard && synthetic.checkerPx == 0)
@@ -135,9 +141,9 @@ Status validate(const SourceOptions &options)
     if (!(synthetic.checkerMetres > 0.0 && std::isfinite(synthetic.checkerMetres)))
         return makeError(ErrorCode::InvalidArgument,
                          "checker_metres must be > 0 (got " + std::to_string(synthetic.checkerMetres) + ")");
-    if (!synthetic.camera)
+    if (!camera)
         return makeError(ErrorCode::InvalidArgument, "the checkerboard-scene pattern needs a camera");
-    const Viewport &viewport = synthetic.camera->viewport();
+    const Viewport &viewport = camera->viewport();
     if (unsigned(viewport.frameWidth()) != options.width || unsigned(viewport.frameHeight()) != options.height)
         return makeError(ErrorCode::InvalidArgument,
                          "the camera's viewport frame is " + std::to_string(viewport.frameWidth()) + "x" +
@@ -148,13 +154,11 @@ Status validate(const SourceOptions &options)
 
 } // namespace
 
-Result<std::unique_ptr<FrameSource>> makeSyntheticSource(const SourceOptions &options)
+Result<std::unique_ptr<FrameSource>> makeSyntheticSource(const SourceOptions &options, const Camera *sceneCamera)
 {
-    if (auto valid = validate(options); !valid)
+    if (auto valid = validate(options, sceneCamera); !valid)
         return valid.error();
-    const PixelFormatInfo *format = pixelFormatFromName(options.pixelFormat);
-    if (!format)
-        return makeError(ErrorCode::InvalidArgument, "unknown pixel format '" + options.pixelFormat + "'");
+    const PixelFormatInfo *format = options.pixelFormat;
     if (!(options.fps > 0.0 && options.fps <= 1000.0))
         return makeError(ErrorCode::InvalidArgument,
                          "synthetic fps must be in (0, 1000] (got " + std::to_string(options.fps) + ")");
@@ -162,7 +166,7 @@ Result<std::unique_ptr<FrameSource>> makeSyntheticSource(const SourceOptions &op
                         options.fps};
     if (auto layout = makeFrameLayout(*format, stream.width, stream.height); !layout)
         return layout.error();
-    return std::unique_ptr<FrameSource>(std::make_unique<SyntheticSource>(options, stream));
+    return std::unique_ptr<FrameSource>(std::make_unique<SyntheticSource>(options, sceneCamera, stream));
 }
 
 } // namespace overlayd

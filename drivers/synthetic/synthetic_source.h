@@ -8,7 +8,8 @@
 
 namespace overlayd {
 
-// Validates the options (size, fps, format, the scene's camera) before anything is allocated.
-Result<std::unique_ptr<FrameSource>> makeSyntheticSource(const SourceOptions &options);
+// Validates the options (size, fps, format, the scene's camera) before anything is allocated. The
+// checkerboard-scene pattern is rendered through `sceneCamera` (required for it, ignored otherwise).
+Result<std::unique_ptr<FrameSource>> makeSyntheticSource(const SourceOptions &options, const Camera *sceneCamera);
 
 } // namespace overlayd

@@ -58,9 +58,7 @@ Result<DeviceFormat> V4l2CaptureSource::applyFormat(uint32_t fourcc, unsigned wi
 
 Result<StreamFormat> V4l2CaptureSource::negotiate()
 {
-    const PixelFormatInfo *wanted = pixelFormatFromName(options_.pixelFormat);
-    if (!wanted)
-        return makeError(ErrorCode::ConfigError, "unknown pixel format '" + options_.pixelFormat + "'");
+    const PixelFormatInfo *wanted = options_.pixelFormat;
     const std::vector<OfferedFormat> offers = device_->enumerateFormats();
     const FormatChoice choice = chooseFormat({wanted, options_.width, options_.height, options_.fps}, offers);
     if (choice.verdict == Verdict::Invalid)
@@ -98,7 +96,8 @@ Result<StreamFormat> V4l2CaptureSource::negotiate()
 
 void V4l2CaptureSource::noteAdjustment(const StreamFormat &got, uint32_t deviceFourcc)
 {
-    const std::string asked = describeMode(options_.width, options_.height, options_.fps, options_.pixelFormat);
+    const std::string asked =
+        describeMode(options_.width, options_.height, options_.fps, std::string(options_.pixelFormat->name));
     std::string answer = describeMode(got.width, got.height, got.fps, std::string(got.format->name));
     if (mjpeg_)
         answer += " (decoded from " + fourccName(deviceFourcc) + ")";

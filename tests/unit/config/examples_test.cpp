@@ -50,7 +50,7 @@ TEST(Examples, DemoIsTheReadmeScene)
 {
     const DaemonConfig config = loadExample("demo.toml");
     EXPECT_EQ(config.source.kind, SourceKind::Synthetic);
-    EXPECT_EQ(config.source.pixelFormat, "YUYV");
+    EXPECT_EQ(config.source.pixelFormat->name, "YUYV");
     EXPECT_EQ(config.source.width, 1280u);
     EXPECT_EQ(config.source.height, 720u);
     EXPECT_EQ(config.source.synthetic.pattern, SyntheticPattern::CheckerboardScene);

@@ -63,7 +63,7 @@ kind = "null"
     EXPECT_EQ(config.daemon.logLevel, LogLevel::Warning);
     EXPECT_EQ(config.daemon.statsIntervalSec, 2.5);
     EXPECT_EQ(config.source.kind, SourceKind::Replay);
-    EXPECT_EQ(config.source.pixelFormat, "NV12");
+    EXPECT_EQ(config.source.pixelFormat->name, "NV12");
     EXPECT_EQ(config.source.height, 480u);
     EXPECT_EQ(config.source.fps, 12.5);
     EXPECT_EQ(config.source.colorimetry, (Colorimetry{YcbcrMatrix::Bt709, ColourRange::Full}));
@@ -273,6 +273,17 @@ TEST(Schema, UnknownFramesAndAnnotationKeysForTheirType)
     EXPECT_EQ(problems[0].key, "annotation[0].radius");
     EXPECT_EQ(problems[1].key, "camera.frame");
     EXPECT_NE(problems[1].message.find("did you mean 'rig'?"), std::string::npos);
+}
+
+// The pixel format is resolved once, here: an unknown name is a problem at its line and key, with a suggestion.
+TEST(Schema, UnknownPixelFormatNamesTheLineAndKey)
+{
+    const auto problems = loadInvalid("[source]\nkind = \"synthetic\"\nformat = \"NV21x\"\n");
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0].line, 3);
+    EXPECT_EQ(problems[0].key, "source.format");
+    EXPECT_NE(problems[0].message.find("unknown pixel format 'NV21x'"), std::string::npos) << problems[0].message;
+    EXPECT_NE(problems[0].message.find("did you mean 'NV21'?"), std::string::npos) << problems[0].message;
 }
 
 TEST(Schema, FarInfinityOnlyWhereTheModelAllowsIt)

@@ -33,7 +33,7 @@ struct DaemonTest : ::testing::Test {
         config.path = "test.toml";
         config.source.kind = SourceKind::Synthetic;
         config.source.synthetic.pattern = SyntheticPattern::ColourBars;
-        config.source.pixelFormat = "GREY";
+        config.source.pixelFormat = pixelFormatFromName("GREY");
         config.source.width = 64;
         config.source.height = 48;
         config.scene.annotations.resize(mark, Annotation{"a", "world", {}, AxesShape{}});
@@ -48,7 +48,7 @@ struct DaemonTest : ::testing::Test {
     StageFactories factories()
     {
         StageFactories f;
-        f.source = [this](const DaemonConfig &) -> Result<std::unique_ptr<FrameSource>> {
+        f.source = [this](const SourceOptions &, const Camera *) -> Result<std::unique_ptr<FrameSource>> {
             return std::unique_ptr<FrameSource>(std::make_unique<FakeSource>(source, test::greyFormat()));
         };
         f.sink = [this](const SinkOptions &options) -> Result<std::unique_ptr<FrameSink>> {

@@ -218,8 +218,8 @@ TEST(ZeroCopyConfig, ChangingZeroCopyChangesTheSinkOptions)
     SinkOptions a, b;
     a.kind = b.kind = SinkKind::V4l2Output;
     b.zeroCopy = ZeroCopy::Off;
-    EXPECT_FALSE(sameSinkOptions({a}, {b}));
-    EXPECT_TRUE(sameSinkOptions({a}, {a}));
+    EXPECT_FALSE(std::vector<SinkOptions>{a} == std::vector<SinkOptions>{b});
+    EXPECT_TRUE(std::vector<SinkOptions>{a} == std::vector<SinkOptions>{a});
 }
 
 TEST(ZeroCopyConfig, OnlyOneSinkHoldsTheCamerasBuffers)

@@ -43,12 +43,11 @@ struct Rendered {
 Rendered renderThroughSource(const Camera &camera)
 {
     SourceOptions o;
-    o.pixelFormat = "RGB24";
+    o.pixelFormat = pixelFormatFromName("RGB24");
     o.width = kWidth, o.height = kHeight;
     o.synthetic.pattern = SyntheticPattern::CheckerboardScene;
     o.synthetic.checkerMetres = kSquare;
-    o.synthetic.camera = camera;
-    auto source = makeSource(o);
+    auto source = makeSource(o, &camera);
     EXPECT_TRUE(source);
     EXPECT_TRUE((*source)->start());
     auto lease = (*source)->nextFrame();
@@ -123,14 +122,13 @@ TEST(CheckerScene, SkyAboveTheHorizon)
 TEST(CheckerScene, CameraMustMatchTheFrameSize)
 {
     SourceOptions o;
-    o.pixelFormat = "YUYV";
+    o.pixelFormat = pixelFormatFromName("YUYV");
     o.width = 640, o.height = 480;
     o.synthetic.pattern = SyntheticPattern::CheckerboardScene;
-    o.synthetic.camera = makeCamera(false, Origin::TopLeft);
-    auto source = makeSource(o);
+    const Camera camera = makeCamera(false, Origin::TopLeft);
+    auto source = makeSource(o, &camera);
     ASSERT_FALSE(source);
     EXPECT_NE(source.error().message.find("320x240"), std::string::npos) << source.error().message;
-    o.synthetic.camera.reset();
     EXPECT_FALSE(makeSource(o));
 }
 

@@ -43,7 +43,7 @@ SourceOptions rawReplay(const std::string &path, const std::string &format, unsi
 {
     SourceOptions o;
     o.kind = SourceKind::Replay;
-    o.pixelFormat = format;
+    o.pixelFormat = pixelFormatFromName(format);
     o.width = w, o.height = h, o.fps = 10.0;
     o.replay.path = path;
     o.replay.format = ReplayFormat::Raw;
@@ -126,7 +126,7 @@ SourceOptions images(const std::string &pattern, const std::string &format)
 {
     SourceOptions o;
     o.kind = SourceKind::Replay;
-    o.pixelFormat = format;
+    o.pixelFormat = pixelFormatFromName(format);
     o.fps = 5.0;
     o.replay.path = pattern;
     o.replay.firstIndex = 1;

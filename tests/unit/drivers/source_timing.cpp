@@ -30,9 +30,9 @@ Result<Camera> demoCamera()
 }
 
 // Milliseconds of CPU for start() and per frame over `frames` frames.
-void measure(const char *name, const SourceOptions &options, int frames)
+void measure(const char *name, const SourceOptions &options, int frames, const Camera *camera = nullptr)
 {
-    auto source = makeSource(options);
+    auto source = makeSource(options, camera);
     if (!source) {
         std::printf("%s: %s\n", name, source.error().message.c_str());
         return;
@@ -52,13 +52,12 @@ void measure(const char *name, const SourceOptions &options, int frames)
 int main()
 {
     SourceOptions options;
-    options.pixelFormat = "YUYV";
+    options.pixelFormat = pixelFormatFromName("YUYV");
     options.synthetic.checkerMetres = 0.5;
     auto camera = demoCamera();
     if (!camera)
         return 1;
-    options.synthetic.camera = *camera;
-    measure("checkerboard-scene (radtan lens)", options, 100);
+    measure("checkerboard-scene (radtan lens)", options, 100, &*camera);
     options.synthetic.pattern = SyntheticPattern::MovingGradient;
     measure("moving-gradient", options, 30);
     options.synthetic.pattern = SyntheticPattern::Noise;

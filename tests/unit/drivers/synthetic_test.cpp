@@ -13,7 +13,7 @@ SourceOptions options(SyntheticPattern pattern, const std::string &format, unsig
 {
     SourceOptions o;
     o.kind = SourceKind::Synthetic;
-    o.pixelFormat = format;
+    o.pixelFormat = pixelFormatFromName(format);
     o.width = width, o.height = height, o.fps = 25.0;
     o.synthetic.pattern = pattern;
     return o;

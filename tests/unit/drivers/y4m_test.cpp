@@ -30,7 +30,7 @@ std::unique_ptr<FrameSource> startedSource(const SourceOptions &o)
 SourceOptions synthetic(SyntheticPattern pattern, const std::string &format, unsigned w, unsigned h)
 {
     SourceOptions o;
-    o.pixelFormat = format;
+    o.pixelFormat = pixelFormatFromName(format);
     o.width = w, o.height = h, o.fps = 25.0;
     o.synthetic.pattern = pattern;
     return o;
@@ -40,7 +40,7 @@ SourceOptions replay(const std::string &path, const std::string &format = "YUYV"
 {
     SourceOptions o;
     o.kind = SourceKind::Replay;
-    o.pixelFormat = format;
+    o.pixelFormat = pixelFormatFromName(format);
     o.replay.path = path;
     return o;
 }

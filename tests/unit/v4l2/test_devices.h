@@ -23,7 +23,7 @@ inline SourceOptions captureOptions(const std::string &format, unsigned width, u
 {
     SourceOptions options;
     options.kind = SourceKind::V4l2;
-    options.pixelFormat = format;
+    options.pixelFormat = pixelFormatFromName(format);
     options.width = width;
     options.height = height;
     options.fps = fps;
