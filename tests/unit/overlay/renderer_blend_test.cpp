@@ -183,8 +183,9 @@ TEST(RendererText, SlotTextShowsWhatWasSet)
         OverlayScene scene;
         scene.annotations.push_back(annotation("gear", ScreenTextShape{text, {4.0, 4.0}, 16.0}, kWhite));
         auto renderer = test::makeRenderer(scene, test::groundCamera(96, 32), test::streamFormat("NV12", 96, 32));
-        if (!slotText.empty())
+        if (!slotText.empty()) {
             EXPECT_TRUE(renderer->setSlotText("gear", slotText));
+        }
         EXPECT_FALSE(renderer->setSlotText("speed", "12"));
         EXPECT_FALSE(renderer->setSlotText("gear", "R\nD"));
         EXPECT_FALSE(renderer->setSlotText("gear", std::string(kMaxSlotTextBytes + 1, 'x')));
