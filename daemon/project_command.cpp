@@ -78,6 +78,9 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
         world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);
     std::vector<ProjectedPoint> points(world.size());
     camera->projectPoints(world, points);
+    // Pixels are memory order inside; the user reads them in the viewport's origin.
+    for (ProjectedPoint &point : points)
+        point.pixel = camera->viewport().toUser(point.pixel);
     const std::string output = json ? projectionsJson(world, points) : projectionsText(world, points);
     std::fwrite(output.data(), 1, output.size(), stdout);
     return kExitOk;

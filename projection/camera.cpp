@@ -81,9 +81,11 @@ Camera::Camera(const glm::dmat4 &view, const Projection &projection, std::option
 PointPath Camera::composePointPath() const
 {
     PointPath path;
-    // The viewport is ndc * scale + offset; its scale and offset are multiples of 0.5, so both come out exact.
-    const glm::dvec2 offset = viewport_.ndcToPixel(glm::dvec2(0.0));
-    const glm::dvec2 scale = viewport_.ndcToPixel(glm::dvec2(1.0)) - offset;
+    // The viewport is ndc * scale + offset in the user's origin; the camera works in memory order (one pixel
+    // convention inside), so its mapping is the user's mirrored once here. Scale and offset are multiples of 0.5, so
+    // both come out exact.
+    const glm::dvec2 offset = viewport_.toTopLeft(viewport_.ndcToPixel(glm::dvec2(0.0)));
+    const glm::dvec2 scale = viewport_.toTopLeft(viewport_.ndcToPixel(glm::dvec2(1.0))) - offset;
     const glm::dmat2 viewportLinear(scale.x, 0.0, 0.0, scale.y);
     if (lens_) {
         path.toNormalized = lens_->ndcToNormalized().linear;
@@ -99,7 +101,7 @@ PointPath Camera::composePointPath() const
     }
     path.nearW = nearPlaneW_;
     path.hasFar = projection_.hasFarPlane();
-    const PixelRect &scissor = viewport_.scissor();
+    const PixelRect scissor = viewport_.scissorTopLeft();
     path.scissorMin = {scissor.x - 0.5, scissor.y - 0.5};
     path.scissorMax = {scissor.x + scissor.width - 0.5, scissor.y + scissor.height - 0.5};
     return path;
@@ -216,7 +218,7 @@ void Camera::projectPolyline(std::span<const glm::dvec4> world, bool closed, Pol
 
 Result<Ray> Camera::unproject(const glm::dvec2 &pixel) const
 {
-    glm::dvec2 ndc = viewport_.pixelToNdc(pixel);
+    glm::dvec2 ndc = viewport_.pixelToNdc(viewport_.toUser(pixel));
     if (lens_) {
         auto undistorted = lens_->undistortNdc(ndc);
         if (!undistorted)

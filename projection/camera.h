@@ -2,7 +2,8 @@
 //
 // The pipeline for a world point X (homogeneous, so directions at infinity project too):
 //   clip = P * V * X  ->  clip against near/far (and side/lens planes for lines), never dividing by w <= 0
-//   -> ndc = clip.xyz / w  ->  lens distortion as an NDC warp  ->  viewport to pixels in the origin's convention.
+//   -> ndc = clip.xyz / w  ->  lens distortion as an NDC warp  ->  viewport to pixels, in memory order (row 0 at
+//   the top) whatever the viewport's origin: the one pixel convention inside; Viewport::toUser is the way out.
 #pragma once
 
 #include <optional>
@@ -79,7 +80,7 @@ public:
     void projectPolyline(std::span<const glm::dvec4> world, bool closed, Polylines &out,
                          double tolerancePx = kDefaultCurveTolerancePx) const;
 
-    // The world-space ray of points that land on `pixel` (origin convention). Perspective rays start at the
+    // The world-space ray of points that land on `pixel` (memory order). Perspective rays start at the
     // camera centre, orthographic rays on the near plane.
     Result<Ray> unproject(const glm::dvec2 &pixel) const;
 

@@ -68,6 +68,11 @@ glm::dvec2 Viewport::toTopLeft(const glm::dvec2 &pixel) const
     return {pixel.x, spec_.frameHeight - 1.0 - pixel.y};
 }
 
+glm::dvec2 Viewport::offsetToTopLeft(const glm::dvec2 &offset) const
+{
+    return spec_.origin == Origin::TopLeft ? offset : glm::dvec2(offset.x, -offset.y);
+}
+
 bool Viewport::inScissor(const glm::dvec2 &p) const
 {
     return p.x >= scissor_.x - 0.5 && p.x <= scissor_.x + scissor_.width - 0.5 && p.y >= scissor_.y - 0.5 &&

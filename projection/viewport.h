@@ -42,8 +42,13 @@ public:
     // NDC (x right, y up, [-1,1]^2 on the window) -> frame pixel in the origin's convention.
     glm::dvec2 ndcToPixel(const glm::dvec2 &ndc) const { return ndc * scale_ + offset_; }
     glm::dvec2 pixelToNdc(const glm::dvec2 &pixel) const { return (pixel - offset_) / scale_; }
-    // A pixel in the origin's convention -> the same pixel counted from the top-left (memory order).
+    // A pixel in the origin's convention -> the same pixel counted from the top-left (memory order), and back (the
+    // same mirror). The camera and everything after it count pixels in memory order; these are the edges where a
+    // user's pixels come in (screen positions in the config) or go out (`overlayd project`).
     glm::dvec2 toTopLeft(const glm::dvec2 &pixel) const;
+    glm::dvec2 toUser(const glm::dvec2 &memoryPixel) const { return toTopLeft(memoryPixel); }
+    // An offset given in the origin's convention (y up under BottomLeft) as a memory-order offset.
+    glm::dvec2 offsetToTopLeft(const glm::dvec2 &offset) const;
     bool inScissor(const glm::dvec2 &pixel) const;
     bool inWindow(const glm::dvec2 &pixel) const;
 

@@ -33,7 +33,7 @@ public:
     // (u, v) in memory order (v counts rows from the top), in the convention where pixel centres are integers.
     Hit trace(double u, double v) const
     {
-        const auto ray = camera_.unproject(camera_.viewport().toTopLeft({u, v}));
+        const auto ray = camera_.unproject({u, v});
         if (!ray)
             return {};
         const auto t = intersect(*ray, ground_);

@@ -27,7 +27,8 @@ void buildAxes(const ShapeContext &ctx, const AxesShape &shape)
             continue;
         if (const auto pixel = ctx.point(tip)) {
             const double size = std::max(12.0, 6.0 * ctx.style.width);
-            ctx.text(kNames[axis], *pixel + glm::dvec2(kAxisLabelGapPx), size, shape.colours[axis], std::nullopt);
+            ctx.text(kNames[axis], *pixel + ctx.camera.viewport().offsetToTopLeft(glm::dvec2(kAxisLabelGapPx)), size,
+                     shape.colours[axis], std::nullopt);
         }
     }
 }

@@ -59,7 +59,8 @@ void buildMarkers(const ShapeContext &ctx, const MarkersShape &shape)
 void buildLabel(const ShapeContext &ctx, const LabelShape &shape)
 {
     if (const auto pixel = ctx.point(shape.anchor))
-        ctx.text(shape.text, *pixel + shape.offsetPx, shape.sizePx, ctx.style.colour, shape.background);
+        ctx.text(shape.text, *pixel + ctx.camera.viewport().offsetToTopLeft(shape.offsetPx), shape.sizePx,
+                 ctx.style.colour, shape.background);
 }
 
 } // namespace overlayd

@@ -1,4 +1,4 @@
-// The dispatch from each shape to its builder, and the final step into memory order.
+// The dispatch from each shape to its builder.
 #include "overlay/shapes/shape_builder.h"
 
 #include <type_traits>
@@ -16,22 +16,11 @@ struct Overloaded : Ts... {
 template<typename... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
-// Builders work in the viewport's origin convention (the one users and projection/ speak); the rasterizer
-// addresses memory. Text anchors and fills were converted when they were made.
-void toMemoryOrder(const Viewport &viewport, DrawList &out, size_t firstStroke)
-{
-    for (size_t i = firstStroke; i < out.strokes.size(); ++i) {
-        for (glm::dvec2 &p : out.strokes[i].lines.points)
-            p = viewport.toTopLeft(p);
-    }
-}
-
 } // namespace
 
 void buildPrimitives(const Annotation &annotation, const glm::dmat4 &worldFromFrame, const Camera &camera,
                      DrawList &out)
 {
-    const size_t firstStroke = out.strokes.size();
     const ShapeContext ctx{camera, worldFromFrame, annotation.style, out};
     std::visit(Overloaded{
                    [&](const AxesShape &s) { buildAxes(ctx, s); },
@@ -49,7 +38,6 @@ void buildPrimitives(const Annotation &annotation, const glm::dmat4 &worldFromFr
                    [&](const RectShape &s) { buildRect(ctx, s); },
                },
                annotation.shape);
-    toMemoryOrder(camera.viewport(), out, firstStroke);
 }
 
 bool isScreenText(const Annotation &annotation)

@@ -48,8 +48,8 @@ void ShapeContext::text(const std::string &string, const glm::dvec2 &corner, dou
                         const std::optional<Rgba> &background) const
 {
     const Viewport &viewport = camera.viewport();
-    out.texts.push_back(TextItem{string, viewport.toTopLeft(corner), viewport.origin() == Origin::BottomLeft, sizePx,
-                                 colour, background, style.antialias});
+    out.texts.push_back(
+        TextItem{string, corner, viewport.origin() == Origin::BottomLeft, sizePx, colour, background, style.antialias});
 }
 
 } // namespace overlayd

@@ -20,15 +20,15 @@ struct ShapeContext {
     // A new stroke with the annotation's style in another colour.
     StrokeItem &stroke(Rgba colour) const;
     StrokeItem &stroke() const { return stroke(style.colour); }
-    // A 3D segment or polyline in the annotation's frame, projected, clipped and curved through the lens. Pixels
-    // stay in the viewport's origin convention until toMemoryOrder().
+    // A 3D segment or polyline in the annotation's frame, projected, clipped and curved through the lens. Every
+    // pixel here is in memory order (screen builders convert the user's positions with Viewport::toTopLeft).
     void segment(StrokeItem &item, const glm::dvec3 &a, const glm::dvec3 &b) const;
     void polyline(StrokeItem &item, std::span<const glm::dvec3> points, bool closed) const;
     // The pixel of a 3D point in the frame, or nothing when it is clipped (behind the camera, beyond far, ...).
     std::optional<glm::dvec2> point(const glm::dvec3 &p) const;
-    // A 2D polyline in pixels of the viewport's origin convention.
+    // A 2D polyline in memory-order pixels.
     void pixels(StrokeItem &item, std::span<const glm::dvec2> points, bool closed) const;
-    // Text whose box corner nearest the viewport's origin sits at `corner` (origin convention).
+    // Text whose box corner nearest the viewport's origin sits at `corner` (a memory-order pixel).
     void text(const std::string &text, const glm::dvec2 &corner, double sizePx, Rgba colour,
               const std::optional<Rgba> &background) const;
 };

@@ -26,8 +26,10 @@ void expectPixel(const Camera &camera, const glm::dvec3 &world, double u, double
 {
     const ProjectedPoint p = camera.project(world);
     ASSERT_NE(p.status, PointStatus::Clipped);
-    EXPECT_NEAR(p.pixel.x, u, tolerance);
-    EXPECT_NEAR(p.pixel.y, v, tolerance);
+    // (u, v) are in the viewport's origin, as a user reads them; the camera answers in memory order.
+    const glm::dvec2 pixel = camera.viewport().toUser(p.pixel);
+    EXPECT_NEAR(pixel.x, u, tolerance);
+    EXPECT_NEAR(pixel.y, v, tolerance);
 }
 
 TEST(Intrinsics, VerticalFieldOfView)

@@ -42,8 +42,8 @@ OverlayScene worldOnly()
     return scene;
 }
 
-// World annotations land on the same memory rows under both origins (projection/ mirrors the pixel coordinates and
-// toTopLeft mirrors them back); screen items are given in the origin's convention, so they come out mirrored.
+// World annotations land on the same memory rows under both origins (the origin only changes how a user counts
+// rows); screen items are given in the origin's convention, so they come out mirrored.
 TEST(ViewportOrigin, WorldIdenticalScreenItemsMirrored)
 {
     const OverlayScene world = worldOnly();

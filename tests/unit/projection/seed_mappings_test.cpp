@@ -173,8 +173,10 @@ TEST(SeedMappings, Seed000FullChainEqualsCameraPixelsPlusHalf)
         const glm::dvec3 raster = divide(chain * glm::dvec4(world, 1.0));
         const ProjectedPoint p = camera->project(world);
         ASSERT_NE(p.status, PointStatus::Clipped);
-        EXPECT_NEAR(p.pixel.x + 0.5, raster.x, 1e-9) << "point " << i;
-        EXPECT_NEAR(p.pixel.y + 0.5, raster.y, 1e-9) << "point " << i;
+        // The camera answers in memory order; the seed counts rows from the bottom, as the user's origin does.
+        const glm::dvec2 pixel = camera->viewport().toUser(p.pixel);
+        EXPECT_NEAR(pixel.x + 0.5, raster.x, 1e-9) << "point " << i;
+        EXPECT_NEAR(pixel.y + 0.5, raster.y, 1e-9) << "point " << i;
         EXPECT_NEAR(p.depth, raster.z, 1e-12) << "point " << i;
     }
 }
