@@ -1,4 +1,4 @@
-// [daemon], [source] (with its synthetic, replay and v4l2 sub-tables) and [[sink]].
+// [daemon], [source] (with its synthetic, replay, v4l2 and libcamera sub-tables) and [[sink]].
 #include "config/config_sections.h"
 
 #include <filesystem>
@@ -9,6 +9,8 @@
 namespace overlayd::config {
 
 namespace {
+
+constexpr size_t kMaxLibcameraControls = 64; // libcamera itself defines fewer than 60
 
 void readPixelFormat(TableReader &source, const PixelFormatInfo *&out)
 {
@@ -80,6 +82,79 @@ void readV4l2(TableReader &v4l2, V4l2CaptureOptions &out)
     v4l2.finish();
 }
 
+// Controls are checked by name and value type here (check-config has no camera); ranges when the camera opens.
+void readControls(TableReader &libcamera, std::vector<ControlSetting> &out)
+{
+    const toml::node *node = libcamera.node("controls");
+    if (!node)
+        return;
+    const toml::table *controls = node->as_table();
+    if (!controls) {
+        libcamera.problemAt(*node, libcamera.keyPath("controls"),
+                            std::string("expected a table such as { AeEnable = true }, got ") + typeName(*node));
+        return;
+    }
+    if (controls->size() > kMaxLibcameraControls) {
+        libcamera.problemAt(*node, libcamera.keyPath("controls"),
+                            "at most " + std::to_string(kMaxLibcameraControls) + " controls");
+        return;
+    }
+    for (const auto &[key, value] : *controls) {
+        const std::string name(key.str()), path = libcamera.keyPath("controls") + "." + name;
+        const auto kind = libcameraControlKind(name);
+        if (!kind) {
+            const std::string guess = closestMatch(name, libcameraControlNames());
+            libcamera.problemAt(value, path,
+                                "unknown libcamera control" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
+            continue;
+        }
+        ControlSetting setting{name, false, ""};
+        if (*kind == ControlValueKind::Bool && value.is_boolean())
+            setting.value = value.as_boolean()->get();
+        else if (*kind == ControlValueKind::Integer && value.is_integer())
+            setting.value = value.as_integer()->get();
+        else if (*kind == ControlValueKind::Float && (value.is_number()))
+            setting.value = value.is_integer() ? double(value.as_integer()->get()) : value.as_floating_point()->get();
+        else {
+            const char *wanted = *kind == ControlValueKind::Bool      ? "true or false"
+                                 : *kind == ControlValueKind::Integer ? "an integer"
+                                 : *kind == ControlValueKind::Float   ? "a number"
+                                                                      : "nothing a config can give";
+            libcamera.problemAt(value, path, std::string("expected ") + wanted + ", got " + typeName(value));
+            continue;
+        }
+        const auto &begin = value.source().begin;
+        setting.where = libcamera.problems().file() + ":" + std::to_string(begin.line) + ":" +
+                        std::to_string(begin.column) + ": " + path;
+        out.push_back(std::move(setting));
+    }
+}
+
+void readLibcamera(TableReader &libcamera, LibcameraOptions &out)
+{
+    if (auto camera = libcamera.string("camera")) {
+        if (camera->empty() || camera->size() > 256)
+            libcamera.problem("camera", "expected an index, a camera id or part of a model name (1..256 characters)");
+        else
+            out.camera = *camera;
+    }
+    if (auto role = libcamera.choice<StreamRole>("role", {{"viewfinder", StreamRole::Viewfinder},
+                                                          {"video", StreamRole::VideoRecording},
+                                                          {"still-capture", StreamRole::StillCapture}}))
+        out.role = *role;
+    if (auto buffers = libcamera.integer("buffers", 2, 32))
+        out.bufferCount = unsigned(*buffers);
+    if (auto timeout = libcamera.positive("no_signal_timeout", 3600.0))
+        out.noSignalTimeoutSec = *timeout;
+    if (auto transform = libcamera.choice<ImageTransform>("transform", {{"identity", ImageTransform::Identity},
+                                                                        {"hflip", ImageTransform::HFlip},
+                                                                        {"vflip", ImageTransform::VFlip},
+                                                                        {"rot180", ImageTransform::Rot180}}))
+        out.transform = *transform;
+    readControls(libcamera, out.controls);
+    libcamera.finish();
+}
+
 void readStream(TableReader &source, SourceOptions &out)
 {
     readPixelFormat(source, out.pixelFormat);
@@ -128,8 +203,14 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
     if (!source)
         return;
     if (auto kind = source->choice<SourceKind>(
-            "kind", {{"synthetic", SourceKind::Synthetic}, {"replay", SourceKind::Replay}, {"v4l2", SourceKind::V4l2}}))
+            "kind", {{"synthetic", SourceKind::Synthetic},
+                     {"replay", SourceKind::Replay},
+                     {"v4l2", SourceKind::V4l2},
+                     {"libcamera", SourceKind::Libcamera}})) {
         out.kind = *kind;
+        if (out.kind == SourceKind::Libcamera && !libcameraBuiltIn())
+            source->problem("kind", "this overlayd was built without libcamera (CMake option OVERLAYD_LIBCAMERA)");
+    }
     readStream(*source, out);
     if (auto synthetic = source->table("synthetic"))
         readSynthetic(*synthetic, out.synthetic);
@@ -139,6 +220,8 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
         source->problem("replay", "missing: kind = \"replay\" needs a [source.replay] table with its path");
     if (auto v4l2 = source->table("v4l2"))
         readV4l2(*v4l2, out.v4l2);
+    if (auto libcamera = source->table("libcamera"))
+        readLibcamera(*libcamera, out.libcamera);
     source->finish();
 }
 

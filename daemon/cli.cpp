@@ -17,7 +17,8 @@ std::vector<std::string> withDefaultSubcommand(int argc, const char *const *argv
 {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (const std::string &arg : args) {
-        if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" || arg == "--help" ||
+        if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" ||
+            arg == "list-cameras" || arg == "--help" ||
             arg == "-h" || arg == "--version")
             return args;
     }
@@ -56,6 +57,9 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     render->add_option("--frames", line.frames, "how many frames")->required()->check(CLI::PositiveNumber);
     render->add_option("--output,-o", line.output, "output path; the extension picks the format")->required();
 
+    CLI::App *list = app.add_subcommand("list-cameras", "every V4L2 and libcamera camera with what it offers");
+    list->add_flag("--json", line.json, "one JSON array, one object per camera");
+
     const std::vector<std::string> args = withDefaultSubcommand(argc, argv);
     std::vector<std::string> reversed(args.rbegin(), args.rend()); // CLI11 parses a vector back to front
     try {
@@ -73,6 +77,7 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     line.command = check->parsed()     ? Command::CheckConfig
                    : project->parsed() ? Command::Project
                    : render->parsed()  ? Command::Render
+                   : list->parsed()    ? Command::ListCameras
                                        : Command::Run;
     return line;
 }

@@ -1,4 +1,4 @@
-// The command line of `overlayd`: subcommands run (the default), check-config, project and render.
+// The command line of `overlayd`: subcommands run (the default), check-config, project, render and list-cameras.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +10,7 @@
 
 namespace overlayd {
 
-enum class Command { Run, CheckConfig, Project, Render, Exit };
+enum class Command { Run, CheckConfig, Project, Render, ListCameras, Exit };
 
 struct CommandLine {
     Command command = Command::Run;
@@ -19,7 +19,7 @@ struct CommandLine {
     std::optional<LogLevel> logLevel;
     uint64_t frames = 0;             // run: stop after N frames (0: never); render: how many
     std::string output;              // render
-    bool json = false;               // project
+    bool json = false;               // project, list-cameras
     std::vector<double> coordinates; // project: X Y Z ...
 };
 

@@ -21,6 +21,8 @@ inline constexpr int kExitFailure = 1;     // a runtime failure: source, sink, I
 inline constexpr int kExitConfigError = 2; // the config file does not validate
 
 int checkConfigCommand(const std::string &path);
+// `overlayd list-cameras [--json]`: every camera a source could open, with its formats, sizes and frame rates.
+int listCamerasCommand(bool json);
 int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger);
 // logLevel (from --log-level) overrides the config's daemon.log_level.
 int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,

@@ -25,6 +25,8 @@ int main(int argc, char **argv)
             return checkConfigCommand(line.configPath);
         case Command::Project:
             return projectCommand(line.configPath, line.json, line.coordinates, logger);
+        case Command::ListCameras:
+            return listCamerasCommand(line.json);
         case Command::Render:
             return renderCommand(line.configPath, line.frames, line.output, line.logLevel, logger);
         case Command::Run:

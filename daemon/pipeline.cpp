@@ -36,6 +36,10 @@ std::string PipelineStats::describe() const
     };
     std::string text = cat("in ", fixed(rate(framesIn), 1), " fps, blend ", fixed(millis(blendTime, framesIn), 2),
                            " ms, queue ", fixed(millis(pushTime, framesIn), 2), " ms");
+    if (exposureUs)
+        text += cat(", exposure ", *exposureUs, " us");
+    if (analogueGain)
+        text += cat(", gain ", fixed(*analogueGain, 2));
     for (const Sink &sink : sinks)
         text += cat("; ", sink.name, ": out ", fixed(rate(sink.counters.written), 1), " fps, ", sink.counters.dropped,
                     " dropped, ", sink.counters.failed, " failed, write ",
@@ -80,7 +84,7 @@ void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
     blend(frame, metadata);
     const auto blended = std::chrono::steady_clock::now();
     pushToSinks(frame, metadata);
-    countFrame(start, blended);
+    countFrame(metadata, start, blended);
 }
 
 void Pipeline::process(FrameLease lease)
@@ -91,7 +95,7 @@ void Pipeline::process(FrameLease lease)
     const auto shared = std::make_shared<const FrameLease>(std::move(lease));
     for (auto &sink : sinks_)
         sink->push(shared);
-    countFrame(start, blended);
+    countFrame(shared->metadata(), start, blended);
 }
 
 void Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
@@ -102,8 +106,11 @@ void Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
         logger_.error(cat("overlay: ", blended.error().message));
 }
 
-void Pipeline::countFrame(std::chrono::steady_clock::time_point start, std::chrono::steady_clock::time_point blended)
+void Pipeline::countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,
+                          std::chrono::steady_clock::time_point blended)
 {
+    lastExposureUs_ = metadata.exposureUs;
+    lastAnalogueGain_ = metadata.analogueGain;
     blendTime_ += blended - start;
     pushTime_ += std::chrono::steady_clock::now() - blended;
     ++framesIn_;
@@ -125,6 +132,8 @@ PipelineStats Pipeline::takeStats()
     stats.blendTime = blendTime_;
     stats.pushTime = pushTime_;
     stats.totalDrops = retiredDrops_;
+    stats.exposureUs = lastExposureUs_;
+    stats.analogueGain = lastAnalogueGain_;
     for (size_t i = 0; i < sinks_.size(); ++i) {
         const SinkCounters counters = sinks_[i]->counters();
         stats.sinks.push_back({sinks_[i]->describe(), counters - lastCounters_[i]});

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,13 @@ struct PipelineStats {
     };
     std::vector<Sink> sinks;
     uint64_t totalDrops = 0; // all sinks, since the pipeline started
+    // How the period's last frame was exposed, when its camera says (libcamera)
+    std::optional<int32_t> exposureUs;
+    std::optional<float> analogueGain;
 
     // "in 30.0 fps, blend 0.42 ms, queue 0.31 ms; out/demo.y4m: out 30.0 fps, 0 dropped, 0 failed, write 1.20 ms"
-    // (a zero-copy sink adds ", 300 zero-copy": frames it took as leases)
+    // (a zero-copy sink adds ", 300 zero-copy": frames it took as leases; a camera that reports exposure adds
+    // ", exposure 10000 us, gain 1.00" after the queue time)
     std::string describe() const;
 };
 
@@ -63,7 +68,8 @@ public:
 
 private:
     void blend(const FrameView &frame, const FrameMetadata &metadata);
-    void countFrame(std::chrono::steady_clock::time_point start, std::chrono::steady_clock::time_point blended);
+    void countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point blended);
 
     Logger &logger_;
     std::unique_ptr<OverlayRenderer> renderer_;
@@ -73,6 +79,8 @@ private:
     uint64_t framesInTotal_ = 0;
     uint64_t framesIn_ = 0;
     std::chrono::nanoseconds blendTime_{0}, pushTime_{0};
+    std::optional<int32_t> lastExposureUs_;
+    std::optional<float> lastAnalogueGain_;
     std::chrono::steady_clock::time_point lastStats_;
     std::vector<SinkCounters> lastCounters_;
     uint64_t retiredDrops_ = 0; // drops of sinks that were replaced

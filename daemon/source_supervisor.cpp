@@ -28,8 +28,28 @@ Status SourceSupervisor::open()
     waitReason_.clear();
     backoff_.reset();
     state_ = State::Streaming;
+    armStallTimer();
     health_.streaming(pipeline_.format());
     return Ok{};
+}
+
+std::optional<std::chrono::nanoseconds> SourceSupervisor::stallTimeout() const
+{
+    double seconds = 0.0;
+    if (config_.source.kind == SourceKind::V4l2)
+        seconds = config_.source.v4l2.noSignalTimeoutSec;
+    else if (config_.source.kind == SourceKind::Libcamera)
+        seconds = config_.source.libcamera.noSignalTimeoutSec;
+    if (seconds <= 0.0)
+        return std::nullopt;
+    return std::chrono::nanoseconds(int64_t(std::llround(seconds * 1e9)));
+}
+
+void SourceSupervisor::armStallTimer()
+{
+    // One timer, two jobs: it paces NO SIGNAL frames only while Waiting, so while Streaming it can watch for a stall.
+    if (const auto timeout = stallTimeout())
+        (void)timers_.noSignal.arm(*timeout);
 }
 
 // A device is read when its fd says a frame is ready; any other source is paced by a timer at its frame rate.
@@ -80,6 +100,8 @@ void SourceSupervisor::onFrameReady()
         }
         pipeline_.process(std::move(*frame));
         health_.frameDelivered(pipeline_.format());
+        if (i == 0)
+            armStallTimer();
         onFrame_();
     }
 }

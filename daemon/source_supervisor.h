@@ -55,6 +55,7 @@ public:
     // Loop handlers.
     void onFrameReady();
     void onRetry();
+    // While waiting: the NO SIGNAL frame's pacing; while streaming: the stall timer ran out.
     void onNoSignalTick();
 
     State state() const { return state_; }
@@ -69,6 +70,10 @@ private:
     void replaceNoSignal(const StreamFormat &format);
     StreamFormat configuredFormat() const;
     double pacingFps() const;
+    // A camera that stops delivering without an error (a wedged driver, a camera libcamera lost track of) is torn
+    // down after its no_signal_timeout; files and synthetic sources have none.
+    std::optional<std::chrono::nanoseconds> stallTimeout() const;
+    void armStallTimer();
     std::chrono::nanoseconds pacingPeriod() const;
 
     Logger &logger_;

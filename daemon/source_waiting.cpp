@@ -22,8 +22,8 @@ bool SourceSupervisor::isRetryable(const Error &error) const
     // malformed does not, except that a reload may fix it.
     if (error.code == ErrorCode::DeviceLost || error.code == ErrorCode::TryAgain)
         return true;
-    return config_.source.kind == SourceKind::V4l2 &&
-           (error.code == ErrorCode::NotFound || error.code == ErrorCode::Io);
+    const bool camera = config_.source.kind == SourceKind::V4l2 || config_.source.kind == SourceKind::Libcamera;
+    return camera && (error.code == ErrorCode::NotFound || error.code == ErrorCode::Io);
 }
 
 void SourceSupervisor::enterWaiting(const Error &error)
@@ -63,7 +63,10 @@ void SourceSupervisor::scheduleRetry()
                                          std::chrono::seconds(10));
     health_.waiting(
         cat("waiting for ",
-            config_.source.kind == SourceKind::V4l2 ? config_.source.v4l2.device : std::string("the source"), ": ",
+            config_.source.kind == SourceKind::V4l2        ? config_.source.v4l2.device
+            : config_.source.kind == SourceKind::Libcamera ? "libcamera camera " + config_.source.libcamera.camera
+                                                           : std::string("the source"),
+            ": ",
             waitReason_, ", retry in ", seconds(delay)));
 }
 
@@ -88,6 +91,11 @@ void SourceSupervisor::onRetry()
 void SourceSupervisor::onNoSignalTick()
 {
     timers_.noSignal.consume();
+    if (state_ == State::Streaming && stallTimeout()) {
+        const double seconds = std::chrono::duration<double>(*stallTimeout()).count();
+        enterWaiting(Error{ErrorCode::DeviceLost, cat(describe(), ": no frame for ", seconds, " s")});
+        return;
+    }
     if (state_ != State::Waiting || !noSignal_)
         return;
     FrameMetadata metadata;

@@ -2,6 +2,7 @@
 #include "drivers/source_options.h"
 
 #include "drivers/files/replay_source.h"
+#include "drivers/libcamera/libcamera_factory.h"
 #include "drivers/synthetic/synthetic_source.h"
 #include "drivers/v4l2/v4l2_factory.h"
 
@@ -19,6 +20,8 @@ Result<std::unique_ptr<FrameSource>> makeSource(const SourceOptions &options, co
         return makeSyntheticSource(options, sceneCamera);
     case SourceKind::Replay:
         return makeReplaySource(options);
+    case SourceKind::Libcamera:
+        return makeLibcameraSource(options);
     }
     return makeError(ErrorCode::InvalidArgument, "unknown source kind");
 }

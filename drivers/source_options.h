@@ -5,6 +5,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "base/result.h"
 #include "drivers/frame_source.h"
@@ -14,7 +16,7 @@
 
 namespace overlayd {
 
-enum class SourceKind { Synthetic, Replay, V4l2 };
+enum class SourceKind { Synthetic, Replay, V4l2, Libcamera };
 
 // Deterministic patterns; CheckerboardScene renders a checkerboard ground plane (z = 0 in world) through the
 // stream's camera, per pixel, by unprojecting a ray and intersecting the plane.
@@ -54,6 +56,30 @@ struct V4l2CaptureOptions {
     bool operator==(const V4l2CaptureOptions &) const = default;
 };
 
+// What a libcamera camera is asked for (drivers/libcamera/). Control names and value types are checked against
+// libcamera's control registry when the config is loaded; ranges against the opened camera at start.
+enum class StreamRole { Viewfinder, VideoRecording, StillCapture };
+enum class ImageTransform { Identity, HFlip, VFlip, Rot180 };
+
+struct ControlSetting {
+    std::string name; // libcamera's name: "Brightness", "AeEnable"
+    std::variant<bool, int64_t, double> value;
+    std::string where; // "file:line:column: source.libcamera.controls.NAME", so errors at start name the key
+
+    bool operator==(const ControlSetting &) const = default;
+};
+
+struct LibcameraOptions {
+    std::string camera = "0"; // an index into libcamera's list, a camera id, or a substring of the model name
+    StreamRole role = StreamRole::VideoRecording;
+    unsigned bufferCount = 4;
+    double noSignalTimeoutSec = 2.0; // no frame for this long: the stream is torn down and retried
+    std::vector<ControlSetting> controls;
+    ImageTransform transform = ImageTransform::Identity;
+
+    bool operator==(const LibcameraOptions &) const = default;
+};
+
 struct SourceOptions {
     SourceKind kind = SourceKind::Synthetic;
     // The requested stream. Raw replay and synthetic sources produce exactly this; Y4M and images take size and
@@ -66,10 +92,19 @@ struct SourceOptions {
     SyntheticOptions synthetic;
     ReplayOptions replay;
     V4l2CaptureOptions v4l2;
+    LibcameraOptions libcamera;
 
     // Every field: a reload re-opens the source when any differs, so a field added later is never ignored.
     bool operator==(const SourceOptions &) const = default;
 };
+
+// Whether this build has libcamera (the CMake option OVERLAYD_LIBCAMERA); without it kind = "libcamera" is refused.
+bool libcameraBuiltIn();
+// libcamera's control registry, for checking a config without a camera: every control's name, and what kind of
+// config value one takes (nullopt: no such control). Empty / nullopt in builds without libcamera.
+enum class ControlValueKind { Bool, Integer, Float, Unsupported };
+std::vector<std::string> libcameraControlNames();
+std::optional<ControlValueKind> libcameraControlKind(const std::string &name);
 
 // Validates before allocating anything (sizes, fps). V4L2 support may be compiled out: then asking for it is an
 // Unsupported error, never a crash. `sceneCamera`: the stream's camera, which the checkerboard-scene pattern is

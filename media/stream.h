@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -38,6 +39,9 @@ struct FrameMetadata {
     std::chrono::nanoseconds timestamp{0};             // CLOCK_MONOTONIC, when the frame was captured or made
     std::chrono::system_clock::time_point wallClock{}; // for timestamp text on the overlay
     Colorimetry colorimetry{};
+    // What the camera reports of how the frame was exposed (libcamera cameras); absent elsewhere.
+    std::optional<int32_t> exposureUs;
+    std::optional<float> analogueGain;
 };
 
 // A frame lent by its source. Destroying (or resetting) the lease gives the buffer back; the view stays valid

@@ -8,6 +8,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     libopencv-dev fonts-dejavu-core
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
+    libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
     # Independent clients the tests check our output with.
     ffmpeg v4l-utils systemd
     qemu-system-x86 busybox-static cpio kmod xz-utils python3 binutils make # tests/vm: the real-driver tier

@@ -17,13 +17,7 @@ Result<FrameLease> V4l2CaptureSource::nextFrame()
     if (const int r = hub_->dequeue(buffer); r < 0) // EINTR is retried inside
         return failDequeue(r);
 
-    if (firstFrame_)
-        firstSequence_ = nextSequence_ = buffer.sequence;
-    firstFrame_ = false;
-    // Unsigned differences survive the driver's 32-bit counter wrapping.
-    if (const uint32_t gap = buffer.sequence - nextSequence_; gap > 0 && gap < (1u << 31))
-        dropped_ += gap;
-    nextSequence_ = buffer.sequence + 1;
+    dropped_ += sequence_.advance(buffer.sequence);
 
     if (buffer.flags & V4L2_BUF_FLAG_ERROR) {
         // The driver says the data is corrupt (a USB glitch): skip it, as a drop.
@@ -50,7 +44,7 @@ Result<FrameLease> V4l2CaptureSource::failDequeue(int negativeErrno)
 Result<FrameLease> V4l2CaptureSource::deliver(const Dequeued &buffer)
 {
     FrameMetadata metadata;
-    metadata.sequence = uint32_t(buffer.sequence - firstSequence_);
+    metadata.sequence = sequence_.relative(buffer.sequence);
     metadata.timestamp = buffer.timestamp;
     metadata.wallClock = std::chrono::system_clock::now();
     metadata.colorimetry = stream_.colorimetry;

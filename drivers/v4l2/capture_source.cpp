@@ -131,7 +131,7 @@ Status V4l2CaptureSource::startStreaming(const DeviceFormat &format)
     if (auto on = device_->streamOn(); !on)
         return on;
     streaming_ = true;
-    firstFrame_ = true;
+    sequence_.restart();
     dropped_ = decodeFailures_ = 0;
     return Ok{};
 }

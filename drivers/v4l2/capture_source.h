@@ -14,6 +14,7 @@
 #include "drivers/v4l2/mjpeg_decoder.h"
 #include "drivers/v4l2/video_device.h"
 #include "media/frame_buffer.h"
+#include "media/sequence_counter.h"
 
 namespace overlayd::v4l2 {
 
@@ -65,8 +66,7 @@ private:
     bool streaming_ = false;
     std::shared_ptr<LeaseHub> hub_; // shared with the leases; detached by stop()
 
-    bool firstFrame_ = true;
-    uint32_t firstSequence_ = 0, nextSequence_ = 0;
+    SequenceCounter sequence_;
     uint64_t dropped_ = 0, decodeFailures_ = 0;
     std::string adjustment_, lastLogged_;
     bool exportFailureLogged_ = false;

@@ -30,7 +30,7 @@ std::string V4l2OutputSink::zeroCopyRefusal(const StreamFormat &format)
                "refused VIDIOC_EXPBUF)";
     if (format.dmabufBuffers < 3)
         return "the capture has " + std::to_string(format.dmabufBuffers) +
-               " buffers and keeps 2 to capture into (raise source.v4l2.buffers)";
+               " buffers and keeps 2 to capture into (raise the source's buffers)";
     if (format.stride != 0 && placed_[0].stride != format.stride)
         return "the output's bytesperline " + std::to_string(placed_[0].stride) + " differs from the capture's " +
                std::to_string(format.stride);

@@ -56,7 +56,8 @@ bool knownToken(std::string_view name)
 {
     if (name.starts_with(kSlotPrefix))
         return validSlotName(name.substr(kSlotPrefix.size()));
-    return name == "frame" || name == "fps" || name == "ms" || name.starts_with("time:");
+    return name == "frame" || name == "fps" || name == "ms" || name == "exposure" || name == "gain" ||
+           name.starts_with("time:");
 }
 
 void appendTime(std::string_view format, std::chrono::system_clock::time_point wallClock, std::string &out)
@@ -88,7 +89,7 @@ Status checkTokens(std::string_view text)
                          "unbalanced brace in text \"" + std::string(text) + "\" (write {{ and }} for literal braces)");
     if (!unknown.empty())
         return makeError(ErrorCode::InvalidArgument, "unknown token {" + unknown + "} in text \"" + std::string(text) +
-                                                         "\" (known: frame, fps, ms, time:FORMAT, slot:NAME)");
+                                                         "\" (known: frame, fps, ms, exposure, gain, time:FORMAT, slot:NAME)");
     return Ok{};
 }
 
@@ -141,6 +142,17 @@ void expandTokens(std::string_view text, const FrameMetadata &metadata, double f
                 const auto sinceEpoch = metadata.wallClock.time_since_epoch();
                 const long long ms = std::chrono::duration_cast<std::chrono::milliseconds>(sinceEpoch).count() % 1000;
                 out.append(number, std::snprintf(number, sizeof(number), "%03lld", (ms + 1000) % 1000));
+            } else if (name == "exposure") {
+                // Microseconds, as the camera reports them; "-" when the source reports none.
+                if (metadata.exposureUs)
+                    out.append(number, std::snprintf(number, sizeof(number), "%d", int(*metadata.exposureUs)));
+                else
+                    out.append("-");
+            } else if (name == "gain") {
+                if (metadata.analogueGain)
+                    out.append(number, std::snprintf(number, sizeof(number), "%.2f", double(*metadata.analogueGain)));
+                else
+                    out.append("-");
             } else if (name.starts_with("time:")) {
                 appendTime(name.substr(5), metadata.wallClock, out);
             } else if (name.starts_with(kSlotPrefix) && slots) {

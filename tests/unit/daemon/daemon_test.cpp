@@ -208,6 +208,33 @@ TEST_F(DaemonTest, DeviceLostFeedsNoSignalFramesAndRetriesWithBackoff)
     EXPECT_EQ(sink.lastBytes[3], 1);
 }
 
+// A camera that stops delivering without an error (a wedged driver, one libcamera lost track of) is torn down when
+// its no_signal_timeout runs out (the loop's timer fires onNoSignalTick), and then waited for like a lost one. Files
+// and synthetic sources have no such timeout.
+TEST_F(DaemonTest, StalledCameraIsTornDownAfterItsNoSignalTimeout)
+{
+    for (const SourceKind kind : {SourceKind::V4l2, SourceKind::Libcamera}) {
+        file->source.kind = kind;
+        file->source.v4l2.noSignalTimeoutSec = 1.5;
+        file->source.libcamera.noSignalTimeoutSec = 1.5;
+        auto daemon = makeDaemon();
+        ASSERT_TRUE(daemon->start().ok());
+        daemon->onFrameReady();
+        EXPECT_EQ(daemon->state(), Daemon::State::Streaming);
+        daemon->onNoSignalTick(); // the timer, re-armed by every frame, ran out
+        EXPECT_EQ(daemon->state(), Daemon::State::Waiting);
+        EXPECT_EQ(daemon->waitReason(), "fake source: no frame for 1.5 s");
+        daemon->onRetry();
+        EXPECT_EQ(daemon->state(), Daemon::State::Streaming);
+    }
+    file->source.kind = SourceKind::Synthetic;
+    auto daemon = makeDaemon();
+    ASSERT_TRUE(daemon->start().ok());
+    daemon->onFrameReady();
+    daemon->onNoSignalTick();
+    EXPECT_EQ(daemon->state(), Daemon::State::Streaming);
+}
+
 TEST_F(DaemonTest, AbsentSourceAtStartIsWaitedForWithTheConfiguredFormat)
 {
     source->startErrors.push_back(makeError(ErrorCode::DeviceLost, "no camera yet"));

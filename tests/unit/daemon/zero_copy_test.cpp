@@ -136,6 +136,19 @@ TEST_F(ZeroCopyPipeline, StatsLineCountsZeroCopyFrames)
     EXPECT_NE(line.find(" ms, 3 zero-copy; copy: out"), std::string::npos) << line;
 }
 
+TEST_F(ZeroCopyPipeline, StatsLineSaysHowTheLastFrameWasExposedWhenTheCameraReportsIt)
+{
+    addBothSinks();
+    pipeline.process(lease(1));
+    EXPECT_EQ(pipeline.takeStats().describe().find("exposure"), std::string::npos);
+    FrameLease exposed = lease(2);
+    exposed.metadata().exposureUs = 16600;
+    exposed.metadata().analogueGain = 2.5f;
+    pipeline.process(std::move(exposed));
+    const std::string line = pipeline.takeStats().describe();
+    EXPECT_NE(line.find(" ms, exposure 16600 us, gain 2.50; holding: out"), std::string::npos) << line;
+}
+
 TEST_F(ZeroCopyPipeline, FramesWithoutFdsAreCopiedAndGivenBackAtOnce)
 {
     addBothSinks();

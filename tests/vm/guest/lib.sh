@@ -165,3 +165,36 @@ black_pattern() {
     black=$(v4l2-ctl -d "$1" --list-ctrls-menus | sed -n 's/^[[:space:]]*\([0-9]*\): 100% Black.*/\1/p' | head -1)
     v4l2-ctl -d "$1" -c "test_pattern=${black:-5}" -c osd_text_mode=2
 }
+
+# Following the Y4M file $OUT that `overlayd run` writes while its camera goes and comes back. The probe pixel
+# ($PROBE_X, $PROBE_Y) lies on the source's leftmost colour bar (75% white, Y about 180), clear of the axes and of
+# the NO SIGNAL text.
+frames() { [ -s $OUT ] && set -- $(y4m_geometry $OUT) && echo $((($(wc -c <$OUT) - $4) / ($5 + 6))) || echo 0; }
+probe() { n=$(frames) && [ "$n" -gt 0 ] && y4m_pixel $OUT $((n - 1)) $PROBE_X $PROBE_Y; }
+is_live() { p=$(probe) && ! near "$p" "$NOSIGNAL_YCC" 10 && [ "$(echo $p | cut -d' ' -f1)" -gt 120 ]; }
+is_nosignal() { p=$(probe) && near "$p" "$NOSIGNAL_YCC" 6; }
+# wait_for SECONDS CONDITION...: polls every 0.5 s
+wait_for() {
+    t=$(($1 * 2))
+    shift
+    while [ $t -gt 0 ]; do "$@" && return 0; sleep 0.5; t=$((t - 1)); done
+    return 1
+}
+
+# libcamera only enumerates devices udev has initialised, and hears of unplugs only from udevd: udev_start runs
+# Debian's udevd (staged by the harness) once per boot, as a real system does, and sets UDEVD=1; without it,
+# udev_initialise writes udev's database by hand (no hot-plug then).
+udev_start() {
+    UDEVD=0
+    [ -x /usr/lib/systemd/systemd-udevd ] || return 0
+    mkdir -p /run/udev
+    if pidof systemd-udevd >/dev/null || /usr/lib/systemd/systemd-udevd --daemon 2>/tmp/udevd.log; then UDEVD=1; fi
+}
+udev_initialise() {
+    if [ "$UDEVD" = 1 ]; then
+        udevadm trigger --action=add && udevadm settle --timeout=30
+        return
+    fi
+    mkdir -p /run/udev/data
+    for d in /sys/bus/media/devices/* /sys/class/video4linux/*; do echo "I:1" >"/run/udev/data/c$(cat "$d/dev")"; done
+}

@@ -36,12 +36,45 @@ vmRunInitramfs() {
     local work=$1 root=$1/run-root
     rm -rf "$root" && mkdir -p "$root/vm"
     vmCopyWithLibraries "$root" /usr/bin/v4l2-ctl /usr/bin/v4l2-compliance /usr/bin/media-ctl
+    vmStageLibcamera "$root"
+    vmStageUdev "$root"
     cp -a "$work/sysroot/." "$root/"
     install -m755 "$VM_HERE/guest/init" "$root/init"
     cp -r "$VM_HERE/guest/lib.sh" "$VM_HERE/guest/checks" "$VM_HERE/configs" "$root/vm/"
     (cd "$root" && find . -print0 | cpio --null -o -H newc --quiet) >"$work/run.cpio"
     cat "$VM_KCACHE/base.cpio" "$work/run.cpio" >"$work/initramfs.cpio"
     rm -rf "$root" "$work/run.cpio"
+}
+
+# libcamera's vimc pipeline at run time: the IPA module is loaded with dlopen (ldd of overlayd does not list it)
+# and only with its signature file beside it (so it is copied as it is, never stripped), its proxy, its data, and
+# `cam` as a baseline client.
+vmStageLibcamera() {
+    local root=$1 lib=/usr/lib/x86_64-linux-gnu/libcamera
+    [ -e "$lib/ipa_vimc.so" ] || return 0
+    vmCopyWithLibraries "$root" /usr/bin/cam "$lib/ipa_vimc.so" "$lib/vimc_ipa_proxy"
+    cp "$lib/ipa_vimc.so.sign" "$root$lib/"
+    mkdir -p "$root/usr/share/libcamera/ipa" && cp -r /usr/share/libcamera/ipa/vimc "$root/usr/share/libcamera/ipa/"
+}
+
+# udevd, so that the guest has what a real system has: libcamera enumerates only devices udev has initialised, and
+# learns of a camera going away or coming back only from udevd's events. Debian's udev package is downloaded (not
+# installed on the host) once per version; its udevadm is also systemd-udevd (by the name it is called with). No
+# rules: the database entries and events are all libcamera needs.
+vmStageUdev() {
+    local root=$1 version dir
+    version=$(apt-cache policy udev 2>/dev/null | sed -n 's/^ *Candidate: //p')
+    [ -n "$version" ] && [ "$version" != "(none)" ] || { vmLog "no udev package known to apt: the guest runs without udevd"; return 0; }
+    dir=$VM_CACHE/udev-$version
+    if [ ! -x "$dir/bin/udevadm" ]; then
+        rm -rf "$dir.tmp" && mkdir -p "$dir.tmp"
+        (cd "$dir.tmp" && apt-get download "udev=$version" >/dev/null 2>&1 && dpkg -x udev_*.deb x) ||
+            { vmLog "downloading udev $version failed: the guest runs without udevd"; return 0; }
+        rm -rf "$dir" && mv "$dir.tmp/x" "$dir" && rm -rf "$dir.tmp"
+    fi
+    install -D -m755 "$dir/bin/udevadm" "$root/usr/bin/udevadm"
+    mkdir -p "$root/usr/lib/systemd" && ln -sf /usr/bin/udevadm "$root/usr/lib/systemd/systemd-udevd"
+    vmCopyLibraries "$root" "$dir/bin/udevadm"
 }
 
 # The overlayd binary (without debug info: 39 MB -> 2 MB) and its ldd closure under $1/sysroot, kept between runs

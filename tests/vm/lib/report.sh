@@ -33,6 +33,7 @@ vmReport() {
         vmFfprobeArtifacts
     )
     echo "$lines"
+    grep -a '^MEASURE ' "$log" | tr -d '\r' || true # figures for the docs, counted neither way
     local failed passed
     failed=$(echo "$lines" | grep -c '^FAIL ' || true)
     passed=$(echo "$lines" | grep -c '^PASS ' || true)

@@ -10,18 +10,7 @@ rm -f $OUT
 overlayd run --config /vm/configs/unplug.toml >/tmp/unplug.log 2>&1 &
 pid=$!
 
-frames() { [ -s $OUT ] && set -- $(y4m_geometry $OUT) && echo $((($(wc -c <$OUT) - $4) / ($5 + 6))) || echo 0; }
-# The bottom of vivid's leftmost colour bar (75% white, Y about 180): clear of the axes and of the NO SIGNAL text.
-probe() { n=$(frames) && [ "$n" -gt 0 ] && y4m_pixel $OUT $((n - 1)) 10 170; }
-# wait_for SECONDS CONDITION...: polls every 0.5 s
-wait_for() {
-    t=$(($1 * 2))
-    shift
-    while [ $t -gt 0 ]; do "$@" && return 0; sleep 0.5; t=$((t - 1)); done
-    return 1
-}
-is_live() { p=$(probe) && ! near "$p" "$NOSIGNAL_YCC" 10 && [ "$(echo $p | cut -d' ' -f1)" -gt 120 ]; }
-is_nosignal() { p=$(probe) && near "$p" "$NOSIGNAL_YCC" 6; }
+PROBE_X=10 PROBE_Y=170 # the bottom of vivid's leftmost colour bar
 
 wait_for 30 is_live
 verdict unplug-streaming $? "before: $(frames) frames, last pixel ($(probe))"

@@ -1,0 +1,26 @@
+// The process's one libcamera CameraManager (libcamera refuses a second), and finding the configured camera in it.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <libcamera/camera.h>
+#include <libcamera/camera_manager.h>
+
+#include "base/result.h"
+
+namespace overlayd::lc {
+
+// Started on first use and stopped when the last holder lets go: a source that retries after its camera vanished
+// gets a fresh enumeration (without udevd, libcamera sees no hot-plug events, so re-enumerating is how a camera
+// that came back is found).
+Result<std::shared_ptr<libcamera::CameraManager>> cameraManager();
+
+// `spec`: an index into the manager's list ("0"), a camera id, or a substring of the model name. The error
+// lists the cameras there are.
+Result<std::shared_ptr<libcamera::Camera>> findCamera(const libcamera::CameraManager &manager, const std::string &spec);
+
+// The sensor's model ("Sensor B"), or the id when the camera names none.
+std::string cameraModel(const libcamera::Camera &camera);
+
+} // namespace overlayd::lc

@@ -1,0 +1,91 @@
+// LibcameraSource: completed requests handed from libcamera's thread to the loop, lent as in-place frames.
+#include "drivers/libcamera/libcamera_source.h"
+
+#include <unistd.h>
+
+#include <libcamera/control_ids.h>
+
+namespace overlayd::lc {
+
+void LibcameraSource::signal()
+{
+    const uint64_t one = 1;
+    // A full counter (2^64 - 2 unread completions) cannot happen: every completion is read once.
+    (void)!::write(completions_.get(), &one, sizeof(one));
+}
+
+void LibcameraSource::onRequestCompleted(libcamera::Request *request)
+{
+    {
+        std::lock_guard lock(mutex_);
+        completed_.push_back(unsigned(request->cookie()));
+        lastCompletion_ = std::chrono::steady_clock::now();
+    }
+    signal();
+}
+
+void LibcameraSource::onCameraRemoved(std::shared_ptr<libcamera::Camera> camera)
+{
+    {
+        std::lock_guard lock(mutex_);
+        if (camera->id() != cameraId_)
+            return;
+        lost_ = true;
+    }
+    signal();
+}
+
+Result<FrameLease> LibcameraSource::nextFrame()
+{
+    if (!session_ || !session_->running)
+        return makeError(ErrorCode::DeviceLost, describe() + " is not streaming");
+    if (auto failed = session_->recycler->takeError())
+        return *failed;
+    uint64_t one;
+    const bool woken = ::read(completions_.get(), &one, sizeof(one)) == sizeof(one);
+    unsigned index = 0;
+    {
+        std::lock_guard lock(mutex_);
+        if (lost_)
+            return makeError(ErrorCode::DeviceLost, describe() + " was removed");
+        if (!woken || completed_.empty())
+            return makeError(ErrorCode::TryAgain, describe() + ": no frame ready");
+        index = completed_.front();
+        completed_.pop_front();
+    }
+    CameraSession &session = *session_;
+    if (index >= session.requests.size())
+        return makeError(ErrorCode::TryAgain, describe() + ": a request that is not ours");
+    libcamera::Request &request = *session.requests[index];
+    if (request.status() == libcamera::Request::RequestCancelled)
+        return makeError(ErrorCode::DeviceLost, describe() + ": the camera cancelled a request");
+    const libcamera::FrameBuffer *buffer = request.buffers().begin()->second;
+    const libcamera::FrameMetadata &bufferMetadata = buffer->metadata();
+    if (bufferMetadata.status != libcamera::FrameMetadata::FrameSuccess) {
+        ++dropped_;
+        session.recycler->lend();
+        session.recycler->giveBack(index);
+        return makeError(ErrorCode::TryAgain, describe() + ": frame marked failed by the camera");
+    }
+
+    dropped_ += sequence_.advance(bufferMetadata.sequence);
+
+    FrameMetadata metadata;
+    metadata.sequence = sequence_.relative(bufferMetadata.sequence);
+    const auto sensorTime = request.metadata().get(libcamera::controls::SensorTimestamp);
+    metadata.timestamp = std::chrono::nanoseconds(sensorTime ? uint64_t(*sensorTime) : bufferMetadata.timestamp);
+    metadata.wallClock = std::chrono::system_clock::now();
+    metadata.colorimetry = format_.colorimetry;
+    if (const auto exposure = request.metadata().get(libcamera::controls::ExposureTime))
+        metadata.exposureUs = *exposure;
+    if (const auto gain = request.metadata().get(libcamera::controls::AnalogueGain))
+        metadata.analogueGain = *gain;
+
+    const MappedFrameBuffer &mapped = session.buffers[index];
+    mapped.beginCpuAccess();
+    session.recycler->lend();
+    return FrameLease(mapped.view(), metadata,
+                      [keep = session_, index] { keep->recycler->giveBack(index); });
+}
+
+} // namespace overlayd::lc
