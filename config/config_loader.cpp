@@ -131,6 +131,7 @@ Result<DaemonConfig> loadConfigText(std::string_view text, const std::string &na
     config::readSinks(reader, result.sinks);
     config::readFrames(reader, result.scene.frames);
     config::readAnnotations(reader, baseDirectory, result.scene.annotations);
+    config::readGpio(reader, result.scene.annotations, result.gpio);
     const bool cameraRead = config::readCamera(reader, baseDirectory, result, keys);
     reader.finish();
     auto graph = config::checkFrames(reader, result);

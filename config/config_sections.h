@@ -21,6 +21,8 @@ std::string resolvePath(const std::string &baseDirectory, const std::string &pat
 void readDaemon(TableReader &root, DaemonSettings &out);
 void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
 void readSinks(TableReader &root, std::vector<SinkOptions> &out);
+// [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
+void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
 bool readPose(TableReader &camera, Pose &out);

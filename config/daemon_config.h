@@ -10,6 +10,7 @@
 #include "config/camera_spec.h"
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
+#include "gpio/gpio_options.h"
 #include "overlay/shapes/annotation.h"
 
 namespace overlayd {
@@ -25,6 +26,7 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
+    gpio::GpioOptions gpio;
     DaemonSettings daemon;
 };
 

@@ -53,6 +53,8 @@ public:
     std::optional<glm::dquat> quaternion(std::string_view key);
     std::optional<std::vector<double>> numbers(std::string_view key);
     std::optional<std::vector<glm::dvec3>> points(std::string_view key);
+    // An array of at most maxCount strings.
+    std::optional<std::vector<std::string>> strings(std::string_view key, size_t maxCount);
     // "#rrggbb", "#rrggbbaa", a colour name, or [r, g, b] / [r, g, b, a] with 0..255 entries.
     std::optional<Rgba> colour(std::string_view key);
     std::optional<std::vector<Rgba>> colours(std::string_view key);

@@ -68,6 +68,34 @@ std::optional<std::vector<double>> TableReader::numbers(std::string_view key)
     return out;
 }
 
+std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, size_t maxCount)
+{
+    const toml::node *n = node(key);
+    if (!n)
+        return std::nullopt;
+    const toml::array *array = n->as_array();
+    if (!array) {
+        problemAt(*n, keyPath(key), std::string("expected an array of strings, got ") + typeName(*n));
+        return std::nullopt;
+    }
+    if (array->size() > maxCount) {
+        problemAt(*n, keyPath(key), "at most " + std::to_string(maxCount) + " entries, got " +
+                                        std::to_string(array->size()));
+        return std::nullopt;
+    }
+    std::vector<std::string> out;
+    for (size_t i = 0; i < array->size(); ++i) {
+        const toml::node &entry = *array->get(i);
+        if (!entry.is_string()) {
+            problemAt(entry, keyPath(key) + "[" + std::to_string(i) + "]",
+                      std::string("expected a string, got ") + typeName(entry));
+            return std::nullopt;
+        }
+        out.push_back(*entry.value<std::string>());
+    }
+    return out;
+}
+
 std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key)
 {
     const toml::node *n = node(key);

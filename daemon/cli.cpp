@@ -18,7 +18,7 @@ std::vector<std::string> withDefaultSubcommand(int argc, const char *const *argv
     std::vector<std::string> args(argv + 1, argv + argc);
     for (const std::string &arg : args) {
         if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" ||
-            arg == "list-cameras" || arg == "--help" ||
+            arg == "list-cameras" || arg == "list-gpio" || arg == "--help" ||
             arg == "-h" || arg == "--version")
             return args;
     }
@@ -59,6 +59,8 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
 
     CLI::App *list = app.add_subcommand("list-cameras", "every V4L2 and libcamera camera with what it offers");
     list->add_flag("--json", line.json, "one JSON array, one object per camera");
+    CLI::App *listGpio = app.add_subcommand("list-gpio", "every GPIO chip and its lines (names, holders)");
+    listGpio->add_flag("--json", line.json, "one JSON array, one object per chip");
 
     const std::vector<std::string> args = withDefaultSubcommand(argc, argv);
     std::vector<std::string> reversed(args.rbegin(), args.rend()); // CLI11 parses a vector back to front
@@ -78,6 +80,7 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
                    : project->parsed() ? Command::Project
                    : render->parsed()  ? Command::Render
                    : list->parsed()    ? Command::ListCameras
+                   : listGpio->parsed() ? Command::ListGpio
                                        : Command::Run;
     return line;
 }

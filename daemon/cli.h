@@ -1,4 +1,5 @@
-// The command line of `overlayd`: subcommands run (the default), check-config, project, render and list-cameras.
+// The command line of `overlayd`: subcommands run (the default), check-config, project, render, list-cameras and
+// list-gpio.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,7 @@
 
 namespace overlayd {
 
-enum class Command { Run, CheckConfig, Project, Render, ListCameras, Exit };
+enum class Command { Run, CheckConfig, Project, Render, ListCameras, ListGpio, Exit };
 
 struct CommandLine {
     Command command = Command::Run;
@@ -19,7 +20,7 @@ struct CommandLine {
     std::optional<LogLevel> logLevel;
     uint64_t frames = 0;             // run: stop after N frames (0: never); render: how many
     std::string output;              // render
-    bool json = false;               // project, list-cameras
+    bool json = false;               // project, list-cameras, list-gpio
     std::vector<double> coordinates; // project: X Y Z ...
 };
 

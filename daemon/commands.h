@@ -23,6 +23,8 @@ inline constexpr int kExitConfigError = 2; // the config file does not validate
 int checkConfigCommand(const std::string &path);
 // `overlayd list-cameras [--json]`: every camera a source could open, with its formats, sizes and frame rates.
 int listCamerasCommand(bool json);
+// `overlayd list-gpio [--json]`: every GPIO chip with its lines' offsets, names and holders.
+int listGpioCommand(bool json);
 int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger);
 // logLevel (from --log-level) overrides the config's daemon.log_level.
 int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,

@@ -6,8 +6,11 @@ namespace overlayd {
 Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factories, ConfigLoader loader,
                DaemonOptions options)
     : logger_(logger), factories_(std::move(factories)), loader_(std::move(loader)), options_(std::move(options)),
-      pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier)
-{}
+      pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier), gpio_(logger, scene_)
+{
+    if (factories_.gpio)
+        gpio_.setProvider(factories_.gpio());
+}
 
 Daemon::~Daemon()
 {
@@ -56,6 +59,12 @@ Status Daemon::setUp()
     config_ = std::move(*loaded);
     scene_.load(config_.scene, config_.camera);
     applyLogLevel();
+    // Input states are read before the first frame: a car started in reverse shows the guide lines at once.
+    if (!config_.gpio.empty()) {
+        if (auto lines = gpio_.configure(config_.gpio); !lines)
+            return lines;
+        gpio_.applyLayers();
+    }
     Status sinksBuilt = Ok{};
     pipeline_.setSinks(buildSinks(config_, sinksBuilt));
     if (!sinksBuilt)
@@ -105,8 +114,18 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
     return sinks;
 }
 
+uint64_t Daemon::sinkFailures() const
+{
+    uint64_t failures = 0;
+    for (const auto &sink : pipeline_.sinks())
+        failures += sink->counters().failed;
+    return failures;
+}
+
 void Daemon::onFrameDelivered()
 {
+    if (!gpio_.empty())
+        gpio_.onFrameDelivered(gpio_.wantsSinkFailures() ? sinkFailures() : 0);
     if (options_.maxFrames && pipeline_.framesIn() >= options_.maxFrames) {
         logger_.info(cat("frame limit reached (", options_.maxFrames, " frames)"));
         requestStop(0);

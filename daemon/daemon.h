@@ -13,6 +13,7 @@
 #include "base/logger.h"
 #include "config/daemon_config.h"
 #include "daemon/event_loop.h"
+#include "daemon/gpio_control.h"
 #include "daemon/health_reporter.h"
 #include "daemon/pipeline.h"
 #include "daemon/scene_control.h"
@@ -61,6 +62,8 @@ public:
     const Pipeline &pipeline() const { return pipeline_; }
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
+    const GpioControl &gpio() const { return gpio_; }
+    GpioControl &gpio() { return gpio_; }
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }
@@ -74,6 +77,7 @@ private:
     void armStats();
     std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);
     void applyLogLevel();
+    uint64_t sinkFailures() const;
     void shutdown();
 
     Logger &logger_;
@@ -86,6 +90,7 @@ private:
     Pipeline pipeline_;
     SceneControl scene_;
     HealthReporter health_;
+    GpioControl gpio_; // after scene_, whose layers it switches
 
     EventLoop *loop_ = nullptr;           // set while run() is running
     std::optional<SignalReader> signals_; // created before any sink thread, so that every thread blocks them

@@ -34,13 +34,16 @@ int Daemon::run()
     (void)loop->add(stats_->fd(), [this] { onStats(); });
     (void)loop->add(watchdog_->fd(), [this] { onWatchdog(); });
     source_->attachLoop(loop_);
+    gpio_.attachLoop(loop_);
     while (state() != State::Finished) {
+        gpio_.onState(state()); // outputs follow the state the last turn left
         if (auto status = loop->runOnce(); !status) {
             logger_.error(status.error().message);
             requestStop(1);
         }
     }
     shutdown();
+    gpio_.attachLoop(nullptr);
     source_->attachLoop(nullptr);
     loop_ = nullptr;
     return exitStatus_;
@@ -49,6 +52,7 @@ int Daemon::run()
 void Daemon::shutdown()
 {
     health_.notifier().stopping();
+    gpio_.shutdown(); // outputs back to their inactive level
     source_->close();
     pipeline_.closeSinks();
     const PipelineStats stats = pipeline_.takeStats();
@@ -60,6 +64,8 @@ void Daemon::onStats()
 {
     stats_->consume();
     health_.onStats(pipeline_, state() == State::Streaming);
+    if (!gpio_.empty())
+        logger_.info(cat("gpio: ", gpio_.describe()));
 }
 
 void Daemon::onWatchdog()
@@ -114,11 +120,19 @@ bool Daemon::reload()
         if (!sinksBuilt)
             return reject(sinksBuilt.error().message);
     }
+    // GPIO lines next: a line that cannot be requested refuses the reload with every old line still held.
+    const bool gpioChanged = config_.gpio != next.gpio;
+    if (gpioChanged)
+        if (auto lines = gpio_.configure(next.gpio); !lines)
+            return reject(lines.error().message);
     std::unique_ptr<OverlayRenderer> renderer;
     if (sourceChanged || state() != State::Streaming)
         scene_.detach(); // nothing to rebuild now: the next stream is built from the new scene
-    if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied)
+    if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied) {
+        if (gpioChanged)
+            (void)gpio_.configure(config_.gpio); // the old lines again
         return reject(applied.error().message);
+    }
 
     // The switch, between two frames (we are in the loop, not in the middle of one).
     if (sinksChanged) {
@@ -127,6 +141,8 @@ bool Daemon::reload()
             (void)pipeline_.openSinks(pipeline_.format());
     }
     config_ = std::move(next);
+    if (gpioChanged)
+        gpio_.applyLayers(); // the new rules, on the new scene's layers
     applyLogLevel();
     armStats();
     if (sourceChanged) {

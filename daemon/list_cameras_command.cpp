@@ -3,30 +3,12 @@
 #include <string>
 
 #include "daemon/commands.h"
+#include "daemon/json_text.h"
 #include "drivers/camera_list.h"
 
 namespace overlayd {
 
 namespace {
-
-// Model names and ids come from drivers: escape what JSON requires.
-std::string jsonString(const std::string &text)
-{
-    std::string out = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof(escaped), "\\u%04x", unsigned(c));
-            out += escaped;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
 
 std::string numberText(double value)
 {

@@ -27,6 +27,8 @@ int main(int argc, char **argv)
             return projectCommand(line.configPath, line.json, line.coordinates, logger);
         case Command::ListCameras:
             return listCamerasCommand(line.json);
+        case Command::ListGpio:
+            return listGpioCommand(line.json);
         case Command::Render:
             return renderCommand(line.configPath, line.frames, line.output, line.logLevel, logger);
         case Command::Run:

@@ -68,7 +68,7 @@ StageFactories defaultStageFactories()
 {
     return StageFactories{
         [](const SourceOptions &options, const Camera *sceneCamera) { return makeSource(options, sceneCamera); },
-        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer};
+        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, gpio::makeLineProvider};
 }
 
 } // namespace overlayd

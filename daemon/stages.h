@@ -11,6 +11,7 @@
 #include "daemon/scene_control.h"
 #include "drivers/frame_sink.h"
 #include "drivers/frame_source.h"
+#include "gpio/line_provider.h"
 #include "overlay/overlay_renderer.h"
 
 namespace overlayd {
@@ -24,6 +25,8 @@ struct StageFactories {
     std::function<Result<std::unique_ptr<FrameSink>>(const SinkOptions &)> sink;
     // May return a null renderer: nothing to draw. SceneControl calls it with the live scene and camera.
     RendererFactory renderer;
+    // Where GPIO lines come from (libgpiod); null: no [[gpio.*]] line can be requested.
+    std::function<std::unique_ptr<gpio::LineProvider>()> gpio;
 };
 
 // makeSource, makeSink, and OverlayRenderer::create for the negotiated stream.

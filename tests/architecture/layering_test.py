@@ -13,8 +13,9 @@ ALLOWED = {
     "media": {"base"},
     "overlay": {"base", "media", "projection"},
     "drivers": {"base", "media", "projection"},
-    "config": {"base", "media", "projection", "overlay", "drivers"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "config"},
+    "gpio": {"base"},
+    "config": {"base", "media", "projection", "overlay", "drivers", "gpio"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "config"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.

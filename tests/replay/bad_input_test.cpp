@@ -46,7 +46,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadConfig{"out_of_range.toml", "100000"}, BadConfig{"unknown_key.toml", "widht"},
                       BadConfig{"many_problems.toml", "log_level"}, BadConfig{"degenerate_up.toml", "up"},
                       BadConfig{"missing_calibration.toml", "no-such-calibration.yaml"},
-                      BadConfig{"malformed_calibration.toml", "malformed_calibration.yaml"}),
+                      BadConfig{"malformed_calibration.toml", "malformed_calibration.yaml"},
+                      BadConfig{"gpio_line_twice.toml", "gpio.output[0].line: gpiochip0 line 'REVERSE_IN' is already "
+                                                        "used by input 'reverse'"}),
     [](const auto &param) {
         std::string name = param.param.file;
         return name.substr(0, name.find('.'));
@@ -105,6 +107,36 @@ TEST(BadCommandLine, UnknownOutputExtensionIsRefused)
                     scratchDir("bad-extension"));
     EXPECT_EQ(run.exitStatus, 1);
     EXPECT_NE(run.err.find("out.mp4"), std::string::npos) << run.err;
+}
+
+// A GPIO chip that is not there: check-config cannot know (chips exist only on the running machine), run refuses to
+// start naming the chip, with the chips there are, and exits 1.
+TEST(StartRefusal, AMissingGpioChipIsNamed)
+{
+    const std::string dir = scratchDir("gpio-missing-chip");
+    writeFile(dir + "/gpio.toml", R"(
+[source]
+kind = "synthetic"
+width = 64
+height = 48
+[[annotation]]
+name = "guides"
+type = "axes"
+style = { layer = "guides" }
+[[gpio.input]]
+name = "reverse"
+chip = "no-such-gpiochip"
+line = 3
+show_layers = ["guides"]
+)");
+    EXPECT_EQ(runOverlayd("check-config gpio.toml", dir).exitStatus, 0);
+    const RunResult run = runOverlayd("run --config gpio.toml --frames 2", dir);
+    EXPECT_FALSE(run.crashed) << run.all();
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    const bool named = run.all().find("gpio input 'reverse': GPIO chip 'no-such-gpiochip' not found") !=
+                           std::string::npos ||
+                       run.all().find("built without libgpiod") != std::string::npos;
+    EXPECT_TRUE(named) << run.all();
 }
 
 } // namespace

@@ -1,0 +1,134 @@
+// [[gpio.input]] and [[gpio.output]]: lines checked for shape here (chips and lines themselves only exist on the
+// running machine), layers against the scene's, and no line named twice.
+#include "config/config_sections.h"
+
+#include <algorithm>
+
+namespace overlayd::config {
+
+namespace {
+
+constexpr int64_t kMaxLineOffset = 65535; // the GPIO uAPI's line offsets are u32; no chip has more
+
+void readLine(TableReader &table, gpio::LineAddress &out)
+{
+    if (auto chip = table.string("chip"); chip && !chip->empty())
+        out.chip = *chip;
+    else if (chip || !table.has("chip"))
+        table.problem("chip", "missing: the chip's name (gpiochip0), label or /dev path (see overlayd list-gpio)");
+    const toml::node *line = table.node("line");
+    if (!line) {
+        table.problem("line", "missing: the line's offset on the chip, or its name");
+    } else if (line->is_string()) {
+        out.name = *line->value<std::string>();
+        if (out.name.empty())
+            table.problem("line", "an empty line name");
+    } else if (auto offset = table.integer("line", 0, kMaxLineOffset)) {
+        out.offset = unsigned(*offset);
+    }
+}
+
+// Every layer named must be drawn by some annotation (a typo would otherwise switch nothing, silently).
+void checkLayers(TableReader &table, std::string_view key, const std::vector<std::string> &layers,
+                 const std::vector<std::string> &known)
+{
+    for (const std::string &layer : layers) {
+        if (std::find(known.begin(), known.end(), layer) != known.end())
+            continue;
+        std::string list;
+        for (const std::string &name : known)
+            list += (list.empty() ? "" : ", ") + name;
+        std::string message = "no annotation draws in layer '" + layer + "' (layers: " + list + ")";
+        if (const std::string guess = closestMatch(layer, known); !guess.empty())
+            message += "; did you mean '" + guess + "'?";
+        table.problem(key, std::move(message));
+    }
+}
+
+struct Claim {
+    gpio::LineAddress line;
+    std::string who;
+};
+
+// Two inputs or outputs on one line: the second is refused where it is written.
+void claimLine(TableReader &table, const gpio::LineAddress &line, const std::string &who, std::vector<Claim> &claims)
+{
+    if (line.chip.empty())
+        return;
+    for (const Claim &claim : claims)
+        if (claim.line == line) {
+            table.problem("line", line.describe() + " is already used by " + claim.who);
+            return;
+        }
+    claims.push_back({line, who});
+}
+
+void readInput(TableReader &input, size_t index, const std::vector<std::string> &layers,
+               std::vector<Claim> &claims, gpio::InputOptions &out)
+{
+    out.name = input.string("name").value_or("gpio.input[" + std::to_string(index) + "]");
+    readLine(input, out.line);
+    if (auto low = input.boolean("active_low"))
+        out.activeLow = *low;
+    if (auto bias = input.choice<gpio::Bias>("bias", {{"as-is", gpio::Bias::AsIs},
+                                                     {"disable", gpio::Bias::Disable},
+                                                     {"pull-up", gpio::Bias::PullUp},
+                                                     {"pull-down", gpio::Bias::PullDown}}))
+        out.bias = *bias;
+    if (auto debounce = input.integer("debounce_ms", 0, gpio::kMaxDebounceMs))
+        out.debounceMs = unsigned(*debounce);
+    if (auto show = input.strings("show_layers", gpio::kMaxLayersPerInput)) {
+        out.showLayers = *show;
+        checkLayers(input, "show_layers", out.showLayers, layers);
+    }
+    if (auto hide = input.strings("hide_layers", gpio::kMaxLayersPerInput)) {
+        out.hideLayers = *hide;
+        checkLayers(input, "hide_layers", out.hideLayers, layers);
+    }
+    if (out.showLayers.empty() && out.hideLayers.empty() && !input.has("show_layers") && !input.has("hide_layers"))
+        input.problemAtTable("an input needs show_layers or hide_layers: the layers it switches");
+    claimLine(input, out.line, "input '" + out.name + "'", claims);
+    input.finish();
+}
+
+void readOutput(TableReader &output, size_t index, std::vector<Claim> &claims, gpio::OutputOptions &out)
+{
+    out.name = output.string("name").value_or("gpio.output[" + std::to_string(index) + "]");
+    readLine(output, out.line);
+    if (auto signal = output.choice<gpio::OutputSignal>("signal", {{"streaming", gpio::OutputSignal::Streaming},
+                                                                   {"no-signal", gpio::OutputSignal::NoSignal},
+                                                                   {"error", gpio::OutputSignal::Error},
+                                                                   {"frame-toggle", gpio::OutputSignal::FrameToggle}}))
+        out.signal = *signal;
+    if (auto low = output.boolean("active_low"))
+        out.activeLow = *low;
+    claimLine(output, out.line, "output '" + out.name + "'", claims);
+    output.finish();
+}
+
+} // namespace
+
+void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out)
+{
+    auto gpio = root.table("gpio");
+    if (!gpio)
+        return;
+    std::vector<std::string> layers;
+    for (const Annotation &annotation : annotations)
+        if (std::find(layers.begin(), layers.end(), annotation.style.layer) == layers.end())
+            layers.push_back(annotation.style.layer);
+    std::vector<Claim> claims;
+    std::vector<TableReader> inputs = gpio->tables("input");
+    std::vector<TableReader> outputs = gpio->tables("output");
+    if (inputs.size() > gpio::kMaxInputs)
+        gpio->problem("input", "at most " + std::to_string(gpio::kMaxInputs) + " inputs");
+    if (outputs.size() > gpio::kMaxOutputs)
+        gpio->problem("output", "at most " + std::to_string(gpio::kMaxOutputs) + " outputs");
+    for (size_t i = 0; i < inputs.size() && i < gpio::kMaxInputs; ++i)
+        readInput(inputs[i], i, layers, claims, out.inputs.emplace_back());
+    for (size_t i = 0; i < outputs.size() && i < gpio::kMaxOutputs; ++i)
+        readOutput(outputs[i], i, claims, out.outputs.emplace_back());
+    gpio->finish();
+}
+
+} // namespace overlayd::config

@@ -1,0 +1,26 @@
+// jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); UTF-8 passes through.
+#include "daemon/json_text.h"
+
+#include <cstdio>
+
+namespace overlayd {
+
+std::string jsonString(const std::string &text)
+{
+    std::string out = "\"";
+    for (const char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof(escaped), "\\u%04x", unsigned(c));
+            out += escaped;
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
+} // namespace overlayd

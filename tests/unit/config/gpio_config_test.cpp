@@ -1,0 +1,147 @@
+// [[gpio.input]] / [[gpio.output]]: every key read; the shape checked without hardware (what check-config can
+// know), each problem at its file:line:key: unknown layers, lines named twice, missing chips and lines, limits.
+#include <gtest/gtest.h>
+
+#include "config_test_util.h"
+
+namespace overlayd::test {
+namespace {
+
+const std::string kScene = R"([[annotation]]
+name = "guides"
+type = "axes"
+style = { layer = "guides" }
+[[annotation]]
+name = "logo"
+type = "axes"
+style = { layer = "logo" }
+)";
+
+std::string allText(const std::vector<ConfigProblem> &problems)
+{
+    std::string all;
+    for (const ConfigProblem &p : problems)
+        all += p.format() + "\n";
+    return all;
+}
+
+TEST(GpioConfig, EveryKeyIsRead)
+{
+    const DaemonConfig config = loadValid(kScene + R"(
+[[gpio.input]]
+name = "reverse"
+chip = "gpiochip0"
+line = 17
+active_low = true
+bias = "pull-up"
+debounce_ms = 30
+show_layers = ["guides"]
+hide_layers = ["logo"]
+
+[[gpio.output]]
+name = "status-led"
+chip = "/dev/gpiochip1"
+line = "STATUS"
+signal = "frame-toggle"
+active_low = true
+)");
+    ASSERT_EQ(config.gpio.inputs.size(), 1u);
+    const gpio::InputOptions &in = config.gpio.inputs[0];
+    EXPECT_EQ(in.name, "reverse");
+    EXPECT_EQ(in.line, (gpio::LineAddress{"gpiochip0", "", 17}));
+    EXPECT_TRUE(in.activeLow);
+    EXPECT_EQ(in.bias, gpio::Bias::PullUp);
+    EXPECT_EQ(in.debounceMs, 30u);
+    EXPECT_EQ(in.showLayers, std::vector<std::string>{"guides"});
+    EXPECT_EQ(in.hideLayers, std::vector<std::string>{"logo"});
+    ASSERT_EQ(config.gpio.outputs.size(), 1u);
+    const gpio::OutputOptions &out = config.gpio.outputs[0];
+    EXPECT_EQ(out.line, (gpio::LineAddress{"/dev/gpiochip1", "STATUS", 0}));
+    EXPECT_EQ(out.signal, gpio::OutputSignal::FrameToggle);
+    EXPECT_TRUE(out.activeLow);
+}
+
+TEST(GpioConfig, DefaultsAreTheDocumentedOnes)
+{
+    const DaemonConfig config =
+        loadValid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guides\"]\n"
+                           "[[gpio.output]]\nchip = \"c\"\nline = 2\n");
+    const gpio::InputOptions &in = config.gpio.inputs.at(0);
+    EXPECT_EQ(in.name, "gpio.input[0]");
+    EXPECT_FALSE(in.activeLow);
+    EXPECT_EQ(in.bias, gpio::Bias::AsIs);
+    EXPECT_EQ(in.debounceMs, 20u);
+    EXPECT_EQ(config.gpio.outputs.at(0).signal, gpio::OutputSignal::Streaming);
+}
+
+TEST(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
+{
+    const auto problems =
+        loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guide\"]\n");
+    ASSERT_EQ(problems.size(), 1u) << allText(problems);
+    EXPECT_EQ(problems[0].key, "gpio.input[0].show_layers");
+    EXPECT_EQ(problems[0].line, 12u);
+    EXPECT_NE(problems[0].message.find("no annotation draws in layer 'guide'"), std::string::npos);
+    EXPECT_NE(problems[0].message.find("did you mean 'guides'?"), std::string::npos);
+}
+
+TEST(GpioConfig, TwoUsesOfOneLineAreRefusedWhereTheSecondIsWritten)
+{
+    const auto problems = loadInvalid(kScene + R"(
+[[gpio.input]]
+name = "reverse"
+chip = "gpiochip0"
+line = "REV"
+show_layers = ["guides"]
+[[gpio.output]]
+name = "led"
+chip = "gpiochip0"
+line = "REV"
+)");
+    ASSERT_EQ(problems.size(), 1u) << allText(problems);
+    EXPECT_EQ(problems[0].key, "gpio.output[0].line");
+    EXPECT_EQ(problems[0].line, 18u);
+    EXPECT_NE(problems[0].message.find("gpiochip0 line 'REV' is already used by input 'reverse'"), std::string::npos)
+        << problems[0].message;
+}
+
+TEST(GpioConfig, BadShapesAreEachNamed)
+{
+    const auto problems = loadInvalid(kScene + R"(
+[[gpio.input]]
+line = -1
+bias = "pull-sideways"
+debounce_ms = 20000
+show_layers = "guides"
+[[gpio.output]]
+chip = "c"
+line = 3
+signal = "streamin"
+colour = "red"
+)");
+    const std::string all = allText(problems);
+    for (const char *expected :
+         {"gpio.input[0].chip: missing", "gpio.input[0].line:", "gpio.input[0].bias:", "gpio.input[0].debounce_ms:",
+          "gpio.input[0].show_layers: expected an array of strings", "gpio.output[0].signal:",
+          "gpio.output[0].colour:"})
+        EXPECT_NE(all.find(expected), std::string::npos) << expected << " in\n" << all;
+}
+
+TEST(GpioConfig, AnInputThatSwitchesNothingIsRefused)
+{
+    const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\n");
+    ASSERT_EQ(problems.size(), 1u) << allText(problems);
+    EXPECT_NE(problems[0].message.find("needs show_layers or hide_layers"), std::string::npos);
+}
+
+TEST(GpioConfig, InputsAreLimited)
+{
+    std::string text = kScene;
+    for (size_t i = 0; i <= gpio::kMaxInputs; ++i)
+        text += "[[gpio.input]]\nchip = \"c\"\nline = " + std::to_string(i) + "\nshow_layers = [\"guides\"]\n";
+    const auto problems = loadInvalid(text);
+    EXPECT_NE(allText(problems).find("at most 32 inputs"), std::string::npos) << allText(problems);
+}
+
+} // namespace
+} // namespace overlayd::test
