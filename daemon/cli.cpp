@@ -18,7 +18,7 @@ std::vector<std::string> withDefaultSubcommand(int argc, const char *const *argv
     std::vector<std::string> args(argv + 1, argv + argc);
     for (const std::string &arg : args) {
         if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" ||
-            arg == "list-cameras" || arg == "list-gpio" || arg == "--help" ||
+            arg == "list-cameras" || arg == "list-gpio" || arg == "unproject" || arg == "solve-pose" || arg == "--help" ||
             arg == "-h" || arg == "--version")
             return args;
     }
@@ -52,6 +52,23 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     project->add_option("coordinates", line.coordinates, "X Y Z [X Y Z ...] in metres (use -- before negatives)")
         ->required();
 
+    CLI::App *unproject = app.add_subcommand("unproject", "print each pixel's world ray and where it meets a plane");
+    unproject->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
+    unproject->add_flag("--json", line.json, "one JSON array, one object per pixel");
+    unproject->add_option("--plane", line.plane, "nx ny nz d: the plane n.x + d = 0 (default 0 0 1 0, the ground)")
+        ->expected(4)
+        ->delimiter(' ');
+    unproject->add_option("coordinates", line.coordinates, "U V [U V ...] pixels in the viewport's origin")
+        ->required();
+
+    CLI::App *solve = app.add_subcommand("solve-pose", "the camera pose from world points and the pixels they are at");
+    solve->add_option("--config,-c", line.configPath, "the TOML config file (intrinsics, lens, viewport, mount)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    solve->add_option("--points", line.pointsPath, "lines of x y z u v (world metres, pixel)")
+        ->required()
+        ->check(CLI::ExistingFile);
+
     CLI::App *render = app.add_subcommand("render", "run N frames unpaced into a file (.y4m, .yuv/.raw, %04d.png)");
     render->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
     render->add_option("--frames", line.frames, "how many frames")->required()->check(CLI::PositiveNumber);
@@ -81,6 +98,8 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
                    : render->parsed()  ? Command::Render
                    : list->parsed()    ? Command::ListCameras
                    : listGpio->parsed() ? Command::ListGpio
+                   : unproject->parsed() ? Command::Unproject
+                   : solve->parsed()    ? Command::SolvePose
                                        : Command::Run;
     return line;
 }

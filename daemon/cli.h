@@ -1,5 +1,5 @@
-// The command line of `overlayd`: subcommands run (the default), check-config, project, render, list-cameras and
-// list-gpio.
+// The command line of `overlayd`: subcommands run (the default), check-config, project, render, list-cameras,
+// list-gpio, unproject and solve-pose.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +11,7 @@
 
 namespace overlayd {
 
-enum class Command { Run, CheckConfig, Project, Render, ListCameras, ListGpio, Exit };
+enum class Command { Run, CheckConfig, Project, Render, ListCameras, ListGpio, Unproject, SolvePose, Exit };
 
 struct CommandLine {
     Command command = Command::Run;
@@ -21,7 +21,9 @@ struct CommandLine {
     uint64_t frames = 0;             // run: stop after N frames (0: never); render: how many
     std::string output;              // render
     bool json = false;               // project, list-cameras, list-gpio
-    std::vector<double> coordinates; // project: X Y Z ...
+    std::vector<double> coordinates; // project: X Y Z ...; unproject: U V ...
+    std::vector<double> plane;       // unproject: nx ny nz d (empty: the ground z = 0)
+    std::string pointsPath;          // solve-pose
 };
 
 // Parses argv with CLI11; prints help, version and usage errors itself. Never throws.

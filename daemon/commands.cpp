@@ -20,6 +20,19 @@ Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger)
     return config;
 }
 
+std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger)
+{
+    auto config = loadConfigLogged(path, logger);
+    if (!config)
+        return std::nullopt;
+    auto camera = config->camera.build(config->source.width, config->source.height);
+    if (!camera) {
+        logger.error(cat(path, ": camera: ", camera.error().message));
+        return std::nullopt;
+    }
+    return ConfiguredCamera{std::move(*config), std::move(*camera)};
+}
+
 int checkConfigCommand(const std::string &path)
 {
     std::vector<ConfigProblem> problems;

@@ -26,6 +26,11 @@ int listCamerasCommand(bool json);
 // `overlayd list-gpio [--json]`: every GPIO chip with its lines' offsets, names and holders.
 int listGpioCommand(bool json);
 int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger);
+// `overlayd unproject [--plane "nx ny nz d"] -- U V ...`: each pixel's world ray and where it meets the plane.
+int unprojectCommand(const std::string &configPath, bool json, const std::vector<double> &plane,
+                     const std::vector<double> &coordinates, Logger &logger);
+// `overlayd solve-pose --points FILE`: the camera pose from world points and their pixels, as config keys.
+int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, Logger &logger);
 // logLevel (from --log-level) overrides the config's daemon.log_level.
 int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,
                   std::optional<LogLevel> logLevel, Logger &logger);
@@ -33,6 +38,14 @@ int runCommand(const DaemonOptions &options, Logger &logger);
 
 // Loads a config, logging every problem as "file:line:column: key: message".
 Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger);
+
+// A config and its camera built for the configured frame size (a device that negotiates another size scales its
+// intrinsics the same way), for the camera-math commands; nothing (every problem logged) when either fails.
+struct ConfiguredCamera {
+    DaemonConfig config;
+    Camera camera;
+};
+std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger);
 
 // `render --output PATH`: .y4m -> Y4M, .yuv/.raw -> raw frames, a %d pattern or .png/.jpg -> image snapshots.
 Result<SinkOptions> sinkForOutput(const std::string &path);

@@ -1,6 +1,8 @@
 // jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); UTF-8 passes through.
 #include "daemon/json_text.h"
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 
 namespace overlayd {
@@ -21,6 +23,15 @@ std::string jsonString(const std::string &text)
         }
     }
     return out + "\"";
+}
+
+std::string jsonNumber(double value)
+{
+    if (!std::isfinite(value))
+        return "null";
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof(text), value);
+    return std::string(text, result.ptr);
 }
 
 } // namespace overlayd

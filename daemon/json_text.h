@@ -1,5 +1,5 @@
-// jsonString: a string as a JSON string literal, for the commands that print --json (names and ids come from
-// drivers and may hold anything).
+// JSON text for the commands that print --json: strings (names and ids come from drivers and may hold anything)
+// and numbers.
 #pragma once
 
 #include <string>
@@ -7,5 +7,7 @@
 namespace overlayd {
 
 std::string jsonString(const std::string &text);
+// The shortest text that reads back as the same double (std::to_chars); "null" when not finite.
+std::string jsonNumber(double value);
 
 } // namespace overlayd

@@ -27,6 +27,10 @@ int main(int argc, char **argv)
             return projectCommand(line.configPath, line.json, line.coordinates, logger);
         case Command::ListCameras:
             return listCamerasCommand(line.json);
+        case Command::Unproject:
+            return unprojectCommand(line.configPath, line.json, line.plane, line.coordinates, logger);
+        case Command::SolvePose:
+            return solvePoseCommand(line.configPath, line.pointsPath, logger);
         case Command::ListGpio:
             return listGpioCommand(line.json);
         case Command::Render:

@@ -1,26 +1,16 @@
 // `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
 #include "daemon/commands.h"
+#include "daemon/json_text.h"
 
-#include <charconv>
-#include <cmath>
 #include <cstdio>
 
 namespace overlayd {
 
 namespace {
 
-std::string number(double value)
-{
-    if (!std::isfinite(value))
-        return "null";
-    char text[32];
-    const auto result = std::to_chars(text, text + sizeof(text), value);
-    return std::string(text, result.ptr);
-}
-
 std::string triple(const glm::dvec3 &p, const char *separator)
 {
-    return number(p.x) + separator + number(p.y) + separator + number(p.z);
+    return jsonNumber(p.x) + separator + jsonNumber(p.y) + separator + jsonNumber(p.z);
 }
 
 } // namespace
@@ -33,8 +23,8 @@ std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vec
         const bool clipped = p.status == PointStatus::Clipped;
         json += i ? ",\n " : "";
         json += "{\"world\":[" + triple(world[i], ",") + "],\"pixel\":";
-        json += clipped ? "null" : "[" + number(p.pixel.x) + "," + number(p.pixel.y) + "]";
-        json += ",\"depth\":" + (clipped ? std::string("null") : number(p.depth));
+        json += clipped ? "null" : "[" + jsonNumber(p.pixel.x) + "," + jsonNumber(p.pixel.y) + "]";
+        json += ",\"depth\":" + (clipped ? std::string("null") : jsonNumber(p.depth));
         json += std::string(",\"visible\":") + (p.status == PointStatus::Visible ? "true" : "false") + "}";
     }
     return json + "]\n";
@@ -64,15 +54,10 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
         logger.error(cat("project: expected X Y Z triples, got ", coordinates.size(), " numbers"));
         return kExitFailure;
     }
-    auto config = loadConfigLogged(configPath, logger);
-    if (!config)
+    const auto configured = loadCameraLogged(configPath, logger);
+    if (!configured)
         return kExitConfigError;
-    // The configured frame size: a device that negotiates another size scales its intrinsics the same way.
-    auto camera = config->camera.build(config->source.width, config->source.height);
-    if (!camera) {
-        logger.error(cat(configPath, ": camera: ", camera.error().message));
-        return kExitConfigError;
-    }
+    const Camera *camera = &configured->camera;
     std::vector<glm::dvec3> world;
     for (size_t i = 0; i < coordinates.size(); i += 3)
         world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);

@@ -14,8 +14,9 @@ ALLOWED = {
     "overlay": {"base", "media", "projection"},
     "drivers": {"base", "media", "projection"},
     "gpio": {"base"},
+    "alignment": {"base", "projection"},
     "config": {"base", "media", "projection", "overlay", "drivers", "gpio"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "config"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "alignment", "config"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.

@@ -1,0 +1,107 @@
+// solvePose: unproject every pixel through the Camera, solve PnP on the normalized directions with OpenCV (SQPnP,
+// refined by Levenberg-Marquardt), reproject through the solved pose to report the error in pixels.
+#include "alignment/pose_solver.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_access.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+
+namespace overlayd::alignment {
+
+namespace {
+
+// Optical (x right, y down, z forward) <-> the internal OpenGL frame (x right, y up, z backward): one mirror.
+constexpr glm::dmat3 kFlipYZ{1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0};
+
+std::string pointName(size_t i) { return "point " + std::to_string(i + 1); }
+
+// The spread of the world points along their principal axes (singular values, largest first).
+cv::Vec3d spread(const std::vector<Correspondence> &points)
+{
+    cv::Mat centred(int(points.size()), 3, CV_64F);
+    glm::dvec3 mean(0.0);
+    for (const Correspondence &c : points)
+        mean += c.world / double(points.size());
+    for (size_t i = 0; i < points.size(); ++i)
+        for (int k = 0; k < 3; ++k)
+            centred.at<double>(int(i), k) = points[i].world[k] - mean[k];
+    cv::Mat values;
+    cv::SVD::compute(centred, values, cv::SVD::NO_UV);
+    return {values.at<double>(0), values.rows > 1 ? values.at<double>(1) : 0.0,
+            values.rows > 2 ? values.at<double>(2) : 0.0};
+}
+
+} // namespace
+
+Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortion,
+                               const std::vector<Correspondence> &points)
+{
+    if (points.size() < kMinCorrespondences || points.size() > kMaxCorrespondences)
+        return makeError(ErrorCode::InvalidArgument, "solving a pose needs " + std::to_string(kMinCorrespondences) +
+                                                         ".." + std::to_string(kMaxCorrespondences) +
+                                                         " points, got " + std::to_string(points.size()));
+    if (!camera.projection().isPerspective())
+        return makeError(ErrorCode::Unsupported, "an orthographic camera has no pose to solve from pixels (its rays "
+                                                 "are parallel)");
+    const cv::Vec3d s = spread(points);
+    if (s[1] <= 1e-9 * std::max(1.0, s[0]))
+        return makeError(ErrorCode::DegenerateBasis, "the world points are collinear (or all one point): a pose "
+                                                     "needs at least three not on one line");
+
+    // The Camera's rays in its own internal frame, then as optical normalized coordinates (x/z, y/z).
+    const glm::dmat3 viewRotation(camera.view());
+    std::vector<cv::Point3d> world;
+    std::vector<cv::Point2d> normalized;
+    for (size_t i = 0; i < points.size(); ++i) {
+        auto ray = camera.unproject(points[i].pixel);
+        if (!ray)
+            return makeError(ray.error().code, pointName(i) + ": " + ray.error().message);
+        const glm::dvec3 optical = kFlipYZ * (viewRotation * ray->direction);
+        if (optical.z <= 1e-12)
+            return makeError(ErrorCode::InvalidArgument, pointName(i) + ": its pixel looks 90 degrees or more away "
+                                                                        "from the optical axis");
+        world.emplace_back(points[i].world.x, points[i].world.y, points[i].world.z);
+        normalized.emplace_back(optical.x / optical.z, optical.y / optical.z);
+    }
+
+    const cv::Matx33d identity = cv::Matx33d::eye();
+    cv::Mat rvec, tvec;
+    if (!cv::solvePnP(world, normalized, identity, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_SQPNP))
+        return makeError(ErrorCode::NoConvergence, "OpenCV's solvePnP found no pose for these points");
+    cv::solvePnPRefineLM(world, normalized, identity, cv::noArray(), rvec, tvec);
+
+    cv::Matx33d r;
+    cv::Rodrigues(rvec, r);
+    glm::dmat3 rotation;
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            rotation[col][row] = r(row, col);
+    const glm::dvec3 translation(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+    PoseSolution solution;
+    solution.pose = Pose{kFlipYZ * rotation, kFlipYZ * translation};
+
+    auto solved = Camera::create(solution.pose, camera.projection(), distortion, camera.viewport());
+    if (!solved)
+        return makeError(solved.error().code, "the solved pose: " + solved.error().message);
+    double sum = 0.0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const ProjectedPoint p = solved->project(points[i].world);
+        const double error = p.status == PointStatus::Clipped ? INFINITY : glm::length(p.pixel - points[i].pixel);
+        solution.errorsPx.push_back(error);
+        sum += error * error;
+        if (p.status == PointStatus::Clipped)
+            solution.warnings.push_back(pointName(i) + " is behind the solved camera: the points do not fit one pose");
+    }
+    solution.rmsPx = std::sqrt(sum / double(points.size()));
+    if (s[2] <= 1e-9 * s[0] && points.size() < 6)
+        solution.warnings.push_back("the points are coplanar and few: a mirrored pose fits them too; add points "
+                                    "off their plane or spread them wider");
+    if (solution.rmsPx > kLargeRmsPx)
+        solution.warnings.push_back("the RMS reprojection error is " + std::to_string(solution.rmsPx) +
+                                    " px: a point is mismatched, or the intrinsics or lens do not fit the camera");
+    return solution;
+}
+
+} // namespace overlayd::alignment

@@ -1,0 +1,41 @@
+// solvePose: the camera pose from world points and the pixels they were seen at (PnP), for any lens the Camera
+// models: each pixel goes back through the Camera's own exact unprojection to a normalized direction, so OpenCV's
+// solver sees an ideal pinhole (K = I, no distortion) whatever the lens.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "base/result.h"
+#include "projection/camera.h"
+#include "projection/distortion.h"
+#include "projection/pose.h"
+
+namespace overlayd::alignment {
+
+inline constexpr size_t kMinCorrespondences = 4, kMaxCorrespondences = 10000;
+inline constexpr double kLargeRmsPx = 2.0; // above this the result is reported with a warning
+
+struct Correspondence {
+    glm::dvec3 world;
+    glm::dvec2 pixel; // memory order (top-left origin), as the Camera counts
+};
+
+struct PoseSolution {
+    Pose pose;                        // world to camera (the internal OpenGL frame)
+    std::vector<double> errorsPx;     // per point: distance between its pixel and its reprojection
+    double rmsPx = 0.0;
+    std::vector<std::string> warnings; // degenerate geometry, large error
+};
+
+// `camera` supplies intrinsics, lens and viewport (its pose only expresses the rays it unprojects, then is undone);
+// `distortion` is the lens it was built with, to reproject through the solved pose. Refused: fewer than 4 or more
+// than 10000 points, an orthographic camera, a pixel outside the lens's image circle or behind it, world points
+// that are collinear or all one point.
+Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortion,
+                               const std::vector<Correspondence> &points);
+
+} // namespace overlayd::alignment

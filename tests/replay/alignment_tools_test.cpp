@@ -1,0 +1,167 @@
+// `overlayd solve-pose` and `overlayd unproject` through the real binary, against OpenCV as the independent
+// reference: pixels made by cv::projectPoints from the example's calibration (plumb_bob lens) and extrinsics must
+// give those extrinsics back; unprojected pixels must meet the ground where the world points are.
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <sstream>
+
+#include <opencv2/calib3d.hpp>
+
+#include <gtest/gtest.h>
+
+#include "harness.h"
+
+namespace overlayd::replay {
+namespace {
+
+// config/examples/distorted_pinhole.toml: calibration.yaml with fx overridden, and its rvec/tvec.
+const cv::Matx33d kK(821.5, 0, 641.5, 0, 818.0, 358.5, 0, 0, 1);
+const std::vector<double> kDistortion{-0.28, 0.09, 0.0008, -0.0005, -0.012};
+const cv::Vec3d kRvec(2.0943951023931957, 0.0, 0.0), kTvec(0.0, 2.1650635094610964, 1.25);
+
+std::string example() { return std::string(OVERLAYD_SOURCE_DIR) + "/config/examples/distorted_pinhole.toml"; }
+
+// Ground points and a few above it, all in view of the example camera.
+std::vector<cv::Point3d> worldPoints()
+{
+    return {{-1.5, 1.5, 0}, {0, 1.5, 0}, {1.5, 1.5, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}, {-0.5, 2, 0.5}, {0.7, 4, 1}};
+}
+
+std::vector<cv::Point2d> opencvPixels(const std::vector<cv::Point3d> &world)
+{
+    std::vector<cv::Point2d> pixels;
+    cv::projectPoints(world, kRvec, kTvec, kK, kDistortion, pixels);
+    return pixels;
+}
+
+std::string pointsFile(const std::vector<cv::Point3d> &world, const std::vector<cv::Point2d> &pixels)
+{
+    std::string text = "# x y z u v\n";
+    char line[200];
+    for (size_t i = 0; i < world.size(); ++i) {
+        std::snprintf(line, sizeof(line), "%.17g, %.17g, %.17g, %.17g, %.17g\n", world[i].x, world[i].y, world[i].z,
+                      pixels[i].x, pixels[i].y);
+        text += line;
+    }
+    return text;
+}
+
+// The three numbers of "key = [a, b, c]" in solve-pose's output.
+cv::Vec3d vectorAfter(const std::string &output, const std::string &key)
+{
+    const size_t at = output.find("\n" + key + " = [");
+    cv::Vec3d v(NAN, NAN, NAN);
+    if (at != std::string::npos)
+        std::sscanf(output.c_str() + at + key.size() + 5, "%lf, %lf, %lf", &v[0], &v[1], &v[2]);
+    return v;
+}
+
+double rmsOf(const std::string &output)
+{
+    const size_t at = output.find("RMS reprojection error ");
+    return at == std::string::npos ? NAN : std::atof(output.c_str() + at + 23);
+}
+
+TEST(SolvePose, GivesBackTheExtrinsicsOpenCVProjectedThroughTheLens)
+{
+    const std::string dir = scratchDir("solve-pose-exact");
+    const auto world = worldPoints();
+    writeFile(dir + "/points.csv", pointsFile(world, opencvPixels(world)));
+    const RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points points.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    const cv::Vec3d rvec = vectorAfter(run.out, "rvec"), tvec = vectorAfter(run.out, "tvec");
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(rvec[k], kRvec[k], 1e-6) << run.out;
+        EXPECT_NEAR(tvec[k], kTvec[k], 1e-6) << run.out;
+    }
+    EXPECT_LT(rmsOf(run.out), 1e-4) << run.out;
+    EXPECT_EQ(run.out.find("warning"), std::string::npos) << run.out;
+}
+
+TEST(SolvePose, ReportsPixelNoiseInsteadOfHidingIt)
+{
+    const std::string dir = scratchDir("solve-pose-noise");
+    const auto world = worldPoints();
+    auto pixels = opencvPixels(world);
+    std::mt19937 random(7);
+    std::normal_distribution<double> noise(0.0, 0.5);
+    for (cv::Point2d &p : pixels)
+        p += cv::Point2d(noise(random), noise(random));
+    writeFile(dir + "/points.csv", pointsFile(world, pixels));
+    const RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points points.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    const double rms = rmsOf(run.out);
+    EXPECT_GT(rms, 0.1) << run.out;
+    EXPECT_LT(rms, 1.0) << run.out;
+    const cv::Vec3d tvec = vectorAfter(run.out, "tvec");
+    EXPECT_LT(cv::norm(tvec - kTvec), 0.05) << run.out;
+}
+
+TEST(SolvePose, RefusesTooFewAndCollinearPointsAndNamesABadLine)
+{
+    const std::string dir = scratchDir("solve-pose-bad");
+    const auto world = worldPoints();
+    const auto pixels = opencvPixels(world);
+    writeFile(dir + "/three.csv", pointsFile({world.begin(), world.begin() + 3}, {pixels.begin(), pixels.begin() + 3}));
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points three.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1);
+    EXPECT_NE(run.err.find("needs 4..10000 points, got 3"), std::string::npos) << run.all();
+
+    const std::vector<cv::Point3d> line{{0, 1, 0}, {0, 2, 0}, {0, 3, 0}, {0, 4, 0}};
+    writeFile(dir + "/line.csv", pointsFile(line, opencvPixels(line)));
+    run = runOverlayd("solve-pose --config '" + example() + "' --points line.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1);
+    EXPECT_NE(run.err.find("collinear"), std::string::npos) << run.all();
+
+    writeFile(dir + "/bad.csv", "0 1 0 640 500\n0 2 0 640 nope\n");
+    run = runOverlayd("solve-pose --config '" + example() + "' --points bad.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1);
+    EXPECT_NE(run.err.find("bad.csv:2: 'nope' is not a finite number"), std::string::npos) << run.all();
+    EXPECT_FALSE(run.crashed);
+}
+
+TEST(Unproject, PixelsOpenCVProjectedMeetTheGroundWhereTheirPointsAre)
+{
+    const std::string dir = scratchDir("unproject-ground");
+    std::vector<cv::Point3d> ground;
+    for (const cv::Point3d &p : worldPoints())
+        if (p.z == 0.0)
+            ground.push_back(p);
+    const auto pixels = opencvPixels(ground);
+    std::string args = "unproject --json --config '" + example() + "' --";
+    for (const cv::Point2d &p : pixels)
+        args += " " + std::to_string(p.x) + " " + std::to_string(p.y);
+    const RunResult run = runOverlayd(args, dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    // One object per pixel: {"pixel":[..],"origin":[..],"direction":[..],"hit":[x,y,z],"reason":null}
+    size_t at = 0;
+    for (const cv::Point3d &expected : ground) {
+        at = run.out.find("\"hit\":[", at);
+        ASSERT_NE(at, std::string::npos) << run.out;
+        cv::Vec3d hit;
+        std::sscanf(run.out.c_str() + at + 7, "%lf,%lf,%lf", &hit[0], &hit[1], &hit[2]);
+        // std::to_string keeps 6 decimals of the pixel: about 1e-6 px, well under a millimetre on the ground.
+        EXPECT_NEAR(hit[0], expected.x, 1e-4) << run.out;
+        EXPECT_NEAR(hit[1], expected.y, 1e-4) << run.out;
+        EXPECT_NEAR(hit[2], 0.0, 1e-9) << run.out;
+        ++at;
+    }
+}
+
+TEST(Unproject, ARayThatMissesThePlaneSaysWhy)
+{
+    const std::string dir = scratchDir("unproject-miss");
+    // The ceiling z = 3, above the camera (2.5 m up, looking down): behind every ray of the image.
+    const RunResult run = runOverlayd("unproject --config '" + example() + "' --plane \"0 0 1 -3\" -- 640 5", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("misses the plane: the plane is behind the camera"), std::string::npos) << run.out;
+    // Another plane: the wall y = 6 (normal -y, d = 6) is met by the same pixel.
+    const RunResult wall = runOverlayd("unproject --config '" + example() + "' --plane \"0 -1 0 6\" -- 640 5", dir);
+    ASSERT_EQ(wall.exitStatus, 0) << wall.all();
+    EXPECT_NE(wall.out.find("meets the plane at ("), std::string::npos) << wall.out;
+    EXPECT_NE(wall.out.find(", 6.000000, "), std::string::npos) << wall.out;
+}
+
+} // namespace
+} // namespace overlayd::replay
