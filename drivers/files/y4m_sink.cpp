@@ -31,6 +31,10 @@ private:
     bool open_ = false;
     std::string header_; // the header written, if any: a re-open with the same stream appends
     Colorimetry colorimetry_{};
+    // Kept from frame to frame: a fresh image per frame cost a page fault per 4 KiB, as much system time as the
+    // conversion itself (docs/speed.md).
+    YcbcrImage samples_;
+    RgbImage rgbScratch_;
 };
 
 Status Y4mSink::open(const StreamFormat &format)
@@ -64,12 +68,11 @@ Status Y4mSink::write(const FrameView &frame, const FrameMetadata &)
 {
     if (!open_)
         return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
-    auto samples = frameToYcbcr(frame, colorimetry_);
-    if (!samples)
-        return samples.error();
+    if (auto converted = frameToYcbcr(frame, colorimetry_, samples_, rgbScratch_); !converted)
+        return converted;
     if (auto status = writeAll(file(), kFrameLine.data(), kFrameLine.size(), path_); !status)
         return status;
-    for (const std::vector<uint8_t> *plane : {&samples->y, &samples->cb, &samples->cr}) {
+    for (const std::vector<uint8_t> *plane : {&samples_.y, &samples_.cb, &samples_.cr}) {
         if (auto status = writeAll(file(), plane->data(), plane->size(), path_); !status)
             return status;
     }

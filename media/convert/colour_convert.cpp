@@ -87,8 +87,16 @@ void encodeRow(const EncodeTables &t, const uint8_t *px, unsigned width, unsigne
 
 YcbcrImage rgbToYcbcr(const RgbImage &image, Colorimetry colorimetry, unsigned hSub, unsigned vSub, bool hasChroma)
 {
+    YcbcrImage out;
+    rgbToYcbcr(image, colorimetry, hSub, vSub, hasChroma, out);
+    return out;
+}
+
+void rgbToYcbcr(const RgbImage &image, Colorimetry colorimetry, unsigned hSub, unsigned vSub, bool hasChroma,
+                YcbcrImage &out)
+{
     const EncodeTables tables(YcbcrCoefficients::of(colorimetry));
-    YcbcrImage out = YcbcrImage::allocate(image.width, image.height, hSub, vSub, hasChroma);
+    out.reshape(image.width, image.height, hSub, vSub, hasChroma);
     const unsigned cw = out.chromaWidth();
     ChromaSums sums(hasChroma ? cw : 0);
     for (unsigned y = 0; y < image.height; ++y) {
@@ -97,7 +105,6 @@ YcbcrImage rgbToYcbcr(const RgbImage &image, Colorimetry colorimetry, unsigned h
         if (hasChroma && ((y + 1) % vSub == 0 || y + 1 == image.height))
             sums.flush(&out.cb[size_t(y / vSub) * cw], &out.cr[size_t(y / vSub) * cw]);
     }
-    return out;
 }
 
 RgbImage ycbcrToRgb(const YcbcrImage &image, Colorimetry colorimetry)

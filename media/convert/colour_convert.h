@@ -9,6 +9,9 @@ namespace overlayd {
 // Chroma of each hSub x vSub macropixel is the mean of its pixels' chroma (only the pixels that exist at an odd
 // right or bottom edge). Without chroma, only luma is computed.
 YcbcrImage rgbToYcbcr(const RgbImage &image, Colorimetry colorimetry, unsigned hSub, unsigned vSub, bool hasChroma);
+// The same into `out`, reshaped (its buffers kept when the size is the same).
+void rgbToYcbcr(const RgbImage &image, Colorimetry colorimetry, unsigned hSub, unsigned vSub, bool hasChroma,
+                YcbcrImage &out);
 
 // Each pixel takes the chroma sample of its macropixel (nearest, no interpolation); luma-only images give grey.
 RgbImage ycbcrToRgb(const YcbcrImage &image, Colorimetry colorimetry);

@@ -61,16 +61,25 @@ Status ycbcrToFrame(const YcbcrImage &image, Colorimetry colorimetry, const Fram
     return packYcbcr(resampleChroma(image, format.hSubSampling, format.vSubSampling), frame);
 }
 
-Result<YcbcrImage> frameToYcbcr(const FrameView &frame, Colorimetry colorimetry)
+Status frameToYcbcr(const FrameView &frame, Colorimetry colorimetry, YcbcrImage &out, RgbImage &rgbScratch)
 {
     if (!frame.format)
         return makeError(ErrorCode::InvalidArgument, "frame has no pixel format");
     if (frame.format->encoding == ColourEncoding::Yuv)
-        return unpackYcbcr(frame);
-    auto rgb = unpackRgb(frame);
-    if (!rgb)
-        return rgb.error();
-    return rgbToYcbcr(*rgb, colorimetry, 1, 1, true);
+        return unpackYcbcr(frame, out);
+    if (auto unpacked = unpackRgb(frame, rgbScratch); !unpacked)
+        return unpacked;
+    rgbToYcbcr(rgbScratch, colorimetry, 1, 1, true, out);
+    return Ok{};
+}
+
+Result<YcbcrImage> frameToYcbcr(const FrameView &frame, Colorimetry colorimetry)
+{
+    YcbcrImage out;
+    RgbImage rgb;
+    if (auto converted = frameToYcbcr(frame, colorimetry, out, rgb); !converted)
+        return converted.error();
+    return out;
 }
 
 Status fillFrame(const FrameView &frame, Colorimetry colorimetry, uint8_t r, uint8_t g, uint8_t b)

@@ -23,6 +23,9 @@ Status ycbcrToFrame(const YcbcrImage &image, Colorimetry colorimetry, const Fram
 // The frame's samples as planar Y'CbCr: Y'CbCr formats unpack losslessly (their own subsampling), RGB formats are
 // encoded at 4:4:4, GREY stays luma-only.
 Result<YcbcrImage> frameToYcbcr(const FrameView &frame, Colorimetry colorimetry);
+// The same into `out` for a per-frame caller (the Y4M sink): `out` and the RGB scratch keep their buffers from one
+// frame to the next, so nothing is allocated or faulted in per frame once the size is steady.
+Status frameToYcbcr(const FrameView &frame, Colorimetry colorimetry, YcbcrImage &out, RgbImage &rgbScratch);
 
 // Every pixel one colour (the "NO SIGNAL" background, tests).
 Status fillFrame(const FrameView &frame, Colorimetry colorimetry, uint8_t r, uint8_t g, uint8_t b);

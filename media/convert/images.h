@@ -13,6 +13,9 @@ struct RgbImage {
     std::vector<uint8_t> rgb;
 
     static RgbImage allocate(unsigned width, unsigned height);
+    // The same shape in place: the buffer is kept when the size is the same (a per-frame converter faults its
+    // pages in once, not every frame). Contents are left for the caller to overwrite.
+    void reshape(unsigned width, unsigned height);
     uint8_t *row(unsigned y) { return rgb.data() + size_t(y) * width * 3; }
     const uint8_t *row(unsigned y) const { return rgb.data() + size_t(y) * width * 3; }
 };
@@ -26,6 +29,7 @@ struct YcbcrImage {
     std::vector<uint8_t> y, cb, cr;
 
     static YcbcrImage allocate(unsigned width, unsigned height, unsigned hSub, unsigned vSub, bool hasChroma);
+    void reshape(unsigned width, unsigned height, unsigned hSub, unsigned vSub, bool hasChroma);
     unsigned chromaWidth() const { return (width + hSub - 1) / hSub; }
     unsigned chromaHeight() const { return (height + vSub - 1) / vSub; }
 };

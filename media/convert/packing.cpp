@@ -85,25 +85,33 @@ Status packYcbcr(const YcbcrImage &image, const FrameView &frame)
     return Ok{};
 }
 
-Result<YcbcrImage> unpackYcbcr(const FrameView &frame)
+Status unpackYcbcr(const FrameView &frame, YcbcrImage &image)
 {
     if (auto checked = checkFrame(frame); !checked)
-        return checked.error();
+        return checked;
     const PixelFormatInfo &format = *frame.format;
     if (format.encoding != ColourEncoding::Yuv)
-        return wrongKind(frame, "a Y'CbCr format").error();
-    YcbcrImage image = ycbcrImageFor(format, frame.width, frame.height);
+        return wrongKind(frame, "a Y'CbCr format");
+    image.reshape(frame.width, frame.height, format.hSubSampling, format.vSubSampling, format.cbOffset != kNoComponent);
     for (unsigned y = 0; y < image.height; ++y)
         unpackLumaRow(format, frame.planes[0].data + size_t(y) * frame.planes[0].stride, image.width,
                       &image.y[size_t(y) * image.width]);
     if (!image.hasChroma)
-        return image;
+        return Ok{};
     const PlaneView &cbPlane = frame.planes[format.cbPlane], &crPlane = frame.planes[format.crPlane];
     const unsigned cw = image.chromaWidth();
     forChromaRows(format, image.chromaHeight(), cw, [&](unsigned row, unsigned c, size_t cbAt, size_t crAt) {
         image.cb[size_t(row) * cw + c] = cbPlane.data[size_t(row) * cbPlane.stride + cbAt];
         image.cr[size_t(row) * cw + c] = crPlane.data[size_t(row) * crPlane.stride + crAt];
     });
+    return Ok{};
+}
+
+Result<YcbcrImage> unpackYcbcr(const FrameView &frame)
+{
+    YcbcrImage image;
+    if (auto unpacked = unpackYcbcr(frame, image); !unpacked)
+        return unpacked.error();
     return image;
 }
 
@@ -133,14 +141,14 @@ Status packRgb(const RgbImage &image, const FrameView &frame)
     return Ok{};
 }
 
-Result<RgbImage> unpackRgb(const FrameView &frame)
+Status unpackRgb(const FrameView &frame, RgbImage &image)
 {
     if (auto checked = checkFrame(frame); !checked)
-        return checked.error();
+        return checked;
     const PixelFormatInfo &format = *frame.format;
     if (format.encoding != ColourEncoding::Rgb)
-        return wrongKind(frame, "an RGB format").error();
-    RgbImage image = RgbImage::allocate(frame.width, frame.height);
+        return wrongKind(frame, "an RGB format");
+    image.reshape(frame.width, frame.height);
     const unsigned bpp = format.planes[0].bytesPerGroup;
     for (unsigned y = 0; y < image.height; ++y) {
         const uint8_t *src = frame.planes[0].data + size_t(y) * frame.planes[0].stride;
@@ -151,6 +159,14 @@ Result<RgbImage> unpackRgb(const FrameView &frame)
             dst[2] = src[format.bOffset];
         }
     }
+    return Ok{};
+}
+
+Result<RgbImage> unpackRgb(const FrameView &frame)
+{
+    RgbImage image;
+    if (auto unpacked = unpackRgb(frame, image); !unpacked)
+        return unpacked.error();
     return image;
 }
 

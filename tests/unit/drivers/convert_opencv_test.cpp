@@ -232,5 +232,32 @@ TEST(FullRange, RgbToYcbcr444MatchesOpenCvYCrCb)
     EXPECT_LE(worst, 1);
 }
 
+// The per-frame form (the Y4M sink's) gives the same samples and, frame after frame of one size, keeps its buffers:
+// no allocation, so no page faults per frame.
+TEST(PerFrameConversion, ReusesItsBuffersAndMatchesTheAllocatingForm)
+{
+    for (const char *name : {"RGB24", "YUYV", "NV12"}) {
+        SCOPED_TRACE(name);
+        const RgbImage image = test::blockyImage(40, 30, 2, 2, 5);
+        FrameBuffer frame = makeFrame(name, 40, 30);
+        ASSERT_TRUE(rgbToFrame(image, kBt601Full, frame.view()));
+        YcbcrImage out;
+        RgbImage scratch;
+        ASSERT_TRUE(frameToYcbcr(frame.view(), kBt601Full, out, scratch));
+        const uint8_t *y = out.y.data(), *cb = out.cb.data(), *rgb = scratch.rgb.data();
+        ASSERT_TRUE(frameToYcbcr(frame.view(), kBt601Full, out, scratch));
+        EXPECT_EQ(out.y.data(), y);
+        EXPECT_EQ(out.cb.data(), cb);
+        EXPECT_EQ(scratch.rgb.data(), rgb);
+        const auto fresh = frameToYcbcr(frame.view(), kBt601Full);
+        ASSERT_TRUE(fresh);
+        EXPECT_EQ(out.y, fresh->y);
+        EXPECT_EQ(out.cb, fresh->cb);
+        EXPECT_EQ(out.cr, fresh->cr);
+        EXPECT_EQ(out.hSub, fresh->hSub);
+        EXPECT_EQ(out.vSub, fresh->vSub);
+    }
+}
+
 } // namespace
 } // namespace overlayd
