@@ -49,6 +49,8 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     CLI::App *project = app.add_subcommand("project", "print where world points land in the configured camera");
     project->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
     project->add_flag("--json", line.json, "one JSON array, one object per point");
+    project->add_option("--size", line.size, "WxH: project for this stream size (intrinsics scale as for a camera "
+                                             "that negotiates it)");
     project->add_option("coordinates", line.coordinates, "X Y Z [X Y Z ...] in metres (use -- before negatives)")
         ->required();
 

@@ -24,6 +24,7 @@ struct CommandLine {
     std::vector<double> coordinates; // project: X Y Z ...; unproject: U V ...
     std::vector<double> plane;       // unproject: nx ny nz d (empty: the ground z = 0)
     std::string pointsPath;          // solve-pose
+    std::string size;                // project: WxH instead of the config's size
 };
 
 // Parses argv with CLI11; prints help, version and usage errors itself. Never throws.

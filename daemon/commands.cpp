@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "daemon/systemd_notify.h"
+#include "media/frame.h"
 
 namespace overlayd {
 
@@ -20,12 +21,24 @@ Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger)
     return config;
 }
 
-std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger)
+std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger, const std::string &size)
 {
     auto config = loadConfigLogged(path, logger);
     if (!config)
         return std::nullopt;
-    auto camera = config->camera.build(config->source.width, config->source.height);
+    unsigned width = config->source.width, height = config->source.height;
+    if (!size.empty()) {
+        unsigned w = 0, h = 0;
+        char end = 0;
+        if (std::sscanf(size.c_str(), "%ux%u%c", &w, &h, &end) != 2 || w == 0 || h == 0 || w > kMaxFrameDimension ||
+            h > kMaxFrameDimension) {
+            logger.error(cat("--size ", size, ": expected WIDTHxHEIGHT, each 1..", kMaxFrameDimension));
+            return std::nullopt;
+        }
+        width = w;
+        height = h;
+    }
+    auto camera = config->camera.build(width, height);
     if (!camera) {
         logger.error(cat(path, ": camera: ", camera.error().message));
         return std::nullopt;

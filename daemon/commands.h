@@ -25,7 +25,8 @@ int checkConfigCommand(const std::string &path);
 int listCamerasCommand(bool json);
 // `overlayd list-gpio [--json]`: every GPIO chip with its lines' offsets, names and holders.
 int listGpioCommand(bool json);
-int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger);
+int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates,
+                   const std::string &size, Logger &logger);
 // `overlayd unproject [--plane "nx ny nz d"] -- U V ...`: each pixel's world ray and where it meets the plane.
 int unprojectCommand(const std::string &configPath, bool json, const std::vector<double> &plane,
                      const std::vector<double> &coordinates, Logger &logger);
@@ -45,15 +46,28 @@ struct ConfiguredCamera {
     DaemonConfig config;
     Camera camera;
 };
-std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger);
+// `size` ("WxH", empty: the config's [source] size) builds it for another stream size without editing the config.
+std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger,
+                                                 const std::string &size = {});
 
 // `render --output PATH`: .y4m -> Y4M, .yuv/.raw -> raw frames, a %d pattern or .png/.jpg -> image snapshots.
 Result<SinkOptions> sinkForOutput(const std::string &path);
 
-// `project --json`: [{"world":[x,y,z],"pixel":[u,v] or null,"depth":d or null,"visible":bool}, ...]; numbers are
-// printed in their shortest exact (round-trip) form.
-std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points);
+// What `project` says of a point beside its pixel: how far in front of the camera it is (metres along the optical
+// axis; negative behind), and why it has no visible pixel: "behind-camera", "before-near", "beyond-far",
+// "outside-image-circle" (no pixel), "outside-viewport", "outside-scissor" (a pixel, not drawn); null when visible.
+struct PointReport {
+    double distance = 0.0;
+    const char *reason = nullptr;
+};
+PointReport explainPoint(const Camera &camera, const glm::dvec3 &world, const ProjectedPoint &point);
+
+// `project --json`: [{"world":[x,y,z],"pixel":[u,v] or null,"depth":d or null,"distance":m,"visible":bool,
+// "reason":r or null}, ...]; numbers are printed in their shortest exact (round-trip) form.
+std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
+                            const std::vector<PointReport> &reports);
 // The same for people, one line per point.
-std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points);
+std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
+                            const std::vector<PointReport> &reports);
 
 } // namespace overlayd

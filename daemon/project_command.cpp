@@ -2,6 +2,7 @@
 #include "daemon/commands.h"
 #include "daemon/json_text.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace overlayd {
@@ -15,7 +16,30 @@ std::string triple(const glm::dvec3 &p, const char *separator)
 
 } // namespace
 
-std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points)
+PointReport explainPoint(const Camera &camera, const glm::dvec3 &world, const ProjectedPoint &point)
+{
+    const glm::dvec4 eye = camera.view() * glm::dvec4(world, 1.0);
+    PointReport report{-eye.z, nullptr};
+    if (point.status == PointStatus::Outside)
+        report.reason = camera.viewport().inWindow(point.pixel) ? "outside-scissor" : "outside-viewport";
+    if (point.status != PointStatus::Clipped)
+        return report;
+    const Projection &projection = camera.projection();
+    const glm::dvec4 clip = projection.matrix() * eye;
+    const double nearNdc = projection.depthRange() == DepthRange::ZeroToOne ? 0.0 : -1.0;
+    if (projection.isPerspective() && clip.w <= 0.0)
+        report.reason = "behind-camera";
+    else if (clip.z < nearNdc * clip.w)
+        report.reason = "before-near";
+    else if (clip.z > clip.w)
+        report.reason = "beyond-far";
+    else
+        report.reason = "outside-image-circle";
+    return report;
+}
+
+std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
+                            const std::vector<PointReport> &reports)
 {
     std::string json = "[";
     for (size_t i = 0; i < world.size(); ++i) {
@@ -25,36 +49,41 @@ std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vec
         json += "{\"world\":[" + triple(world[i], ",") + "],\"pixel\":";
         json += clipped ? "null" : "[" + jsonNumber(p.pixel.x) + "," + jsonNumber(p.pixel.y) + "]";
         json += ",\"depth\":" + (clipped ? std::string("null") : jsonNumber(p.depth));
-        json += std::string(",\"visible\":") + (p.status == PointStatus::Visible ? "true" : "false") + "}";
+        json += ",\"distance\":" + jsonNumber(reports[i].distance);
+        json += std::string(",\"visible\":") + (p.status == PointStatus::Visible ? "true" : "false");
+        json += ",\"reason\":" + (reports[i].reason ? jsonString(reports[i].reason) : std::string("null")) + "}";
     }
     return json + "]\n";
 }
 
-std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points)
+std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
+                            const std::vector<PointReport> &reports)
 {
     std::string text;
     for (size_t i = 0; i < world.size(); ++i) {
         const ProjectedPoint &p = points[i];
+        const PointReport &r = reports[i];
         text += "(" + triple(world[i], ", ") + ") -> ";
-        if (p.status == PointStatus::Clipped) {
-            text += "clipped (behind the camera, beyond the far plane or outside the lens's field)\n";
-            continue;
-        }
-        char line[160];
-        std::snprintf(line, sizeof(line), "pixel (%.3f, %.3f), depth %.6f, %s\n", p.pixel.x, p.pixel.y, p.depth,
-                      p.status == PointStatus::Visible ? "visible" : "outside the scissor");
+        char line[200];
+        if (p.status == PointStatus::Clipped)
+            std::snprintf(line, sizeof(line), "no pixel: %s (%.3f m %s the camera)\n", r.reason, std::abs(r.distance),
+                          r.distance < 0.0 ? "behind" : "in front of");
+        else
+            std::snprintf(line, sizeof(line), "pixel (%.3f, %.3f), depth %.6f, %.3f m in front, %s\n", p.pixel.x,
+                          p.pixel.y, p.depth, r.distance, r.reason ? r.reason : "visible");
         text += line;
     }
     return text;
 }
 
-int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates, Logger &logger)
+int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates,
+                   const std::string &size, Logger &logger)
 {
     if (coordinates.empty() || coordinates.size() % 3 != 0) {
         logger.error(cat("project: expected X Y Z triples, got ", coordinates.size(), " numbers"));
         return kExitFailure;
     }
-    const auto configured = loadCameraLogged(configPath, logger);
+    const auto configured = loadCameraLogged(configPath, logger, size);
     if (!configured)
         return kExitConfigError;
     const Camera *camera = &configured->camera;
@@ -63,10 +92,13 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
         world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);
     std::vector<ProjectedPoint> points(world.size());
     camera->projectPoints(world, points);
+    std::vector<PointReport> reports;
+    for (size_t i = 0; i < world.size(); ++i)
+        reports.push_back(explainPoint(*camera, world[i], points[i]));
     // Pixels are memory order inside; the user reads them in the viewport's origin.
     for (ProjectedPoint &point : points)
         point.pixel = camera->viewport().toUser(point.pixel);
-    const std::string output = json ? projectionsJson(world, points) : projectionsText(world, points);
+    const std::string output = json ? projectionsJson(world, points, reports) : projectionsText(world, points, reports);
     std::fwrite(output.data(), 1, output.size(), stdout);
     return kExitOk;
 }

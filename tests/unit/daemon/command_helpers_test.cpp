@@ -13,17 +13,21 @@ TEST(ProjectionsJson, MatchesThePinnedFormat)
     points[0] = {{639.5, 359.5}, 0.5, PointStatus::Visible};
     points[1] = {{-20.25, 100}, 0.75, PointStatus::Outside};
     points[2] = {{0, 0}, 0, PointStatus::Clipped};
-    EXPECT_EQ(projectionsJson(world, points),
-              "[{\"world\":[0,0,0],\"pixel\":[639.5,359.5],\"depth\":0.5,\"visible\":true},\n"
-              " {\"world\":[1.5,-2,0.25],\"pixel\":[-20.25,100],\"depth\":0.75,\"visible\":false},\n"
-              " {\"world\":[0,0,-5],\"pixel\":null,\"depth\":null,\"visible\":false}]\n");
+    const std::vector<PointReport> reports{{2.5, nullptr}, {4, "outside-viewport"}, {-5, "behind-camera"}};
+    EXPECT_EQ(projectionsJson(world, points, reports),
+              "[{\"world\":[0,0,0],\"pixel\":[639.5,359.5],\"depth\":0.5,\"distance\":2.5,\"visible\":true,"
+              "\"reason\":null},\n"
+              " {\"world\":[1.5,-2,0.25],\"pixel\":[-20.25,100],\"depth\":0.75,\"distance\":4,\"visible\":false,"
+              "\"reason\":\"outside-viewport\"},\n"
+              " {\"world\":[0,0,-5],\"pixel\":null,\"depth\":null,\"distance\":-5,\"visible\":false,"
+              "\"reason\":\"behind-camera\"}]\n");
 }
 
 TEST(ProjectionsJson, NumbersRoundTripExactly)
 {
     const double awkward = 0.1 + 0.2; // 0.30000000000000004: printing with %g would lose it
     std::vector<ProjectedPoint> points{{{awkward, 1.0 / 3.0}, awkward, PointStatus::Visible}};
-    const std::string json = projectionsJson({{awkward, 0, 0}}, points);
+    const std::string json = projectionsJson({{awkward, 0, 0}}, points, {{1.0, nullptr}});
     EXPECT_NE(json.find("\"pixel\":[0.30000000000000004,0.3333333333333333]"), std::string::npos) << json;
 }
 
@@ -32,9 +36,9 @@ TEST(ProjectionsText, SaysWhatHappenedToEachPoint)
     std::vector<ProjectedPoint> points(2);
     points[0] = {{10, 20}, 0.5, PointStatus::Visible};
     points[1] = {{0, 0}, 0, PointStatus::Clipped};
-    EXPECT_EQ(projectionsText({{1, 2, 3}, {0, 0, -1}}, points),
-              "(1, 2, 3) -> pixel (10.000, 20.000), depth 0.500000, visible\n"
-              "(0, 0, -1) -> clipped (behind the camera, beyond the far plane or outside the lens's field)\n");
+    EXPECT_EQ(projectionsText({{1, 2, 3}, {0, 0, -1}}, points, {{3.0, nullptr}, {-1.0, "behind-camera"}}),
+              "(1, 2, 3) -> pixel (10.000, 20.000), depth 0.500000, 3.000 m in front, visible\n"
+              "(0, 0, -1) -> no pixel: behind-camera (1.000 m behind the camera)\n");
 }
 
 TEST(SinkForOutput, ExtensionPicksTheSink)
