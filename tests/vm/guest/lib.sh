@@ -198,3 +198,43 @@ udev_initialise() {
     mkdir -p /run/udev/data
     for d in /sys/bus/media/devices/* /sys/class/video4linux/*; do echo "I:1" >"/run/udev/data/c$(cat "$d/dev")"; done
 }
+
+# gpio-sim (built out of tree by the harness): a simulated GPIO chip made through configfs. One bank, labelled NAME;
+# the outside world drives a line the way a switch would, by its simulated pull, and reads what a program drives.
+# gpiosim_chip NAME LINES "OFFSET:LINENAME ...": makes and brings live the chip, prints the /dev/gpiochipN it became.
+gpiosim_chip() {
+    modprobe gpio-sim || return 1
+    [ -d /sys/kernel/config/gpio-sim ] || mount -t configfs none /sys/kernel/config 2>/dev/null
+    [ -d /sys/kernel/config/gpio-sim ] || return 1
+    _d=/sys/kernel/config/gpio-sim/$1
+    mkdir "$_d" "$_d/bank0" && echo "$2" >"$_d/bank0/num_lines" && echo "$1" >"$_d/bank0/label" || return 1
+    for _l in $3; do
+        mkdir "$_d/bank0/line${_l%%:*}" && echo "${_l#*:}" >"$_d/bank0/line${_l%%:*}/name" || return 1
+    done
+    echo 1 >"$_d/live" || return 1
+    _c=$(cat "$_d/bank0/chip_name") # gpiochipN, once live
+    for _ in 1 2 3 4 5 6 7 8 9 10; do
+        [ -e "/sys/bus/gpio/devices/$_c" ] && [ -c "/dev/$_c" ] && echo "/dev/$_c" && return 0
+        sleep 0.2
+    done
+    return 1
+}
+# gpiosim_sys NAME: the chip's sysfs folder, /sys/devices/platform/gpio-sim.N/gpiochipM, with sim_gpioK/{pull,value}
+gpiosim_sys() {
+    _d=/sys/kernel/config/gpio-sim/$1
+    echo "/sys/devices/platform/$(cat "$_d/dev_name")/$(cat "$_d/bank0/chip_name")"
+}
+# gpiosim_pull NAME OFFSET pull-up|pull-down: what an input line reads while no one drives it (an edge for a
+# program that watches it). A program that requests the line with a bias changes this pull itself.
+gpiosim_pull() { echo "$3" >"$(gpiosim_sys "$1")/sim_gpio$2/pull"; }
+# gpiosim_value NAME OFFSET: the line's level, 0 or 1 (what a program drives on an output). On release gpio-sim
+# sets the line back to its pull, whatever was driven last.
+gpiosim_value() { cat "$(gpiosim_sys "$1")/sim_gpio$2/value"; }
+# gpiosim_remove NAME: takes the chip down and removes it from configfs (every line folder first).
+gpiosim_remove() {
+    _d=/sys/kernel/config/gpio-sim/$1
+    [ -d "$_d" ] || return 0
+    echo 0 >"$_d/live"
+    for _l in "$_d"/bank*/line*/hog "$_d"/bank*/line* "$_d"/bank*; do [ -d "$_l" ] && rmdir "$_l"; done
+    rmdir "$_d"
+}

@@ -27,7 +27,7 @@ vmStage() {
 VM_HOST_TOOLS=(
     "qemu-system-x86_64 qemu-system-x86" "cpio cpio" "depmod kmod" "xz xz-utils"
     "python3 python3" "strip binutils" "gcc-12 gcc-12" "make make" "v4l2-ctl v4l-utils" "v4l2-compliance v4l-utils"
-    "ffprobe ffmpeg" "cam libcamera-tools"
+    "ffprobe ffmpeg" "cam libcamera-tools" "gpioinfo gpiod"
     "/usr/lib/x86_64-linux-gnu/libcamera/ipa_vimc.so libcamera-ipa"
 )
 
@@ -35,7 +35,11 @@ vmInstallHostTools() {
     local missing=() entry tool package
     for entry in "${VM_HOST_TOOLS[@]}"; do
         read -r tool package <<<"$entry"
-        command -v "$tool" >/dev/null 2>&1 || missing+=("$package")
+        # A path (a library such as the vimc IPA) is checked for existence: command -v wants the execute bit.
+        case $tool in
+        /*) [ -e "$tool" ] || missing+=("$package") ;;
+        *) command -v "$tool" >/dev/null 2>&1 || missing+=("$package") ;;
+        esac
     done
     # busybox must be the static build (ldd fails on it): it runs inside the guest with no libraries.
     if [ ! -x /bin/busybox ] || ldd /bin/busybox >/dev/null 2>&1; then missing+=(busybox-static); fi

@@ -37,6 +37,7 @@ vmRunInitramfs() {
     rm -rf "$root" && mkdir -p "$root/vm"
     vmCopyWithLibraries "$root" /usr/bin/v4l2-ctl /usr/bin/v4l2-compliance /usr/bin/media-ctl
     vmStageLibcamera "$root"
+    vmStageGpiod "$root"
     vmStageUdev "$root"
     cp -a "$work/sysroot/." "$root/"
     install -m755 "$VM_HERE/guest/init" "$root/init"
@@ -55,6 +56,16 @@ vmStageLibcamera() {
     vmCopyWithLibraries "$root" /usr/bin/cam "$lib/ipa_vimc.so" "$lib/vimc_ipa_proxy"
     cp "$lib/ipa_vimc.so.sign" "$root$lib/"
     mkdir -p "$root/usr/share/libcamera/ipa" && cp -r /usr/share/libcamera/ipa/vimc "$root/usr/share/libcamera/ipa/"
+}
+
+# Debian's gpiod tools (libgpiod 1.6): the independent client of gpio-sim in checks/70-gpio.sh.
+vmStageGpiod() {
+    local root=$1 tool tools=()
+    for tool in gpiodetect gpioinfo gpioget gpioset gpiomon gpiofind; do
+        [ -x "/usr/bin/$tool" ] && tools+=("/usr/bin/$tool")
+    done
+    [ ${#tools[@]} -gt 0 ] || { vmLog "no gpiod tools (package gpiod) on the host: the GPIO checks will fail"; return 0; }
+    vmCopyWithLibraries "$root" "${tools[@]}"
 }
 
 # udevd, so that the guest has what a real system has: libcamera enumerates only devices udev has initialised, and
