@@ -49,11 +49,11 @@ Result<std::vector<Correspondence>> parsePoints(const std::string &text, const s
         if (numbers->empty())
             continue;
         if (numbers->size() != 5)
-            return makeError(ErrorCode::Malformed, where + "expected x y z u v, got " +
-                                                       std::to_string(numbers->size()) + " numbers");
+            return makeError(ErrorCode::Malformed,
+                             where + "expected x y z u v, got " + std::to_string(numbers->size()) + " numbers");
         if (points.size() == kMaxCorrespondences)
-            return makeError(ErrorCode::Malformed, where + "more than " + std::to_string(kMaxCorrespondences) +
-                                                       " points");
+            return makeError(ErrorCode::Malformed,
+                             where + "more than " + std::to_string(kMaxCorrespondences) + " points");
         const std::vector<double> &v = *numbers;
         points.push_back({{v[0], v[1], v[2]}, {v[3], v[4]}});
     }
@@ -69,8 +69,8 @@ Result<std::vector<Correspondence>> readPointsFile(const std::string &path)
     in.read(text.data(), std::streamsize(text.size()));
     text.resize(size_t(in.gcount()));
     if (text.size() > kMaxPointsFileBytes)
-        return makeError(ErrorCode::Malformed, path + ": larger than " + std::to_string(kMaxPointsFileBytes) +
-                                                   " bytes");
+        return makeError(ErrorCode::Malformed,
+                         path + ": larger than " + std::to_string(kMaxPointsFileBytes) + " bytes");
     return parsePoints(text, path);
 }
 

@@ -15,7 +15,10 @@ namespace {
 // Optical (x right, y down, z forward) <-> the internal OpenGL frame (x right, y up, z backward): one mirror.
 constexpr glm::dmat3 kFlipYZ{1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0};
 
-std::string pointName(size_t i) { return "point " + std::to_string(i + 1); }
+std::string pointName(size_t i)
+{
+    return "point " + std::to_string(i + 1);
+}
 
 // The spread of the world points along their principal axes (singular values, largest first).
 cv::Vec3d spread(const std::vector<Correspondence> &points)
@@ -40,8 +43,8 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
 {
     if (points.size() < kMinCorrespondences || points.size() > kMaxCorrespondences)
         return makeError(ErrorCode::InvalidArgument, "solving a pose needs " + std::to_string(kMinCorrespondences) +
-                                                         ".." + std::to_string(kMaxCorrespondences) +
-                                                         " points, got " + std::to_string(points.size()));
+                                                         ".." + std::to_string(kMaxCorrespondences) + " points, got " +
+                                                         std::to_string(points.size()));
     if (!camera.projection().isPerspective())
         return makeError(ErrorCode::Unsupported, "an orthographic camera has no pose to solve from pixels (its rays "
                                                  "are parallel)");

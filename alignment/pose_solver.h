@@ -25,8 +25,8 @@ struct Correspondence {
 };
 
 struct PoseSolution {
-    Pose pose;                        // world to camera (the internal OpenGL frame)
-    std::vector<double> errorsPx;     // per point: distance between its pixel and its reprojection
+    Pose pose;                    // world to camera (the internal OpenGL frame)
+    std::vector<double> errorsPx; // per point: distance between its pixel and its reprojection
     double rmsPx = 0.0;
     std::vector<std::string> warnings; // degenerate geometry, large error
 };

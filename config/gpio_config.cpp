@@ -63,17 +63,17 @@ void claimLine(TableReader &table, const gpio::LineAddress &line, const std::str
     claims.push_back({line, who});
 }
 
-void readInput(TableReader &input, size_t index, const std::vector<std::string> &layers,
-               std::vector<Claim> &claims, gpio::InputOptions &out)
+void readInput(TableReader &input, size_t index, const std::vector<std::string> &layers, std::vector<Claim> &claims,
+               gpio::InputOptions &out)
 {
     out.name = input.string("name").value_or("gpio.input[" + std::to_string(index) + "]");
     readLine(input, out.line);
     if (auto low = input.boolean("active_low"))
         out.activeLow = *low;
     if (auto bias = input.choice<gpio::Bias>("bias", {{"as-is", gpio::Bias::AsIs},
-                                                     {"disable", gpio::Bias::Disable},
-                                                     {"pull-up", gpio::Bias::PullUp},
-                                                     {"pull-down", gpio::Bias::PullDown}}))
+                                                      {"disable", gpio::Bias::Disable},
+                                                      {"pull-up", gpio::Bias::PullUp},
+                                                      {"pull-down", gpio::Bias::PullDown}}))
         out.bias = *bias;
     if (auto debounce = input.integer("debounce_ms", 0, gpio::kMaxDebounceMs))
         out.debounceMs = unsigned(*debounce);

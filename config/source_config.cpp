@@ -104,8 +104,8 @@ void readControls(TableReader &libcamera, std::vector<ControlSetting> &out)
         const auto kind = libcameraControlKind(name);
         if (!kind) {
             const std::string guess = closestMatch(name, libcameraControlNames());
-            libcamera.problemAt(value, path,
-                                "unknown libcamera control" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
+            libcamera.problemAt(
+                value, path, "unknown libcamera control" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
             continue;
         }
         ControlSetting setting{name, false, ""};
@@ -202,11 +202,10 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
     auto source = root.table("source");
     if (!source)
         return;
-    if (auto kind = source->choice<SourceKind>(
-            "kind", {{"synthetic", SourceKind::Synthetic},
-                     {"replay", SourceKind::Replay},
-                     {"v4l2", SourceKind::V4l2},
-                     {"libcamera", SourceKind::Libcamera}})) {
+    if (auto kind = source->choice<SourceKind>("kind", {{"synthetic", SourceKind::Synthetic},
+                                                        {"replay", SourceKind::Replay},
+                                                        {"v4l2", SourceKind::V4l2},
+                                                        {"libcamera", SourceKind::Libcamera}})) {
         out.kind = *kind;
         if (out.kind == SourceKind::Libcamera && !libcameraBuiltIn())
             source->problem("kind", "this overlayd was built without libcamera (CMake option OVERLAYD_LIBCAMERA)");

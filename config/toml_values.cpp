@@ -79,8 +79,8 @@ std::optional<std::vector<std::string>> TableReader::strings(std::string_view ke
         return std::nullopt;
     }
     if (array->size() > maxCount) {
-        problemAt(*n, keyPath(key), "at most " + std::to_string(maxCount) + " entries, got " +
-                                        std::to_string(array->size()));
+        problemAt(*n, keyPath(key),
+                  "at most " + std::to_string(maxCount) + " entries, got " + std::to_string(array->size()));
         return std::nullopt;
     }
     std::vector<std::string> out;

@@ -17,9 +17,9 @@ std::vector<std::string> withDefaultSubcommand(int argc, const char *const *argv
 {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (const std::string &arg : args) {
-        if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" ||
-            arg == "list-cameras" || arg == "list-gpio" || arg == "unproject" || arg == "solve-pose" || arg == "--help" ||
-            arg == "-h" || arg == "--version")
+        if (arg == "run" || arg == "check-config" || arg == "project" || arg == "render" || arg == "list-cameras" ||
+            arg == "list-gpio" || arg == "unproject" || arg == "solve-pose" || arg == "--help" || arg == "-h" ||
+            arg == "--version")
             return args;
     }
     args.insert(args.begin(), "run");
@@ -49,8 +49,9 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     CLI::App *project = app.add_subcommand("project", "print where world points land in the configured camera");
     project->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);
     project->add_flag("--json", line.json, "one JSON array, one object per point");
-    project->add_option("--size", line.size, "WxH: project for this stream size (intrinsics scale as for a camera "
-                                             "that negotiates it)");
+    project->add_option("--size", line.size,
+                        "WxH: project for this stream size (intrinsics scale as for a camera "
+                        "that negotiates it)");
     project->add_option("coordinates", line.coordinates, "X Y Z [X Y Z ...] in metres (use -- before negatives)")
         ->required();
 
@@ -60,8 +61,7 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     unproject->add_option("--plane", line.plane, "nx ny nz d: the plane n.x + d = 0 (default 0 0 1 0, the ground)")
         ->expected(4)
         ->delimiter(' ');
-    unproject->add_option("coordinates", line.coordinates, "U V [U V ...] pixels in the viewport's origin")
-        ->required();
+    unproject->add_option("coordinates", line.coordinates, "U V [U V ...] pixels in the viewport's origin")->required();
 
     CLI::App *solve = app.add_subcommand("solve-pose", "the camera pose from world points and the pixels they are at");
     solve->add_option("--config,-c", line.configPath, "the TOML config file (intrinsics, lens, viewport, mount)")
@@ -95,14 +95,14 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
         parseLogLevel(logLevel, level);
         line.logLevel = level;
     }
-    line.command = check->parsed()     ? Command::CheckConfig
-                   : project->parsed() ? Command::Project
-                   : render->parsed()  ? Command::Render
-                   : list->parsed()    ? Command::ListCameras
-                   : listGpio->parsed() ? Command::ListGpio
+    line.command = check->parsed()       ? Command::CheckConfig
+                   : project->parsed()   ? Command::Project
+                   : render->parsed()    ? Command::Render
+                   : list->parsed()      ? Command::ListCameras
+                   : listGpio->parsed()  ? Command::ListGpio
                    : unproject->parsed() ? Command::Unproject
-                   : solve->parsed()    ? Command::SolvePose
-                                       : Command::Run;
+                   : solve->parsed()     ? Command::SolvePose
+                                         : Command::Run;
     return line;
 }
 

@@ -47,8 +47,7 @@ struct ConfiguredCamera {
     Camera camera;
 };
 // `size` ("WxH", empty: the config's [source] size) builds it for another stream size without editing the config.
-std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger,
-                                                 const std::string &size = {});
+std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger &logger, const std::string &size = {});
 
 // `render --output PATH`: .y4m -> Y4M, .yuv/.raw -> raw frames, a %d pattern or .png/.jpg -> image snapshots.
 Result<SinkOptions> sinkForOutput(const std::string &path);

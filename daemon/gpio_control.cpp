@@ -62,7 +62,10 @@ Status reconfigure(std::vector<Entry> &old, const std::vector<Options> &options,
 
 } // namespace
 
-GpioControl::~GpioControl() { wire(false); }
+GpioControl::~GpioControl()
+{
+    wire(false);
+}
 
 Status GpioControl::requestInput(Input &input)
 {
@@ -111,7 +114,9 @@ Status GpioControl::configure(const gpio::GpioOptions &options)
         previousInputs.push_back(input.options);
     std::vector<Input> inputs;
     std::vector<Output> outputs;
-    const auto requestIn = [this](Input &in) { return requestInput(in); };
+    const auto requestIn = [this](Input &in) {
+        return requestInput(in);
+    };
     Status result = reconfigure(inputs_, options.inputs, inputs, requestIn);
     if (result) {
         result = reconfigure(outputs_, options.outputs, outputs, [this](Output &out) { return requestOutput(out); });
@@ -252,10 +257,14 @@ void GpioControl::onRetry()
 bool GpioControl::wanted(const Output &output) const
 {
     switch (output.options.signal) {
-    case gpio::OutputSignal::Streaming: return state_ == State::Streaming;
-    case gpio::OutputSignal::NoSignal: return state_ == State::Waiting;
-    case gpio::OutputSignal::Error: return failedLastFrame_;
-    case gpio::OutputSignal::FrameToggle: return output.level;
+    case gpio::OutputSignal::Streaming:
+        return state_ == State::Streaming;
+    case gpio::OutputSignal::NoSignal:
+        return state_ == State::Waiting;
+    case gpio::OutputSignal::Error:
+        return failedLastFrame_;
+    case gpio::OutputSignal::FrameToggle:
+        return output.level;
     }
     return false;
 }

@@ -22,8 +22,8 @@ std::string asJson(const std::vector<CameraDescription> &cameras)
     std::string out = "[";
     for (size_t c = 0; c < cameras.size(); ++c) {
         const CameraDescription &camera = cameras[c];
-        out += std::string(c ? ",\n " : "\n ") + "{\"api\": " + jsonString(camera.api) + ", \"id\": " +
-               jsonString(camera.id) + ", \"model\": " + jsonString(camera.model);
+        out += std::string(c ? ",\n " : "\n ") + "{\"api\": " + jsonString(camera.api) +
+               ", \"id\": " + jsonString(camera.id) + ", \"model\": " + jsonString(camera.model);
         if (!camera.error.empty())
             out += ", \"error\": " + jsonString(camera.error);
         out += ", \"formats\": [";

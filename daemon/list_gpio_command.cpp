@@ -36,8 +36,8 @@ std::string asText(const std::vector<gpio::ChipInfo> &chips)
         return "no GPIO chips found (/dev/gpiochip*)\n";
     std::string out;
     for (const gpio::ChipInfo &chip : chips) {
-        out += chip.name + " '" + chip.label + "' (" + chip.path + ", " + std::to_string(chip.lines.size()) +
-               " lines)\n";
+        out +=
+            chip.name + " '" + chip.label + "' (" + chip.path + ", " + std::to_string(chip.lines.size()) + " lines)\n";
         for (const gpio::LineInfo &line : chip.lines) {
             out += "  line " + std::to_string(line.offset) + (line.name.empty() ? " unnamed" : " '" + line.name + "'") +
                    (line.output ? " output" : " input") + (line.activeLow ? " active-low" : "");

@@ -61,13 +61,12 @@ void SourceSupervisor::scheduleRetry()
     if (!health_.readySent())
         health_.notifier().extendTimeout(std::chrono::duration_cast<std::chrono::microseconds>(delay) +
                                          std::chrono::seconds(10));
-    health_.waiting(
-        cat("waiting for ",
-            config_.source.kind == SourceKind::V4l2        ? config_.source.v4l2.device
-            : config_.source.kind == SourceKind::Libcamera ? "libcamera camera " + config_.source.libcamera.camera
-                                                           : std::string("the source"),
-            ": ",
-            waitReason_, ", retry in ", seconds(delay)));
+    health_.waiting(cat("waiting for ",
+                        config_.source.kind == SourceKind::V4l2 ? config_.source.v4l2.device
+                        : config_.source.kind == SourceKind::Libcamera
+                            ? "libcamera camera " + config_.source.libcamera.camera
+                            : std::string("the source"),
+                        ": ", waitReason_, ", retry in ", seconds(delay)));
 }
 
 void SourceSupervisor::onRetry()

@@ -22,7 +22,10 @@ std::string fixed(double value)
     return text;
 }
 
-std::string readable(const glm::dvec3 &v) { return "(" + fixed(v.x) + ", " + fixed(v.y) + ", " + fixed(v.z) + ")"; }
+std::string readable(const glm::dvec3 &v)
+{
+    return "(" + fixed(v.x) + ", " + fixed(v.y) + ", " + fixed(v.z) + ")";
+}
 
 struct Unprojected {
     glm::dvec2 pixel; // as the user gave it
@@ -91,8 +94,8 @@ int unprojectCommand(const std::string &configPath, bool json, const std::vector
             continue;
         }
         output += "ray from " + readable(u.ray->origin) + " along " + readable(u.ray->direction) + "; ";
-        output += u.hit ? "meets the plane at " + readable(*u.hit) + ", " +
-                              fixed(glm::length(*u.hit - u.ray->origin)) + " m away\n"
+        output += u.hit ? "meets the plane at " + readable(*u.hit) + ", " + fixed(glm::length(*u.hit - u.ray->origin)) +
+                              " m away\n"
                         : "misses the plane: " + u.reason + "\n";
     }
     if (json)

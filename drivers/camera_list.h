@@ -7,10 +7,10 @@
 namespace overlayd {
 
 struct CameraMode {
-    std::string format;        // the project's name ("NV12"), or the API's own for a format overlayd cannot use
-    bool usable = false;       // overlayd can blend into it (or decode it: MJPEG)
+    std::string format;             // the project's name ("NV12"), or the API's own for a format overlayd cannot use
+    bool usable = false;            // overlayd can blend into it (or decode it: MJPEG)
     std::vector<std::string> sizes; // "640x480", or a range "16x16-1920x1080 (step 2x2)"
-    std::vector<double> fps;   // discrete frame rates, when the device lists them
+    std::vector<double> fps;        // discrete frame rates, when the device lists them
 };
 
 struct CameraDescription {

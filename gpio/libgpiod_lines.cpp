@@ -19,7 +19,10 @@ struct ChipCloser {
 };
 using ChipHandle = std::unique_ptr<gpiod_chip, ChipCloser>;
 
-std::string errnoText() { return std::strerror(errno); }
+std::string errnoText()
+{
+    return std::strerror(errno);
+}
 
 std::string chipList()
 {
@@ -56,8 +59,8 @@ Result<std::pair<ChipHandle, gpiod_line *>> findLine(const LineAddress &address)
 {
     ChipHandle chip(gpiod_chip_open_lookup(address.chip.c_str()));
     if (!chip)
-        return makeError(ErrorCode::NotFound, "GPIO chip '" + address.chip + "' not found (" + errnoText() +
-                                                  "; chips: " + chipList() + ")");
+        return makeError(ErrorCode::NotFound,
+                         "GPIO chip '" + address.chip + "' not found (" + errnoText() + "; chips: " + chipList() + ")");
     gpiod_line *line = address.name.empty() ? gpiod_chip_get_line(chip.get(), address.offset)
                                             : gpiod_chip_find_line(chip.get(), address.name.c_str());
     if (!line)
@@ -70,8 +73,8 @@ Status request(gpiod_line *line, const LineAddress &address, const gpiod_line_re
 {
     if (gpiod_line_is_used(line) && !gpiod_line_is_requested(line)) {
         const char *consumer = gpiod_line_consumer(line);
-        return makeError(ErrorCode::Io, address.describe() + " is held by '" + (consumer ? consumer : "the kernel") +
-                                            "'");
+        return makeError(ErrorCode::Io,
+                         address.describe() + " is held by '" + (consumer ? consumer : "the kernel") + "'");
     }
     if (gpiod_line_request(line, &config, value) != 0) {
         const std::string why = errnoText();
@@ -86,10 +89,14 @@ Status request(gpiod_line *line, const LineAddress &address, const gpiod_line_re
 int biasFlags(Bias bias)
 {
     switch (bias) {
-    case Bias::AsIs: return 0;
-    case Bias::Disable: return GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE;
-    case Bias::PullUp: return GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP;
-    case Bias::PullDown: return GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN;
+    case Bias::AsIs:
+        return 0;
+    case Bias::Disable:
+        return GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE;
+    case Bias::PullUp:
+        return GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP;
+    case Bias::PullDown:
+        return GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN;
     }
     return 0;
 }
@@ -99,8 +106,7 @@ class LibgpiodInput final : public InputLine
 public:
     LibgpiodInput(ChipHandle chip, gpiod_line *line, LineAddress address)
         : chip_(std::move(chip)), line_(line), address_(std::move(address))
-    {
-    }
+    {}
     ~LibgpiodInput() override { gpiod_line_release(line_); }
 
     int fd() const override { return gpiod_line_event_get_fd(line_); }
@@ -144,8 +150,7 @@ class LibgpiodOutput final : public OutputLine
 public:
     LibgpiodOutput(ChipHandle chip, gpiod_line *line, LineAddress address)
         : chip_(std::move(chip)), line_(line), address_(std::move(address))
-    {
-    }
+    {}
     ~LibgpiodOutput() override { gpiod_line_release(line_); }
 
     Status setActive(bool active) override
@@ -179,8 +184,7 @@ public:
         return std::unique_ptr<InputLine>(std::make_unique<LibgpiodInput>(std::move(chip), line, input.line));
     }
 
-    Result<std::unique_ptr<OutputLine>> requestOutput(const OutputRequest &output,
-                                                      const std::string &consumer) override
+    Result<std::unique_ptr<OutputLine>> requestOutput(const OutputRequest &output, const std::string &consumer) override
     {
         auto found = findLine(output.line);
         if (!found)
@@ -198,9 +202,15 @@ public:
 
 } // namespace
 
-std::unique_ptr<LineProvider> makeLineProvider() { return std::make_unique<LibgpiodProvider>(); }
+std::unique_ptr<LineProvider> makeLineProvider()
+{
+    return std::make_unique<LibgpiodProvider>();
+}
 
-bool haveLibgpiod() { return true; }
+bool haveLibgpiod()
+{
+    return true;
+}
 
 Result<std::vector<ChipInfo>> listChips()
 {

@@ -22,10 +22,19 @@ public:
 
 } // namespace
 
-std::unique_ptr<LineProvider> makeLineProvider() { return std::make_unique<NoProvider>(); }
+std::unique_ptr<LineProvider> makeLineProvider()
+{
+    return std::make_unique<NoProvider>();
+}
 
-bool haveLibgpiod() { return false; }
+bool haveLibgpiod()
+{
+    return false;
+}
 
-Result<std::vector<ChipInfo>> listChips() { return makeError(ErrorCode::Unsupported, kWithout); }
+Result<std::vector<ChipInfo>> listChips()
+{
+    return makeError(ErrorCode::Unsupported, kWithout);
+}
 
 } // namespace overlayd::gpio

@@ -53,9 +53,11 @@ Result<std::shared_ptr<libcamera::Camera>> findCamera(const libcamera::CameraMan
     }
     std::string known;
     for (size_t i = 0; i < cameras.size(); ++i)
-        known += (i ? ", " : "") + std::to_string(i) + ": '" + cameraModel(*cameras[i]) + "' (" + cameras[i]->id() + ")";
-    return makeError(ErrorCode::NotFound, "no libcamera camera matches \"" + spec + "\"" +
-                                              (cameras.empty() ? " (libcamera sees no camera)" : "; there are " + known));
+        known +=
+            (i ? ", " : "") + std::to_string(i) + ": '" + cameraModel(*cameras[i]) + "' (" + cameras[i]->id() + ")";
+    return makeError(ErrorCode::NotFound,
+                     "no libcamera camera matches \"" + spec + "\"" +
+                         (cameras.empty() ? " (libcamera sees no camera)" : "; there are " + known));
 }
 
 } // namespace overlayd::lc

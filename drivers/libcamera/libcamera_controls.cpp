@@ -80,12 +80,12 @@ Result<libcamera::ControlValue> toControlValue(const libcamera::ControlId &id, c
     default:
         break;
     }
-    const char *wanted = id.type() == libcamera::ControlTypeBool          ? "true or false"
-                         : id.type() == libcamera::ControlTypeByte        ? "an integer 0..255"
-                         : id.type() == libcamera::ControlTypeInteger32   ? "a 32-bit integer"
-                         : id.type() == libcamera::ControlTypeInteger64   ? "an integer"
-                         : id.type() == libcamera::ControlTypeFloat       ? "a number"
-                                                                           : "a value a config cannot give";
+    const char *wanted = id.type() == libcamera::ControlTypeBool        ? "true or false"
+                         : id.type() == libcamera::ControlTypeByte      ? "an integer 0..255"
+                         : id.type() == libcamera::ControlTypeInteger32 ? "a 32-bit integer"
+                         : id.type() == libcamera::ControlTypeInteger64 ? "an integer"
+                         : id.type() == libcamera::ControlTypeFloat     ? "a number"
+                                                                        : "a value a config cannot give";
     return makeError(ErrorCode::ConfigError, std::string("expected ") + wanted);
 }
 
@@ -94,7 +94,9 @@ std::optional<int> compare(const libcamera::ControlValue &value, const libcamera
 {
     if (bound.isNone() || bound.isArray() || bound.type() != value.type())
         return std::nullopt;
-    const auto order = [](auto a, auto b) { return a < b ? -1 : a > b ? 1 : 0; };
+    const auto order = [](auto a, auto b) {
+        return a < b ? -1 : a > b ? 1 : 0;
+    };
     switch (value.type()) {
     case libcamera::ControlTypeBool:
         return order(value.get<bool>(), bound.get<bool>());

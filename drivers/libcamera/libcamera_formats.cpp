@@ -15,25 +15,18 @@ namespace {
 namespace f = libcamera::formats;
 
 const std::array<std::pair<std::string_view, libcamera::PixelFormat>, 19> kFormats{{
-    {"GREY", f::R8},
-    {"YUYV", f::YUYV},
-    {"UYVY", f::UYVY},
-    {"YVYU", f::YVYU},
-    {"NV12", f::NV12},
-    {"NV21", f::NV21},
-    {"NV16", f::NV16},
-    {"YUV420", f::YUV420},
-    {"YVU420", f::YVU420},
-    {"RGB24", f::BGR888},      // bytes R G B
-    {"BGR24", f::RGB888},      // bytes B G R
-    {"XRGB32", f::BGRX8888},   // bytes X R G B
-    {"XBGR32", f::XRGB8888},   // bytes B G R X
-    {"RGBX32", f::XBGR8888},   // bytes R G B X
-    {"BGRX32", f::RGBX8888},   // bytes X B G R
-    {"ARGB32", f::BGRA8888},   // bytes A R G B
-    {"ABGR32", f::ARGB8888},   // bytes B G R A
-    {"RGBA32", f::ABGR8888},   // bytes R G B A
-    {"BGRA32", f::RGBA8888},   // bytes A B G R
+    {"GREY", f::R8},         {"YUYV", f::YUYV},    {"UYVY", f::UYVY}, {"YVYU", f::YVYU},
+    {"NV12", f::NV12},       {"NV21", f::NV21},    {"NV16", f::NV16}, {"YUV420", f::YUV420},
+    {"YVU420", f::YVU420},   {"RGB24", f::BGR888}, // bytes R G B
+    {"BGR24", f::RGB888},                          // bytes B G R
+    {"XRGB32", f::BGRX8888},                       // bytes X R G B
+    {"XBGR32", f::XRGB8888},                       // bytes B G R X
+    {"RGBX32", f::XBGR8888},                       // bytes R G B X
+    {"BGRX32", f::RGBX8888},                       // bytes X B G R
+    {"ARGB32", f::BGRA8888},                       // bytes A R G B
+    {"ABGR32", f::ARGB8888},                       // bytes B G R A
+    {"RGBA32", f::ABGR8888},                       // bytes R G B A
+    {"BGRA32", f::RGBA8888},                       // bytes A B G R
 }};
 
 } // namespace

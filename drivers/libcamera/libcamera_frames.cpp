@@ -84,8 +84,7 @@ Result<FrameLease> LibcameraSource::nextFrame()
     const MappedFrameBuffer &mapped = session.buffers[index];
     mapped.beginCpuAccess();
     session.recycler->lend();
-    return FrameLease(mapped.view(), metadata,
-                      [keep = session_, index] { keep->recycler->giveBack(index); });
+    return FrameLease(mapped.view(), metadata, [keep = session_, index] { keep->recycler->giveBack(index); });
 }
 
 } // namespace overlayd::lc

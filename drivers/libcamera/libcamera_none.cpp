@@ -20,9 +20,10 @@ std::optional<ControlValueKind> libcameraControlKind(const std::string &)
 
 Result<std::unique_ptr<FrameSource>> makeLibcameraSource(const SourceOptions &)
 {
-    return makeError(ErrorCode::Unsupported,
-                     "this overlayd was built without libcamera (CMake option OVERLAYD_LIBCAMERA): kind = \"libcamera\" "
-                     "is not available");
+    return makeError(
+        ErrorCode::Unsupported,
+        "this overlayd was built without libcamera (CMake option OVERLAYD_LIBCAMERA): kind = \"libcamera\" "
+        "is not available");
 }
 
 std::vector<CameraDescription> listLibcameraCameras()

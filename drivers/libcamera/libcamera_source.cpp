@@ -81,8 +81,7 @@ CameraSession::~CameraSession()
 LibcameraSource::LibcameraSource(SourceOptions options, LogFunction log)
     : options_(std::move(options)), log_(std::move(log)),
       completions_(::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK | EFD_SEMAPHORE))
-{
-}
+{}
 
 LibcameraSource::~LibcameraSource()
 {
@@ -110,8 +109,8 @@ Result<StreamFormat> LibcameraSource::start()
     session->camera = *camera;
     name_ = "libcamera '" + cameraModel(**camera) + "' (" + (*camera)->id() + ")";
     if (const int r = session->camera->acquire(); r < 0)
-        return makeError(ErrorCode::DeviceLost, describe() + ": acquire failed: " + std::strerror(-r) +
-                                                    " (another program has it?)");
+        return makeError(ErrorCode::DeviceLost,
+                         describe() + ": acquire failed: " + std::strerror(-r) + " (another program has it?)");
     session->acquired = true;
     session_ = std::move(session);
     {
@@ -168,9 +167,9 @@ Result<StreamFormat> LibcameraSource::configure()
     const auto status = config->validate();
     if (status == libcamera::CameraConfiguration::Invalid)
         return makeError(ErrorCode::Unsupported,
-                         describe() + " refuses " + describeStream(std::string(asked.name), options_.width,
-                                                                    options_.height) +
-                             "; it offers " + offered(stream));
+                         describe() + " refuses " +
+                             describeStream(std::string(asked.name), options_.width, options_.height) + "; it offers " +
+                             offered(stream));
     const PixelFormatInfo *got = fromLibcamera(stream.pixelFormat);
     if (!got)
         return makeError(ErrorCode::Unsupported, describe() + " would give " + formatName(stream.pixelFormat) +
@@ -215,11 +214,11 @@ Status LibcameraSource::allocate(const libcamera::Stream &stream)
     if (buffers.size() < 2)
         return makeError(ErrorCode::Unsupported, describe() + " gave " + std::to_string(buffers.size()) + " buffers");
     for (size_t i = 0; i < buffers.size(); ++i) {
-        auto mapped = MappedFrameBuffer::map(*buffers[i], *format_.format, format_.width, format_.height,
-                                             format_.stride);
+        auto mapped =
+            MappedFrameBuffer::map(*buffers[i], *format_.format, format_.width, format_.height, format_.stride);
         if (!mapped)
-            return makeError(mapped.error().code, describe() + ": buffer " + std::to_string(i) + ": " +
-                                                      mapped.error().message);
+            return makeError(mapped.error().code,
+                             describe() + ": buffer " + std::to_string(i) + ": " + mapped.error().message);
         session.buffers.push_back(std::move(*mapped));
         auto request = session.camera->createRequest(i);
         if (!request || request->addBuffer(mutableStream, buffers[i].get()) < 0)

@@ -88,8 +88,9 @@ Status checkTokens(std::string_view text)
         return makeError(ErrorCode::InvalidArgument,
                          "unbalanced brace in text \"" + std::string(text) + "\" (write {{ and }} for literal braces)");
     if (!unknown.empty())
-        return makeError(ErrorCode::InvalidArgument, "unknown token {" + unknown + "} in text \"" + std::string(text) +
-                                                         "\" (known: frame, fps, ms, exposure, gain, time:FORMAT, slot:NAME)");
+        return makeError(ErrorCode::InvalidArgument,
+                         "unknown token {" + unknown + "} in text \"" + std::string(text) +
+                             "\" (known: frame, fps, ms, exposure, gain, time:FORMAT, slot:NAME)");
     return Ok{};
 }
 

@@ -9,7 +9,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     std::vector<overlayd::ConfigProblem> problems;
-    (void)overlayd::loadConfigText(std::string_view(reinterpret_cast<const char *>(data), size), "fuzz.toml", "/nonexistent",
-                                   problems);
+    (void)overlayd::loadConfigText(std::string_view(reinterpret_cast<const char *>(data), size), "fuzz.toml",
+                                   "/nonexistent", problems);
     return 0;
 }

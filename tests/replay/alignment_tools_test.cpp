@@ -20,7 +20,10 @@ const cv::Matx33d kK(821.5, 0, 641.5, 0, 818.0, 358.5, 0, 0, 1);
 const std::vector<double> kDistortion{-0.28, 0.09, 0.0008, -0.0005, -0.012};
 const cv::Vec3d kRvec(2.0943951023931957, 0.0, 0.0), kTvec(0.0, 2.1650635094610964, 1.25);
 
-std::string example() { return std::string(OVERLAYD_SOURCE_DIR) + "/config/examples/distorted_pinhole.toml"; }
+std::string example()
+{
+    return std::string(OVERLAYD_SOURCE_DIR) + "/config/examples/distorted_pinhole.toml";
+}
 
 // Ground points and a few above it, all in view of the example camera.
 std::vector<cv::Point3d> worldPoints()

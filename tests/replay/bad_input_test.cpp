@@ -133,9 +133,9 @@ show_layers = ["guides"]
     const RunResult run = runOverlayd("run --config gpio.toml --frames 2", dir);
     EXPECT_FALSE(run.crashed) << run.all();
     EXPECT_EQ(run.exitStatus, 1) << run.all();
-    const bool named = run.all().find("gpio input 'reverse': GPIO chip 'no-such-gpiochip' not found") !=
-                           std::string::npos ||
-                       run.all().find("built without libgpiod") != std::string::npos;
+    const bool named =
+        run.all().find("gpio input 'reverse': GPIO chip 'no-such-gpiochip' not found") != std::string::npos ||
+        run.all().find("built without libgpiod") != std::string::npos;
     EXPECT_TRUE(named) << run.all();
 }
 

@@ -22,17 +22,16 @@ struct Expected {
 
 void expectProjections(const std::string &config, bool bottomLeft)
 {
-    const RunResult run =
-        runOverlayd("project --config '" + dataPath(config) +
-                        "' --json -- 10 0 0  10 -2 1  5 1 -1  -5 0 0  10 20 0  200 0 0  0.5 0 0",
-                    scratchDir(config));
+    const RunResult run = runOverlayd("project --config '" + dataPath(config) +
+                                          "' --json -- 10 0 0  10 -2 1  5 1 -1  -5 0 0  10 20 0  200 0 0  0.5 0 0",
+                                      scratchDir(config));
     ASSERT_EQ(run.exitStatus, 0) << run.all();
     const double d10 = 101.0 / 99.0 - 200.0 / (99.0 * 10.0), d5 = 101.0 / 99.0 - 200.0 / (99.0 * 5.0);
     const std::vector<Expected> expected{
-        {false, 159.5, 119.5, d10, true, 10, "null"},                 // straight ahead: the principal point
-        {false, 183.5, 107.5, d10, true, 10, "null"},                 // 2 m right, 1 m up at 10 m
-        {false, 135.5, 143.5, d5, true, 5, "null"},                   // 1 m left, 1 m down at 5 m
-        {true, 0, 0, 0, false, -5, "\"behind-camera\""},              // clipped, no pixel
+        {false, 159.5, 119.5, d10, true, 10, "null"},                  // straight ahead: the principal point
+        {false, 183.5, 107.5, d10, true, 10, "null"},                  // 2 m right, 1 m up at 10 m
+        {false, 135.5, 143.5, d5, true, 5, "null"},                    // 1 m left, 1 m down at 5 m
+        {true, 0, 0, 0, false, -5, "\"behind-camera\""},               // clipped, no pixel
         {false, -80.5, 119.5, d10, false, 10, "\"outside-viewport\""}, // left of the image: a pixel, not visible
         {true, 0, 0, 0, false, 200, "\"beyond-far\""},
         {true, 0, 0, 0, false, 0.5, "\"before-near\""},

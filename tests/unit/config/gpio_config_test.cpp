@@ -76,8 +76,7 @@ TEST(GpioConfig, DefaultsAreTheDocumentedOnes)
 
 TEST(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
 {
-    const auto problems =
-        loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guide\"]\n");
+    const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guide\"]\n");
     ASSERT_EQ(problems.size(), 1u) << allText(problems);
     EXPECT_EQ(problems[0].key, "gpio.input[0].show_layers");
     EXPECT_EQ(problems[0].line, 12u);
@@ -122,8 +121,8 @@ colour = "red"
     const std::string all = allText(problems);
     for (const char *expected :
          {"gpio.input[0].chip: missing", "gpio.input[0].line:", "gpio.input[0].bias:", "gpio.input[0].debounce_ms:",
-          "gpio.input[0].show_layers: expected an array of strings", "gpio.output[0].signal:",
-          "gpio.output[0].colour:"})
+          "gpio.input[0].show_layers: expected an array of strings",
+          "gpio.output[0].signal:", "gpio.output[0].colour:"})
         EXPECT_NE(all.find(expected), std::string::npos) << expected << " in\n" << all;
 }
 

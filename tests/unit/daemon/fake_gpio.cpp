@@ -10,7 +10,10 @@ std::string nameOf(const gpio::LineAddress &address)
     return address.name.empty() ? std::to_string(address.offset) : address.name;
 }
 
-Error lostError() { return makeError(ErrorCode::DeviceLost, "No such device"); }
+Error lostError()
+{
+    return makeError(ErrorCode::DeviceLost, "No such device");
+}
 
 class FakeInput final : public gpio::InputLine
 {
@@ -100,6 +103,9 @@ private:
 
 } // namespace
 
-std::unique_ptr<gpio::LineProvider> FakeGpio::provider() { return std::make_unique<FakeProvider>(*this); }
+std::unique_ptr<gpio::LineProvider> FakeGpio::provider()
+{
+    return std::make_unique<FakeProvider>(*this);
+}
 
 } // namespace overlayd::test

@@ -48,8 +48,10 @@ struct GpioControlTest : ::testing::Test {
     std::vector<std::string> logged;
     Logger logger{[this](std::string_view line) { logged.emplace_back(line); }, true};
     test::FakeGpio lines;
-    SceneControl scene{[](const OverlayScene &, const Camera &, const StreamFormat &)
-                           -> Result<std::unique_ptr<OverlayRenderer>> { return std::unique_ptr<OverlayRenderer>(); }};
+    SceneControl scene{
+        [](const OverlayScene &, const Camera &, const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
+            return std::unique_ptr<OverlayRenderer>();
+        }};
     GpioControl gpio{logger, scene};
 
     void SetUp() override
@@ -114,8 +116,7 @@ TEST_F(GpioControlTest, ActiveLowInvertsThePhysicalLevel)
 TEST_F(GpioControlTest, HidingWinsOverShowingAndShowingNeedsOneActiveInput)
 {
     // reverse shows guides and hides logo; parking shows guides; menu hides guides.
-    start({{input("reverse", {"guides"}, {"logo"}), input("parking", {"guides"}), input("menu", {}, {"guides"})},
-           {}});
+    start({{input("reverse", {"guides"}, {"logo"}), input("parking", {"guides"}), input("menu", {}, {"guides"})}, {}});
     EXPECT_FALSE(scene.layerVisible("guides"));
     EXPECT_TRUE(scene.layerVisible("logo"));
     edge(1, "parking", true);
@@ -137,7 +138,7 @@ TEST_F(GpioControlTest, OnlyChangesAreAppliedSoOtherControlsKeepTheirChoiceBetwe
 {
     start({{input("reverse", {"guides"}), input("parking", {"logo"})}, {}});
     ASSERT_TRUE(scene.apply(LayerChange{"guides", true}).ok()); // e.g. the HTTP API
-    edge(1, "parking", true);                                  // another input's edge
+    edge(1, "parking", true);                                   // another input's edge
     EXPECT_TRUE(scene.layerVisible("guides"));
 }
 
@@ -226,8 +227,8 @@ TEST_F(GpioControlTest, AReloadKeepsUnchangedLinesAndReRequestsChangedOnes)
     gpio::InputOptions parking = input("parking", {"logo"});
     parking.activeLow = true;
     ASSERT_TRUE(gpio.configure({{input("reverse", {"guides"}), parking}, {}}).ok());
-    EXPECT_EQ(lines.line("chip0", "reverse").requests, 1u); // kept
-    EXPECT_EQ(lines.line("chip0", "parking").requests, 2u); // changed: released and requested again
+    EXPECT_EQ(lines.line("chip0", "reverse").requests, 1u);   // kept
+    EXPECT_EQ(lines.line("chip0", "parking").requests, 2u);   // changed: released and requested again
     EXPECT_TRUE(lines.line("chip0", "led").consumer.empty()); // removed: released
 }
 
@@ -237,8 +238,8 @@ TEST_F(GpioControlTest, AFailedReloadKeepsEveryOldLine)
     lines.line("chip0", "busy").consumer = "someone";
     gpio::InputOptions changed = input("reverse", {"guides"});
     changed.activeLow = true;
-    const Status status =
-        gpio.configure({{changed}, {output("led", gpio::OutputSignal::Streaming), output("busy", gpio::OutputSignal::Error)}});
+    const Status status = gpio.configure(
+        {{changed}, {output("led", gpio::OutputSignal::Streaming), output("busy", gpio::OutputSignal::Error)}});
     ASSERT_FALSE(status.ok());
     EXPECT_EQ(lines.line("chip0", "reverse").consumer, "overlayd");
     EXPECT_FALSE(lines.line("chip0", "reverse").activeLow); // as before the reload

@@ -65,7 +65,9 @@ bool inside(glm::dvec2 p)
 int checkEdges(const Camera &camera, const Rendered &image)
 {
     int checked = 0;
-    const auto memory = [&](const glm::dvec3 &world) { return camera.project(world).pixel; };
+    const auto memory = [&](const glm::dvec3 &world) {
+        return camera.project(world).pixel;
+    };
     for (int i = -8; i <= 8; ++i) {
         for (int j = -8; j <= 8; ++j) {
             for (const bool alongX : {true, false}) {

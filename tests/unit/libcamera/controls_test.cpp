@@ -40,8 +40,8 @@ TEST(Controls, ValuesInsideTheCamerasRangesAreSet)
 {
     // The list keeps a pointer to the camera's map, as it does to a real camera's.
     const libcamera::ControlInfoMap camera = cameraControls();
-    auto list = buildControls({setting("Brightness", 0.25), setting("AeEnable", false), setting("ExposureTime", 5000)},
-                              camera);
+    auto list =
+        buildControls({setting("Brightness", 0.25), setting("AeEnable", false), setting("ExposureTime", 5000)}, camera);
     ASSERT_TRUE(list.ok()) << list.error().message;
     EXPECT_FLOAT_EQ(list->get(c::Brightness).value_or(-9.0f), 0.25f);
     EXPECT_EQ(list->get(c::AeEnable), std::optional<bool>(false));
@@ -50,8 +50,8 @@ TEST(Controls, ValuesInsideTheCamerasRangesAreSet)
 
 TEST(Controls, EveryProblemNamesFileLineAndKey)
 {
-    auto list = buildControls({setting("Brightness", 1.5), setting("ExposureTime", 50),
-                               setting("Contrast", 1.0), setting("AeEnable", int64_t(1))},
+    auto list = buildControls({setting("Brightness", 1.5), setting("ExposureTime", 50), setting("Contrast", 1.0),
+                               setting("AeEnable", int64_t(1))},
                               cameraControls());
     ASSERT_FALSE(list.ok());
     EXPECT_EQ(list.error().code, ErrorCode::ConfigError);

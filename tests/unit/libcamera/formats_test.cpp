@@ -44,7 +44,9 @@ TEST(Formats, PackedRgbBytesAreWhatLibcamerasNameSays)
         const unsigned bytes = unsigned(components.size());
         ASSERT_EQ(bytes * 8, info.bitsPerPixel);
         // Little endian: the last component named sits in byte 0.
-        const auto byteOf = [&](char component) { return bytes - 1 - unsigned(components.find(component)); };
+        const auto byteOf = [&](char component) {
+            return bytes - 1 - unsigned(components.find(component));
+        };
         EXPECT_EQ(info.rOffset, byteOf('R'));
         EXPECT_EQ(info.gOffset, byteOf('G'));
         EXPECT_EQ(info.bOffset, byteOf('B'));
