@@ -12,8 +12,8 @@ namespace overlayd::alignment {
 
 namespace {
 
-// Optical (x right, y down, z forward) <-> the internal OpenGL frame (x right, y up, z backward): one mirror.
-constexpr glm::dmat3 kFlipYZ{1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0};
+// The OpenCV optical axes (x right, y down, z forward) in the internal OpenGL ones; its own inverse.
+const glm::dmat3 kFlipYZ = internalFromAxes(CameraAxes::Optical);
 
 std::string pointName(size_t i)
 {
@@ -105,6 +105,19 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
         solution.warnings.push_back("the RMS reprojection error is " + std::to_string(solution.rmsPx) +
                                     " px: a point is mismatched, or the intrinsics or lens do not fit the camera");
     return solution;
+}
+
+OpenCvExtrinsics openCvExtrinsicsOf(const Pose &pose)
+{
+    const glm::dmat3 flip = internalFromAxes(CameraAxes::Optical); // its own inverse
+    const glm::dmat3 rotation = flip * pose.rotation;
+    cv::Matx33d r;
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column)
+            r(row, column) = rotation[column][row];
+    cv::Vec3d rvec;
+    cv::Rodrigues(r, rvec);
+    return {glm::dvec3(rvec[0], rvec[1], rvec[2]), flip * pose.translation};
 }
 
 } // namespace overlayd::alignment

@@ -38,4 +38,10 @@ struct PoseSolution {
 Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortion,
                                const std::vector<Correspondence> &points);
 
+// OpenCV's rvec/tvec (x_optical = R x + t) of a pose, as the config's `rvec`/`tvec` take them (cv::Rodrigues).
+struct OpenCvExtrinsics {
+    glm::dvec3 rvec{0.0}, tvec{0.0};
+};
+OpenCvExtrinsics openCvExtrinsicsOf(const Pose &pose);
+
 } // namespace overlayd::alignment

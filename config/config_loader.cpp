@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "config/camera_request.h"
 #include "config/config_sections.h"
 
 namespace overlayd {
@@ -106,6 +107,64 @@ Error summarize(const Problems &found, std::vector<ConfigProblem> &problems)
     return makeError(ErrorCode::ConfigError, message);
 }
 
+// Every section of a parsed file (with its drop-in merged), then what spans sections.
+Result<DaemonConfig> readRoot(const toml::table &root, const std::string &name, const std::string &baseDirectory,
+                              Problems &found, std::vector<ConfigProblem> &problems)
+{
+    DaemonConfig result;
+    result.path = name;
+    TableReader reader(root, "", found);
+    CameraKeys keys;
+    readDaemon(reader, result.daemon);
+    readSource(reader, baseDirectory, result.source);
+    readSinks(reader, result.sinks);
+    readFrames(reader, result.scene.frames);
+    readAnnotations(reader, baseDirectory, result.scene.annotations);
+    readGpio(reader, result.scene.annotations, result.gpio);
+    readHttp(reader, baseDirectory, result.http);
+    const bool cameraRead = readCamera(reader, baseDirectory, result, keys);
+    reader.finish();
+    auto graph = checkFrames(reader, result);
+    if (graph && cameraRead)
+        checkCamera(reader, result, *graph, keys);
+    if (!found.empty())
+        return summarize(found, problems);
+    return result;
+}
+
+constexpr std::string_view kIntrinsicsFormKeys[] = {"fov", "fov_axis", "frustum", "pinhole", "window", "orthographic"};
+constexpr std::string_view kPoseFormKeys[] = {"eye",  "target",   "gaze",        "up",   "prp", "vpn",
+                                              "vup",  "position", "orientation", "axes", "yaw", "pitch",
+                                              "roll", "rvec",     "tvec",        "rmat"};
+
+// The drop-in's [camera] over the main file's: its pose replaces every pose key, its intrinsics form (if any)
+// every intrinsics form key; anything else in it is read as given (and judged by the same readers).
+void mergeDropIn(toml::table &root, toml::table &dropIn)
+{
+    toml::table *from = dropIn["camera"].as_table();
+    if (!from) {
+        root.insert_or_assign("camera.live", std::move(dropIn)); // reported as an unknown key, at the drop-in
+        return;
+    }
+    toml::table *into = root["camera"].as_table();
+    if (!into) {
+        root.insert_or_assign("camera", std::move(*from));
+        return;
+    }
+    auto replaces = [&](const auto &keys) {
+        for (std::string_view key : keys)
+            if (from->contains(key)) {
+                for (std::string_view old : keys)
+                    into->erase(old);
+                return;
+            }
+    };
+    replaces(kPoseFormKeys);
+    replaces(kIntrinsicsFormKeys);
+    for (auto &&[key, value] : *from)
+        into->insert_or_assign(key, std::move(value));
+}
+
 } // namespace
 } // namespace config
 
@@ -122,24 +181,7 @@ Result<DaemonConfig> loadConfigText(std::string_view text, const std::string &na
         found.add(e.source().begin.line, e.source().begin.column, "", "syntax error: " + std::string(e.description()));
         return config::summarize(found, problems);
     }
-    DaemonConfig result;
-    result.path = name;
-    config::TableReader reader(root, "", found);
-    config::CameraKeys keys;
-    config::readDaemon(reader, result.daemon);
-    config::readSource(reader, baseDirectory, result.source);
-    config::readSinks(reader, result.sinks);
-    config::readFrames(reader, result.scene.frames);
-    config::readAnnotations(reader, baseDirectory, result.scene.annotations);
-    config::readGpio(reader, result.scene.annotations, result.gpio);
-    const bool cameraRead = config::readCamera(reader, baseDirectory, result, keys);
-    reader.finish();
-    auto graph = config::checkFrames(reader, result);
-    if (graph && cameraRead)
-        config::checkCamera(reader, result, *graph, keys);
-    if (!found.empty())
-        return config::summarize(found, problems);
-    return result;
+    return config::readRoot(root, name, baseDirectory, found, problems);
 }
 
 Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigProblem> &problems)
@@ -151,8 +193,25 @@ Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigP
     }
     std::ostringstream text;
     text << in.rdbuf();
-    const std::string base = std::filesystem::path(path).parent_path().string();
-    return loadConfigText(text.str(), path, base.empty() ? "." : base, problems);
+    std::string base = std::filesystem::path(path).parent_path().string();
+    base = base.empty() ? "." : base;
+    const std::string dropInPath = liveDropInPath(path);
+    if (!std::filesystem::exists(dropInPath))
+        return loadConfigText(text.str(), path, base, problems);
+    problems.clear();
+    config::Problems found(path);
+    toml::table root, dropIn;
+    for (auto [file, into] : {std::pair{&path, &root}, std::pair{&dropInPath, &dropIn}}) {
+        try {
+            *into = file == &path ? toml::parse(text.str(), path) : toml::parse_file(dropInPath);
+        } catch (const toml::parse_error &e) {
+            found.add(e.source().begin.line, e.source().begin.column, "",
+                      "syntax error: " + std::string(e.description()), *file);
+            return config::summarize(found, problems);
+        }
+    }
+    config::mergeDropIn(root, dropIn);
+    return config::readRoot(root, path, base, found, problems);
 }
 
 } // namespace overlayd

@@ -23,6 +23,8 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
 void readSinks(TableReader &root, std::vector<SinkOptions> &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
 void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
+// [http]: the server's options (see http/http_options.h).
+void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
 bool readPose(TableReader &camera, Pose &out);

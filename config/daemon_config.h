@@ -11,6 +11,7 @@
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
 #include "gpio/gpio_options.h"
+#include "http/http_options.h"
 #include "overlay/shapes/annotation.h"
 
 namespace overlayd {
@@ -27,6 +28,7 @@ struct DaemonConfig {
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
     gpio::GpioOptions gpio;
+    http::HttpOptions http;
     DaemonSettings daemon;
 };
 

@@ -15,9 +15,10 @@ std::string ConfigProblem::format() const
 
 namespace config {
 
-void Problems::add(unsigned line, unsigned column, std::string key, std::string message)
+void Problems::add(unsigned line, unsigned column, std::string key, std::string message, std::string file)
 {
-    list_.push_back(ConfigProblem{file_, line, column, std::move(key), std::move(message)});
+    list_.push_back(
+        ConfigProblem{file.empty() ? file_ : std::move(file), line, column, std::move(key), std::move(message)});
 }
 
 std::vector<ConfigProblem> Problems::sorted() const

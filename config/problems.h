@@ -14,7 +14,8 @@ class Problems
 public:
     explicit Problems(std::string file) : file_(std::move(file)) {}
 
-    void add(unsigned line, unsigned column, std::string key, std::string message);
+    // `file` names another file than the one loaded (a drop-in read with it); empty: the loaded one.
+    void add(unsigned line, unsigned column, std::string key, std::string message, std::string file = {});
     bool empty() const { return list_.empty(); }
     size_t size() const { return list_.size(); }
     const std::string &file() const { return file_; }

@@ -62,8 +62,10 @@ std::string TableReader::keyPath(std::string_view key) const
 
 void TableReader::problemAt(const toml::node &at, const std::string &keyPath, std::string message)
 {
-    const auto &begin = at.source().begin;
-    problems_->add(begin.line, begin.column, keyPath, std::move(message));
+    const auto &source = at.source();
+    // A node read from a drop-in file says so; the loaded file's own nodes carry its name too.
+    problems_->add(source.begin.line, source.begin.column, keyPath, std::move(message),
+                   source.path && *source.path != problems_->file() ? *source.path : std::string());
 }
 
 void TableReader::problem(std::string_view key, std::string message)

@@ -12,6 +12,7 @@
 #include "config/daemon_config.h"
 #include "daemon/daemon.h"
 #include "projection/camera.h"
+#include "projection/geometry.h"
 
 namespace overlayd {
 
@@ -60,6 +61,14 @@ struct PointReport {
     const char *reason = nullptr;
 };
 PointReport explainPoint(const Camera &camera, const glm::dvec3 &world, const ProjectedPoint &point);
+
+// What `project` prints for world points (--json, or the text form), pixels in the viewport's origin; the HTTP API's
+// /api/project answers the JSON.
+std::string projectJson(const Camera &camera, const std::vector<glm::dvec3> &world);
+std::string projectText(const Camera &camera, const std::vector<glm::dvec3> &world);
+// What `unproject` prints for pixels given in the viewport's origin: each one's world ray and where it meets `plane`.
+std::string unprojectJson(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels);
+std::string unprojectText(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels);
 
 // `project --json`: [{"world":[x,y,z],"pixel":[u,v] or null,"depth":d or null,"distance":m,"visible":bool,
 // "reason":r or null}, ...]; numbers are printed in their shortest exact (round-trip) form.

@@ -6,8 +6,13 @@ namespace overlayd {
 Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factories, ConfigLoader loader,
                DaemonOptions options)
     : logger_(logger), factories_(std::move(factories)), loader_(std::move(loader)), options_(std::move(options)),
-      pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier), gpio_(logger, scene_)
+      pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier), gpio_(logger, scene_),
+      http_(logger, *this)
 {
+    pipeline_.setRawTap([this](const FrameView &frame, const FrameMetadata &metadata) {
+        if (http_.running())
+            http_.onRawFrame(frame, metadata);
+    });
     if (factories_.gpio)
         gpio_.setProvider(factories_.gpio());
 }
@@ -15,6 +20,8 @@ Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factori
 Daemon::~Daemon()
 {
     source_.reset();
+    // The sink threads stop before the members they write to (the HTTP side's JPEG feed) are destroyed.
+    pipeline_.closeSinks();
 }
 
 Status Daemon::start()
@@ -65,6 +72,8 @@ Status Daemon::setUp()
             return lines;
         gpio_.applyLayers();
     }
+    if (auto served = http_.configure(config_.http); !served)
+        return served;
     Status sinksBuilt = Ok{};
     pipeline_.setSinks(buildSinks(config_, sinksBuilt));
     if (!sinksBuilt)
@@ -111,6 +120,8 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
         }
         sinks.push_back(std::make_unique<SinkWorker>(std::move(*sink), options, logger_));
     }
+    if (config.http.enabled)
+        sinks.push_back(http_.makeSink());
     return sinks;
 }
 

@@ -15,6 +15,7 @@
 #include "daemon/event_loop.h"
 #include "daemon/gpio_control.h"
 #include "daemon/health_reporter.h"
+#include "daemon/http_front.h"
 #include "daemon/pipeline.h"
 #include "daemon/scene_control.h"
 #include "daemon/source_supervisor.h"
@@ -91,6 +92,7 @@ private:
     SceneControl scene_;
     HealthReporter health_;
     GpioControl gpio_; // after scene_, whose layers it switches
+    HttpFront http_;   // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running
     std::optional<SignalReader> signals_; // created before any sink thread, so that every thread blocks them

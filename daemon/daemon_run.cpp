@@ -35,6 +35,7 @@ int Daemon::run()
     (void)loop->add(watchdog_->fd(), [this] { onWatchdog(); });
     source_->attachLoop(loop_);
     gpio_.attachLoop(loop_);
+    http_.attachLoop(loop_);
     while (state() != State::Finished) {
         gpio_.onState(state()); // outputs follow the state the last turn left
         if (auto status = loop->runOnce(); !status) {
@@ -43,6 +44,7 @@ int Daemon::run()
         }
     }
     shutdown();
+    http_.attachLoop(nullptr);
     gpio_.attachLoop(nullptr);
     source_->attachLoop(nullptr);
     loop_ = nullptr;
@@ -109,7 +111,7 @@ bool Daemon::reload()
     // Whole option structs are compared: a field added to them later re-opens what it belongs to.
     const bool sourceChanged = config_.source != next.source || sceneCameraChanged(config_, next) ||
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
-    const bool sinksChanged = config_.sinks != next.sinks;
+    const bool sinksChanged = config_.sinks != next.sinks || config_.http.enabled != next.http.enabled;
 
     // Everything that can fail is built before anything is switched; the scene goes through the same SceneControl
     // as every live change (a re-opened source builds its overlay from it when it starts).
@@ -125,12 +127,22 @@ bool Daemon::reload()
     if (gpioChanged)
         if (auto lines = gpio_.configure(next.gpio); !lines)
             return reject(lines.error().message);
+    // The HTTP server next (a port already taken refuses the reload; the old server keeps serving).
+    const bool httpChanged = config_.http != next.http;
+    if (httpChanged)
+        if (auto served = http_.configure(next.http); !served) {
+            if (gpioChanged)
+                (void)gpio_.configure(config_.gpio);
+            return reject(served.error().message);
+        }
     std::unique_ptr<OverlayRenderer> renderer;
     if (sourceChanged || state() != State::Streaming)
         scene_.detach(); // nothing to rebuild now: the next stream is built from the new scene
     if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied) {
         if (gpioChanged)
             (void)gpio_.configure(config_.gpio); // the old lines again
+        if (httpChanged)
+            (void)http_.configure(config_.http);
         return reject(applied.error().message);
     }
 

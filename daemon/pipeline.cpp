@@ -100,6 +100,8 @@ void Pipeline::process(FrameLease lease)
 
 void Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
 {
+    if (rawTap_)
+        rawTap_(frame, metadata);
     if (!renderer_)
         return;
     if (auto blended = renderer_->blend(frame, metadata, format_.fps); !blended)

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -46,6 +47,9 @@ public:
     bool hasRenderer() const { return renderer_ != nullptr; }
     // The renderer frames are blended with, for SceneControl's changes (owned here).
     OverlayRenderer *renderer() { return renderer_.get(); }
+    // Called with every source frame before the overlay is blended into it (the HTTP server's raw snapshots).
+    using FrameTap = std::function<void(const FrameView &, const FrameMetadata &)>;
+    void setRawTap(FrameTap tap) { rawTap_ = std::move(tap); }
     // Replaces the sinks; the old ones are flushed and closed first.
     void setSinks(std::vector<std::unique_ptr<SinkWorker>> sinks);
     // (Re)opens every sink for a stream format; returns the first failure, after trying all.
@@ -73,6 +77,7 @@ private:
 
     Logger &logger_;
     std::unique_ptr<OverlayRenderer> renderer_;
+    FrameTap rawTap_;
     std::vector<std::unique_ptr<SinkWorker>> sinks_;
     StreamFormat format_{};
 

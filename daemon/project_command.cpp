@@ -38,6 +38,28 @@ PointReport explainPoint(const Camera &camera, const glm::dvec3 &world, const Pr
     return report;
 }
 
+namespace {
+
+struct Projected {
+    std::vector<ProjectedPoint> points; // pixels in the viewport's origin
+    std::vector<PointReport> reports;
+};
+
+Projected projectAll(const Camera &camera, const std::vector<glm::dvec3> &world)
+{
+    Projected out;
+    out.points.resize(world.size());
+    camera.projectPoints(world, out.points);
+    for (size_t i = 0; i < world.size(); ++i)
+        out.reports.push_back(explainPoint(camera, world[i], out.points[i]));
+    // Pixels are memory order inside; the user reads them in the viewport's origin.
+    for (ProjectedPoint &point : out.points)
+        point.pixel = camera.viewport().toUser(point.pixel);
+    return out;
+}
+
+} // namespace
+
 std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
                             const std::vector<PointReport> &reports)
 {
@@ -76,6 +98,18 @@ std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vec
     return text;
 }
 
+std::string projectJson(const Camera &camera, const std::vector<glm::dvec3> &world)
+{
+    const Projected projected = projectAll(camera, world);
+    return projectionsJson(world, projected.points, projected.reports);
+}
+
+std::string projectText(const Camera &camera, const std::vector<glm::dvec3> &world)
+{
+    const Projected projected = projectAll(camera, world);
+    return projectionsText(world, projected.points, projected.reports);
+}
+
 int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates,
                    const std::string &size, Logger &logger)
 {
@@ -86,19 +120,10 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
     const auto configured = loadCameraLogged(configPath, logger, size);
     if (!configured)
         return kExitConfigError;
-    const Camera *camera = &configured->camera;
     std::vector<glm::dvec3> world;
     for (size_t i = 0; i < coordinates.size(); i += 3)
         world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);
-    std::vector<ProjectedPoint> points(world.size());
-    camera->projectPoints(world, points);
-    std::vector<PointReport> reports;
-    for (size_t i = 0; i < world.size(); ++i)
-        reports.push_back(explainPoint(*camera, world[i], points[i]));
-    // Pixels are memory order inside; the user reads them in the viewport's origin.
-    for (ProjectedPoint &point : points)
-        point.pixel = camera->viewport().toUser(point.pixel);
-    const std::string output = json ? projectionsJson(world, points, reports) : projectionsText(world, points, reports);
+    const std::string output = json ? projectJson(configured->camera, world) : projectText(configured->camera, world);
     std::fwrite(output.data(), 1, output.size(), stdout);
     return kExitOk;
 }

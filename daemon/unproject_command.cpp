@@ -4,7 +4,6 @@
 
 #include "daemon/commands.h"
 #include "daemon/json_text.h"
-#include "projection/geometry.h"
 
 namespace overlayd {
 
@@ -55,6 +54,39 @@ Unprojected unprojectOne(const Camera &camera, const Plane &plane, const glm::dv
 
 } // namespace
 
+std::string unprojectJson(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels)
+{
+    std::string output = "[";
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const Unprojected u = unprojectOne(camera, plane, pixels[i]);
+        output +=
+            std::string(i ? ",\n " : "") + "{\"pixel\":[" + jsonNumber(u.pixel.x) + "," + jsonNumber(u.pixel.y) + "]";
+        output += ",\"origin\":" + (u.ray ? vec(u.ray->origin) : "null");
+        output += ",\"direction\":" + (u.ray ? vec(u.ray->direction) : "null");
+        output += ",\"hit\":" + (u.hit ? vec(*u.hit) : "null");
+        output += ",\"reason\":" + (u.reason.empty() ? "null" : jsonString(u.reason)) + "}";
+    }
+    return output + "]\n";
+}
+
+std::string unprojectText(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels)
+{
+    std::string output;
+    for (const glm::dvec2 &pixel : pixels) {
+        const Unprojected u = unprojectOne(camera, plane, pixel);
+        output += "(" + fixed(u.pixel.x) + ", " + fixed(u.pixel.y) + ") -> ";
+        if (!u.ray) {
+            output += "no ray: " + u.reason + "\n";
+            continue;
+        }
+        output += "ray from " + readable(u.ray->origin) + " along " + readable(u.ray->direction) + "; ";
+        output += u.hit ? "meets the plane at " + readable(*u.hit) + ", " + fixed(glm::length(*u.hit - u.ray->origin)) +
+                              " m away\n"
+                        : "misses the plane: " + u.reason + "\n";
+    }
+    return output;
+}
+
 int unprojectCommand(const std::string &configPath, bool json, const std::vector<double> &planeValues,
                      const std::vector<double> &coordinates, Logger &logger)
 {
@@ -75,31 +107,11 @@ int unprojectCommand(const std::string &configPath, bool json, const std::vector
     const auto configured = loadCameraLogged(configPath, logger);
     if (!configured)
         return kExitConfigError;
-    const Camera *camera = &configured->camera;
-    std::string output = json ? "[" : "";
-    for (size_t i = 0; i < coordinates.size(); i += 2) {
-        const Unprojected u = unprojectOne(*camera, plane, {coordinates[i], coordinates[i + 1]});
-        const std::string pixel = "[" + jsonNumber(u.pixel.x) + "," + jsonNumber(u.pixel.y) + "]";
-        if (json) {
-            output += std::string(i ? ",\n " : "") + "{\"pixel\":" + pixel;
-            output += ",\"origin\":" + (u.ray ? vec(u.ray->origin) : "null");
-            output += ",\"direction\":" + (u.ray ? vec(u.ray->direction) : "null");
-            output += ",\"hit\":" + (u.hit ? vec(*u.hit) : "null");
-            output += ",\"reason\":" + (u.reason.empty() ? "null" : jsonString(u.reason)) + "}";
-            continue;
-        }
-        output += "(" + fixed(u.pixel.x) + ", " + fixed(u.pixel.y) + ") -> ";
-        if (!u.ray) {
-            output += "no ray: " + u.reason + "\n";
-            continue;
-        }
-        output += "ray from " + readable(u.ray->origin) + " along " + readable(u.ray->direction) + "; ";
-        output += u.hit ? "meets the plane at " + readable(*u.hit) + ", " + fixed(glm::length(*u.hit - u.ray->origin)) +
-                              " m away\n"
-                        : "misses the plane: " + u.reason + "\n";
-    }
-    if (json)
-        output += "]\n";
+    std::vector<glm::dvec2> pixels;
+    for (size_t i = 0; i < coordinates.size(); i += 2)
+        pixels.emplace_back(coordinates[i], coordinates[i + 1]);
+    const std::string output =
+        json ? unprojectJson(configured->camera, plane, pixels) : unprojectText(configured->camera, plane, pixels);
     std::fwrite(output.data(), 1, output.size(), stdout);
     return kExitOk;
 }

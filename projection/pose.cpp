@@ -134,6 +134,25 @@ Result<Pose> poseFromYawPitchRoll(const glm::dvec3 &position, double yawDeg, dou
     return poseFromOrientation(position, yaw * pitch * roll, CameraAxes::Body);
 }
 
+YawPitchRoll yawPitchRollOf(const Pose &pose)
+{
+    // world_from_body = Rz(yaw) Ry(pitch) Rx(roll); its first column is the optical axis, its last row gives roll.
+    const glm::dmat3 worldFromBody = glm::transpose(pose.rotation) * internalFromAxes(CameraAxes::Body);
+    YawPitchRoll out;
+    out.position = pose.position();
+    const double sinPitch = std::clamp(-worldFromBody[0][2], -1.0, 1.0);
+    out.pitchDeg = glm::degrees(std::asin(sinPitch));
+    if (std::abs(sinPitch) > 1.0 - 1e-12) {
+        // Gimbal lock: only yaw - roll (or yaw + roll) is defined; put it all in yaw.
+        out.yawDeg = glm::degrees(std::atan2(-worldFromBody[1][0], worldFromBody[1][1]));
+        out.rollDeg = 0.0;
+    } else {
+        out.yawDeg = glm::degrees(std::atan2(worldFromBody[0][1], worldFromBody[0][0]));
+        out.rollDeg = glm::degrees(std::atan2(worldFromBody[1][2], worldFromBody[2][2]));
+    }
+    return out;
+}
+
 Result<Pose> poseFromRt(const glm::dmat3 &rotation, const glm::dvec3 &translation)
 {
     if (auto status = checks::requireRotation(rotation, "extrinsic rotation R"); !status)

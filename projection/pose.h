@@ -43,6 +43,13 @@ Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &w
 // Position plus yaw, pitch, roll in degrees of the Body axes, ROS/aerospace order:
 // world_from_body = Rz(yaw) * Ry(pitch) * Rx(roll). With a Z-up world, positive pitch turns the optical axis down.
 Result<Pose> poseFromYawPitchRoll(const glm::dvec3 &position, double yawDeg, double pitchDeg, double rollDeg);
+// The inverse of poseFromYawPitchRoll: the camera's position and its Body axes' yaw, pitch (within [-90, 90]) and
+// roll in degrees. At pitch +-90 (looking straight down or up) yaw and roll share one angle: roll is reported 0.
+struct YawPitchRoll {
+    glm::dvec3 position{0.0};
+    double yawDeg = 0.0, pitchDeg = 0.0, rollDeg = 0.0;
+};
+YawPitchRoll yawPitchRollOf(const Pose &pose);
 // OpenCV/ROS extrinsics: x_optical = R * x_world + t, camera looking along +Z with Y down.
 Result<Pose> poseFromRt(const glm::dmat3 &rotation, const glm::dvec3 &translation);
 // OpenCV's rvec (Rodrigues axis * angle in radians) and tvec.

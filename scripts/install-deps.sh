@@ -9,10 +9,12 @@ packages=(
     libopencv-dev fonts-dejavu-core
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
     libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
+    libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies
     libgpiod-dev gpiod # GPIO lines (libgpiod 1.6, the v1 API); the tools are the independent client in tests/vm
     # Independent clients the tests check our output with.
     ffmpeg v4l-utils systemd
-    qemu-system-x86 busybox-static cpio kmod xz-utils python3 binutils make # tests/vm: the real-driver tier
+    curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
+    qemu-system-x86 busybox-static cpio kmod xz-utils python3 binutils make ustreamer # tests/vm: the real-driver tier
 )
 
 missing=()

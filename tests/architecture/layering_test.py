@@ -14,9 +14,10 @@ ALLOWED = {
     "overlay": {"base", "media", "projection"},
     "drivers": {"base", "media", "projection"},
     "gpio": {"base"},
+    "http": {"base"},
     "alignment": {"base", "projection"},
-    "config": {"base", "media", "projection", "overlay", "drivers", "gpio"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "alignment", "config"},
+    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "alignment", "config"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.

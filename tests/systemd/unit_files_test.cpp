@@ -66,7 +66,8 @@ fs::path stageUnit(const test::TempDir &dir, const std::string &unit, const std:
 }
 
 const std::map<std::string, std::string> units = {{"overlayd.service", "overlayd.service"},
-                                                  {"overlayd@.service", "overlayd@demo.service"}};
+                                                  {"overlayd@.service", "overlayd@demo.service"},
+                                                  {"overlayd-http@.service", "overlayd-http@demo.service"}};
 
 TEST(UnitFiles, InstalledUnitsAreConfigured)
 {

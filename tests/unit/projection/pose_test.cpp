@@ -200,3 +200,32 @@ TEST(Pose, EveryFormGivesAProperRotation)
 }
 
 } // namespace
+
+// yawPitchRollOf against the forward form, on random poses and at gimbal lock: the angles it gives rebuild the same
+// rotation (compared as matrices, the one meaning angles share), and away from lock they are the angles given.
+TEST(YawPitchRollOf, RebuildsTheRotationAndRecoversTheAngles)
+{
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> yaw(-179.0, 179.0), pitch(-89.0, 89.0), roll(-179.0, 179.0),
+        metres(-10.0, 10.0);
+    for (int i = 0; i < 500; ++i) {
+        const glm::dvec3 position(metres(random), metres(random), metres(random));
+        const double y = yaw(random), p = pitch(random), r = roll(random);
+        const Pose pose = *poseFromYawPitchRoll(position, y, p, r);
+        const YawPitchRoll back = yawPitchRollOf(pose);
+        EXPECT_NEAR(back.yawDeg, y, 1e-9);
+        EXPECT_NEAR(back.pitchDeg, p, 1e-9);
+        EXPECT_NEAR(back.rollDeg, r, 1e-9);
+        EXPECT_LT(glm::length(back.position - position), 1e-9);
+    }
+    for (const double p : {90.0, -90.0}) {
+        const Pose pose = *poseFromYawPitchRoll({1, 2, 3}, 30.0, p, 20.0);
+        const YawPitchRoll back = yawPitchRollOf(pose);
+        EXPECT_NEAR(back.pitchDeg, p, 1e-6);
+        EXPECT_EQ(back.rollDeg, 0.0);
+        const Pose rebuilt = *poseFromYawPitchRoll(back.position, back.yawDeg, back.pitchDeg, back.rollDeg);
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r)
+                EXPECT_NEAR(rebuilt.rotation[c][r], pose.rotation[c][r], 1e-6) << "pitch " << p;
+    }
+}

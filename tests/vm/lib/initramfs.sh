@@ -39,6 +39,7 @@ vmRunInitramfs() {
     vmStageLibcamera "$root"
     vmStageGpiod "$root"
     vmStageUdev "$root"
+    vmStageHttp "$root"
     cp -a "$work/sysroot/." "$root/"
     install -m755 "$VM_HERE/guest/init" "$root/init"
     cp -r "$VM_HERE/guest/lib.sh" "$VM_HERE/guest/checks" "$VM_HERE/configs" "$root/vm/"
@@ -66,6 +67,17 @@ vmStageGpiod() {
     done
     [ ${#tools[@]} -gt 0 ] || { vmLog "no gpiod tools (package gpiod) on the host: the GPIO checks will fail"; return 0; }
     vmCopyWithLibraries "$root" "${tools[@]}"
+}
+
+# The HTTP checks (checks/80-http-ustreamer.sh): curl as the client, Debian's µStreamer as the baseline server, and
+# the font overlayd draws text with (without it, OpenCV's Hershey font: a different cost than a real system's).
+vmStageHttp() {
+    local root=$1 tool font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+    for tool in /usr/bin/curl /usr/bin/ustreamer; do
+        if [ -x "$tool" ]; then vmCopyWithLibraries "$root" "$tool"; else vmLog "no $tool on the host: the HTTP check will fail"; fi
+    done
+    [ -e "$font" ] && install -D -m644 "$font" "$root$font"
+    return 0
 }
 
 # udevd, so that the guest has what a real system has: libcamera enumerates only devices udev has initialised, and

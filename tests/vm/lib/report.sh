@@ -19,6 +19,15 @@ vmFfprobeArtifacts() {
         [ "$got" = "${size%x*},${size#*x},$want,3" ]
         vmHostCheck "ffprobe-$name" $? "ffprobe reads $got (want ${size%x*},${size#*x},$want,3)"
     done
+    # The first megabytes of each /stream (checks/80-http-ustreamer.sh): multipart JPEG parts at 1280x720.
+    for file in "$VM_WORK"/share/out/http-*.mjpg; do
+        [ -e "$file" ] || continue
+        name=$(basename "$file" .mjpg)
+        got=$(ffprobe -v error -f mpjpeg -select_streams v:0 -show_entries stream=codec_name,width,height \
+            -of csv=p=0 "$file" 2>&1 | head -1)
+        [ "$got" = "mjpeg,1280,720" ]
+        vmHostCheck "ffprobe-$name" $? "ffprobe -f mpjpeg reads $got (want mjpeg,1280,720)"
+    done
 }
 
 # Prints the summary; returns 0 if every check passed and the guest finished.

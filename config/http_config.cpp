@@ -1,0 +1,55 @@
+// [http]: the server's address, limits and control mode, checked as far as a file can be (the address parses, an
+// open control API listens only locally, the token file is readable); whether the port is free is known only when
+// `run` binds it.
+#include "config/config_sections.h"
+
+#include <fstream>
+
+#include "http/listen_address.h"
+
+namespace overlayd::config {
+
+void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out)
+{
+    auto table = root.table("http");
+    if (!table)
+        return;
+    out.enabled = true;
+    std::optional<http::ListenAddress> address;
+    if (auto listen = table->string("listen")) {
+        out.listen = *listen;
+        if (auto parsed = http::parseListenAddress(*listen))
+            address = *parsed;
+        else
+            table->problem("listen", parsed.error().message);
+    } else {
+        address = *http::parseListenAddress(out.listen);
+    }
+    if (auto clients = table->integer("max_clients", 1, http::kMaxClients))
+        out.maxClients = unsigned(*clients);
+    if (auto fps = table->positive("stream_fps", http::kMaxStreamFps))
+        out.streamFps = *fps;
+    if (auto quality = table->integer("jpeg_quality", 1, 100))
+        out.jpegQuality = int(*quality);
+    if (auto control = table->choice<http::ControlMode>(
+            "control",
+            {{"off", http::ControlMode::Off}, {"token", http::ControlMode::Token}, {"open", http::ControlMode::Open}}))
+        out.control = *control;
+    if (out.control == http::ControlMode::Open && address && !address->isLocal())
+        table->problem("control", "\"open\" lets anyone who can connect change the scene: only on loopback or a "
+                                  "unix socket, not " +
+                                      address->describe() + " (use \"token\")");
+    if (auto page = table->string("page_dir"))
+        out.pageDirectory = resolvePath(baseDirectory, *page);
+    if (auto tokenFile = table->string("token_file"))
+        out.tokenFile = resolvePath(baseDirectory, *tokenFile);
+    if (out.control == http::ControlMode::Token) {
+        if (out.tokenFile.empty())
+            table->problem("token_file", "missing: control = \"token\" needs the file that holds the token");
+        else if (std::ifstream probe(out.tokenFile); !probe)
+            table->problem("token_file", "cannot read '" + out.tokenFile + "'");
+    }
+    table->finish();
+}
+
+} // namespace overlayd::config

@@ -1,0 +1,377 @@
+// The HTTP API's answers. JSON goes out through nlohmann::json; JSON coming in is read by config/ (camera changes)
+// or here (a layer's visibility, a slot's text, pixels), each with the limits the config file has.
+#include "daemon/http_api.h"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "config/camera_request.h"
+#include "daemon/commands.h"
+#include "daemon/daemon.h"
+#include "overlay/shapes/scene_checks.h"
+#include "projection/pose.h"
+
+namespace overlayd {
+
+namespace {
+
+using http::HttpResponse;
+using nlohmann::json;
+
+constexpr size_t kMaxApiPoints = 4096; // /api/project and /api/unproject, per request
+
+const char *sourceKindName(SourceKind kind)
+{
+    switch (kind) {
+    case SourceKind::Synthetic:
+        return "synthetic";
+    case SourceKind::Replay:
+        return "replay";
+    case SourceKind::V4l2:
+        return "v4l2";
+    case SourceKind::Libcamera:
+        return "libcamera";
+    }
+    return "?";
+}
+
+const char *stateName(Daemon::State state)
+{
+    switch (state) {
+    case Daemon::State::Idle:
+        return "idle";
+    case Daemon::State::Streaming:
+        return "streaming";
+    case Daemon::State::Waiting:
+        return "waiting";
+    case Daemon::State::Finished:
+        return "finished";
+    }
+    return "?";
+}
+
+json vec3(const glm::dvec3 &v)
+{
+    return json::array({v.x, v.y, v.z});
+}
+
+json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
+{
+    const YawPitchRoll ypr = yawPitchRollOf(spec.pose);
+    const glm::dquat orientation = glm::quat_cast(glm::transpose(spec.pose.rotation));
+    json out = {{"frame", spec.mountFrame},
+                {"origin", spec.viewport.origin == Origin::TopLeft ? "top-left" : "bottom-left"},
+                {"position", vec3(ypr.position)},
+                {"yaw", ypr.yawDeg},
+                {"pitch", ypr.pitchDeg},
+                {"roll", ypr.rollDeg},
+                {"pose",
+                 {{"position", vec3(ypr.position)},
+                  {"orientation", json::array({orientation.w, orientation.x, orientation.y, orientation.z})},
+                  {"axes", "opengl"}}}};
+    if (camera) {
+        // The pinhole the stream is drawn with (any intrinsics form, scaled to the stream's frame).
+        const glm::dmat4 &p = camera->projection().matrix();
+        const Viewport &viewport = camera->viewport();
+        const double width = viewport.window().width, height = viewport.window().height;
+        const double fx = p[0][0] * width / 2.0, fy = p[1][1] * height / 2.0;
+        out["intrinsics"] = {{"fx", fx},
+                             {"fy", fy},
+                             {"cx", (1.0 - p[2][0]) * width / 2.0},
+                             {"cy", (1.0 + p[2][1]) * height / 2.0},
+                             {"width", width},
+                             {"height", height},
+                             {"hfov", glm::degrees(2.0 * std::atan(width / (2.0 * fx)))},
+                             {"vfov", glm::degrees(2.0 * std::atan(height / (2.0 * fy)))}};
+    }
+    return out;
+}
+
+// Numbers separated by ',' ';' or spaces: "x,y,z;x,y,z".
+std::optional<std::vector<double>> numberList(const std::string &text)
+{
+    std::vector<double> out;
+    const char *p = text.data(), *end = p + text.size();
+    while (p < end) {
+        if (*p == ',' || *p == ';' || *p == ' ') {
+            ++p;
+            continue;
+        }
+        double value = 0.0;
+        const auto [next, error] = std::from_chars(p, end, value);
+        if (error != std::errc() || !std::isfinite(value))
+            return std::nullopt;
+        out.push_back(value);
+        p = next;
+    }
+    return out;
+}
+
+std::optional<json> parseBody(const std::string &body, std::string &why)
+{
+    try {
+        return json::parse(body);
+    } catch (const json::parse_error &error) {
+        why = std::string("the body is not JSON: ") + error.what();
+        return std::nullopt;
+    }
+}
+
+// Writes the whole file or nothing: a temporary beside it, renamed over it.
+Status writeAtomically(const std::string &path, const std::string &text)
+{
+    const std::string temporary = path + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.flush();
+        if (!out)
+            return makeError(ErrorCode::Io, "cannot write " + temporary);
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error)
+        return makeError(ErrorCode::Io, "cannot replace " + path + ": " + error.message());
+    return Ok{};
+}
+
+} // namespace
+
+HttpApi::HttpApi(Daemon &daemon, std::function<http::HttpCounters()> counters)
+    : daemon_(daemon), counters_(std::move(counters))
+{}
+
+HttpResponse HttpApi::handle(const http::HttpRequest &request)
+{
+    const std::string &path = request.path;
+    const bool get = request.method == "GET" || request.method == "HEAD";
+    constexpr std::string_view kLayers = "/api/layers/", kText = "/api/text/";
+    if (path == "/state")
+        return get ? state() : HttpResponse::error(405, "GET /state");
+    if (path == "/metrics")
+        return get ? metrics() : HttpResponse::error(405, "GET /metrics");
+    if (path == "/api/camera")
+        return request.method == "PUT" ? putCamera(request) : HttpResponse::error(405, "PUT /api/camera");
+    if (path.rfind(kLayers, 0) == 0)
+        return request.method == "PUT" ? putLayer(path.substr(kLayers.size()), request)
+                                       : HttpResponse::error(405, "PUT /api/layers/NAME");
+    if (path.rfind(kText, 0) == 0)
+        return request.method == "PUT" ? putText(path.substr(kText.size()), request)
+                                       : HttpResponse::error(405, "PUT /api/text/SLOT");
+    if (path == "/api/project")
+        return get ? project(request) : HttpResponse::error(405, "GET /api/project?points=x,y,z;...");
+    if (path == "/api/unproject")
+        return request.method == "POST" ? unproject(request) : HttpResponse::error(405, "POST /api/unproject");
+    if (path == "/api/save")
+        return request.method == "POST" ? save() : HttpResponse::error(405, "POST /api/save");
+    return HttpResponse::error(404, "no such path: " + path);
+}
+
+double HttpApi::measuredFps()
+{
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - sampleTime_).count();
+    const uint64_t frames = daemon_.pipeline().framesIn();
+    if (seconds >= 1.0) {
+        fps_ = double(frames - sampleFrames_) / seconds;
+        sampleTime_ = now;
+        sampleFrames_ = frames;
+    }
+    return fps_;
+}
+
+HttpResponse HttpApi::state()
+{
+    const DaemonConfig &config = daemon_.config();
+    const StreamFormat &format = daemon_.pipeline().format();
+    SceneControl &scene = daemon_.scene();
+    json source = {{"kind", sourceKindName(config.source.kind)},
+                   {"state", stateName(daemon_.state())},
+                   {"frames", daemon_.pipeline().framesIn()},
+                   {"fps_measured", measuredFps()}};
+    if (config.source.kind == SourceKind::V4l2)
+        source["device"] = config.source.v4l2.device;
+    if (format.format)
+        source.update({{"format", std::string(format.format->name)},
+                       {"width", format.width},
+                       {"height", format.height},
+                       {"fps", format.fps}});
+    json layers = json::array();
+    for (const std::string &layer : scene.layerNames())
+        layers.push_back({{"name", layer}, {"visible", scene.layerVisible(layer)}});
+    json slots = json::object();
+    for (const std::string &slot : textSlotNames(scene.scene()))
+        slots[slot] = scene.slotText(slot);
+    json sinks = json::array();
+    for (const auto &sink : daemon_.pipeline().sinks()) {
+        const SinkCounters counters = sink->counters();
+        sinks.push_back({{"name", sink->describe()},
+                         {"written", counters.written},
+                         {"dropped", counters.dropped},
+                         {"failed", counters.failed}});
+    }
+    const http::HttpCounters http = counters_();
+    const unsigned width = format.format ? format.width : config.source.width;
+    const unsigned height = format.format ? format.height : config.source.height;
+    json out = {{"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()},
+                {"source", source},
+                {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
+                {"layers", layers},
+                {"text_slots", slots},
+                {"sinks", sinks},
+                {"http",
+                 {{"connections", http.connections},
+                  {"stream_clients", http.streamClients},
+                  {"stream_fps", http.streamFps},
+                  {"parts_sent", http.partsSent},
+                  {"requests", http.requests}}}};
+    if (!daemon_.gpio().empty())
+        out["gpio"] = daemon_.gpio().describe();
+    return HttpResponse::json(200, out.dump());
+}
+
+HttpResponse HttpApi::metrics()
+{
+    const http::HttpCounters http = counters_();
+    std::string text;
+    const auto metric = [&text](const char *name, const char *type, const char *help, double value,
+                                const std::string &labels = {}) {
+        if (labels.empty() || text.find(std::string("# TYPE ") + name + " ") == std::string::npos)
+            text += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
+        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + json(value).dump() + "\n";
+    };
+    metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
+    metric("overlayd_source_frames_total", "counter", "Frames the source delivered.",
+           double(daemon_.pipeline().framesIn()));
+    metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
+    metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
+           daemon_.state() == Daemon::State::Streaming ? 1.0 : 0.0);
+    for (const auto &sink : daemon_.pipeline().sinks()) {
+        const SinkCounters counters = sink->counters();
+        std::string label = "sink=" + json(sink->describe()).dump();
+        metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
+        metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
+               label);
+        metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
+               label);
+    }
+    metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
+    metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
+    metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));
+    metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
+    metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.", double(http.refused));
+    HttpResponse response = HttpResponse::json(200, text);
+    response.contentType = "text/plain; version=0.0.4; charset=utf-8";
+    return response;
+}
+
+HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
+{
+    SceneControl &scene = daemon_.scene();
+    const StreamFormat &format = daemon_.pipeline().format();
+    const unsigned width = format.format ? format.width : daemon_.config().source.width;
+    const unsigned height = format.format ? format.height : daemon_.config().source.height;
+    auto spec = cameraFromJson(request.body, scene.camera(), width, height);
+    if (!spec)
+        return HttpResponse::error(400, spec.error().message);
+    // Anything but the pose changed: save writes the intrinsics too.
+    CameraSpec samePose = *spec;
+    samePose.pose = scene.camera().pose;
+    const bool intrinsicsChange = !(samePose == scene.camera());
+    if (auto applied = scene.apply(CameraChange{*spec}); !applied)
+        return HttpResponse::error(400, "camera: " + applied.error().message);
+    intrinsicsChanged_ = intrinsicsChanged_ || intrinsicsChange;
+    return HttpResponse::json(200, cameraJson(scene.camera(), scene.cameraFor(width, height)).dump());
+}
+
+HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest &request)
+{
+    SceneControl &scene = daemon_.scene();
+    const auto names = scene.layerNames();
+    if (std::find(names.begin(), names.end(), layer) == names.end())
+        return HttpResponse::error(404, "no layer '" + layer + "' in the scene");
+    std::string why;
+    const auto body = parseBody(request.body, why);
+    if (!body)
+        return HttpResponse::error(400, why);
+    if (!body->is_object() || !body->contains("visible") || !(*body)["visible"].is_boolean() || body->size() != 1)
+        return HttpResponse::error(400, "visible: expected {\"visible\": true|false}");
+    const bool visible = (*body)["visible"].get<bool>();
+    if (auto applied = scene.apply(LayerChange{layer, visible}); !applied)
+        return HttpResponse::error(400, applied.error().message);
+    return HttpResponse::json(200, json({{"name", layer}, {"visible", visible}}).dump());
+}
+
+HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &request)
+{
+    const auto slots = textSlotNames(daemon_.scene().scene());
+    if (std::find(slots.begin(), slots.end(), slot) == slots.end())
+        return HttpResponse::error(404, "no text in the scene shows the slot '" + slot + "' ({slot:" + slot + "})");
+    std::string why;
+    const auto body = parseBody(request.body, why);
+    if (!body)
+        return HttpResponse::error(400, why);
+    if (!body->is_object() || !body->contains("text") || !(*body)["text"].is_string() || body->size() != 1)
+        return HttpResponse::error(400, "text: expected {\"text\": \"...\"}");
+    const std::string text = (*body)["text"].get<std::string>();
+    if (auto applied = daemon_.scene().apply(TextChange{slot, text}); !applied)
+        return HttpResponse::error(400, "text: " + applied.error().message);
+    return HttpResponse::json(200, json({{"slot", slot}, {"text", text}}).dump());
+}
+
+HttpResponse HttpApi::project(const http::HttpRequest &request)
+{
+    const auto it = request.query.find("points");
+    const auto numbers = it == request.query.end() ? std::nullopt : numberList(it->second);
+    if (!numbers || numbers->empty() || numbers->size() % 3 != 0 || numbers->size() / 3 > kMaxApiPoints)
+        return HttpResponse::error(400, "points: expected x,y,z;x,y,z;... (at most " + std::to_string(kMaxApiPoints) +
+                                            " finite points)");
+    const StreamFormat &format = daemon_.pipeline().format();
+    auto camera = daemon_.scene().cameraFor(format.width, format.height);
+    if (!format.format || !camera)
+        return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");
+    std::vector<glm::dvec3> world;
+    for (size_t i = 0; i < numbers->size(); i += 3)
+        world.emplace_back((*numbers)[i], (*numbers)[i + 1], (*numbers)[i + 2]);
+    return HttpResponse::json(200, projectJson(*camera, world));
+}
+
+HttpResponse HttpApi::unproject(const http::HttpRequest &request)
+{
+    std::string why;
+    const auto body = parseBody(request.body, why);
+    if (!body)
+        return HttpResponse::error(400, why);
+    const json *pixels = body->is_object() && body->contains("pixels") ? &(*body)["pixels"] : nullptr;
+    if (!pixels || !pixels->is_array() || pixels->empty() || pixels->size() > kMaxApiPoints)
+        return HttpResponse::error(400, "pixels: expected {\"pixels\": [[u, v], ...]} with 1 to " +
+                                            std::to_string(kMaxApiPoints) + " pixels");
+    std::vector<glm::dvec2> uv;
+    for (const json &pixel : *pixels) {
+        if (!pixel.is_array() || pixel.size() != 2 || !pixel[0].is_number() || !pixel[1].is_number())
+            return HttpResponse::error(400, "pixels: each pixel is [u, v], two numbers");
+        uv.emplace_back(pixel[0].get<double>(), pixel[1].get<double>());
+    }
+    const StreamFormat &format = daemon_.pipeline().format();
+    auto camera = daemon_.scene().cameraFor(format.width, format.height);
+    if (!format.format || !camera)
+        return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");
+    return HttpResponse::json(200, unprojectJson(*camera, Plane{}, uv));
+}
+
+HttpResponse HttpApi::save()
+{
+    const std::string &configPath = daemon_.config().path;
+    auto text = liveDropInText(daemon_.scene().camera(), intrinsicsChanged_);
+    if (!text)
+        return HttpResponse::error(400, text.error().message);
+    const std::string path = liveDropInPath(configPath);
+    if (auto written = writeAtomically(path, *text); !written)
+        return HttpResponse::error(500, written.error().message);
+    return HttpResponse::json(200, json({{"saved", path}}).dump());
+}
+
+} // namespace overlayd

@@ -1,0 +1,44 @@
+// HttpApi: what /state, /metrics and /api/... answer. Every change goes through SceneControl, validated by the
+// config file's own readers; a refused change answers 400 naming the field and changes nothing. Loop thread only.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+
+#include "http/http_server.h"
+
+namespace overlayd {
+
+class Daemon;
+
+class HttpApi
+{
+public:
+    // counters: the server's, for /state and /metrics (the server is created after the API it calls).
+    HttpApi(Daemon &daemon, std::function<http::HttpCounters()> counters);
+
+    http::HttpResponse handle(const http::HttpRequest &request);
+
+private:
+    http::HttpResponse state();
+    http::HttpResponse metrics();
+    http::HttpResponse putCamera(const http::HttpRequest &request);
+    http::HttpResponse putLayer(const std::string &layer, const http::HttpRequest &request);
+    http::HttpResponse putText(const std::string &slot, const http::HttpRequest &request);
+    http::HttpResponse project(const http::HttpRequest &request);
+    http::HttpResponse unproject(const http::HttpRequest &request);
+    http::HttpResponse save();
+    double measuredFps();
+
+    Daemon &daemon_;
+    std::function<http::HttpCounters()> counters_;
+    const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+    bool intrinsicsChanged_ = false; // save writes intrinsics only when the API changed them
+    // fps measured between two samples at least a second apart
+    std::chrono::steady_clock::time_point sampleTime_ = started_;
+    uint64_t sampleFrames_ = 0;
+    double fps_ = 0.0;
+};
+
+} // namespace overlayd

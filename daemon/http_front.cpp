@@ -1,0 +1,134 @@
+#include "daemon/http_front.h"
+
+namespace overlayd {
+
+namespace {
+
+http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
+{
+    if (!feed) {
+        auto created = http::JpegFeed::create();
+        // An eventfd that cannot be made means the process is out of fds at start-up: nothing else would work.
+        if (!created)
+            std::abort();
+        feed = std::move(*created);
+    }
+    return *feed;
+}
+
+} // namespace
+
+HttpFront::HttpFront(Logger &logger, Daemon &daemon)
+    : logger_(logger), api_(daemon, [this] { return server_ ? server_->counters() : http::HttpCounters{}; }),
+      rawTap_(feedOrAbort(feed_), quality_)
+{}
+
+HttpFront::~HttpFront()
+{
+    removeFromLoop();
+}
+
+Result<std::unique_ptr<http::HttpServer>> HttpFront::startServer(const http::HttpOptions &options)
+{
+    return http::HttpServer::start(
+        options, *feed_, [this](const http::HttpRequest &request) { return api_.handle(request); }, logger_);
+}
+
+Status HttpFront::configure(const http::HttpOptions &options)
+{
+    if (options == options_ && (server_ != nullptr) == options.enabled)
+        return Ok{};
+    if (!timeout_) {
+        for (auto *timer : {&timeout_, &tick_}) {
+            auto created = Timer::create();
+            if (!created)
+                return created.error();
+            timer->emplace(std::move(*created));
+        }
+    }
+    // The old server lets go of its address first: the new one usually listens on the same.
+    const http::HttpOptions previous = options_;
+    const bool wasRunning = server_ != nullptr;
+    removeFromLoop();
+    server_.reset();
+    if (options.enabled) {
+        auto started = startServer(options);
+        if (!started) {
+            if (wasRunning)
+                if (auto again = startServer(previous))
+                    server_ = std::move(*again);
+            addToLoop();
+            return started.error();
+        }
+        server_ = std::move(*started);
+        logger_.notice(cat("http: serving on http://", server_->address().describe(), "/"));
+    }
+    options_ = options;
+    quality_ = options.jpegQuality;
+    addToLoop();
+    return Ok{};
+}
+
+void HttpFront::attachLoop(EventLoop *loop)
+{
+    removeFromLoop();
+    loop_ = loop;
+    addToLoop();
+}
+
+void HttpFront::addToLoop()
+{
+    if (!loop_ || !server_)
+        return;
+    watchedFd_ = server_->fd();
+    (void)loop_->add(watchedFd_, [this] { pump(); });
+    (void)loop_->add(timeout_->fd(), [this] {
+        timeout_->consume();
+        pump();
+    });
+    (void)loop_->add(tick_->fd(), [this] {
+        tick_->consume();
+        server_->onTick();
+        pump();
+    });
+    (void)loop_->add(feed_->wakeFd(), [this] {
+        server_->onJpeg();
+        pump();
+    });
+    (void)tick_->arm(std::chrono::seconds(1), std::chrono::seconds(1));
+    pump();
+}
+
+void HttpFront::removeFromLoop()
+{
+    if (!loop_ || watchedFd_ < 0)
+        return;
+    loop_->remove(watchedFd_);
+    loop_->remove(timeout_->fd());
+    loop_->remove(tick_->fd());
+    loop_->remove(feed_->wakeFd());
+    tick_->disarm();
+    timeout_->disarm();
+    watchedFd_ = -1;
+}
+
+void HttpFront::pump()
+{
+    server_->run();
+    // libmicrohttpd's next deadline (connection timeouts); at least a millisecond, so that a zero does not spin.
+    if (const auto timeout = server_->timeout())
+        (void)timeout_->arm(std::max(*timeout, std::chrono::milliseconds(1)));
+    else
+        timeout_->disarm();
+}
+
+std::unique_ptr<SinkWorker> HttpFront::makeSink()
+{
+    SinkOptions options;
+    options.path = "http";
+    options.queueDepth = 1; // the newest frame is the one worth encoding
+    options.dropPolicy = DropPolicy::DropOldest;
+    return std::make_unique<SinkWorker>(std::make_unique<JpegFeedSink>(*feed_, quality_), options, logger_);
+}
+
+} // namespace overlayd

@@ -1,0 +1,54 @@
+// HttpFront: the daemon's HTTP side. It owns the JPEG feed, the server and the API, wires the server into the
+// event loop (its epoll fd, a timeout timer, a one-second tick, the feed's wake-up fd) and makes the sink that
+// encodes the stream. The scene changes it asks for go through SceneControl like every other change.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <optional>
+
+#include "daemon/event_loop.h"
+#include "daemon/http_api.h"
+#include "daemon/http_frames.h"
+#include "daemon/sink_worker.h"
+#include "http/http_server.h"
+
+namespace overlayd {
+
+class HttpFront
+{
+public:
+    HttpFront(Logger &logger, Daemon &daemon);
+    ~HttpFront();
+
+    // Starts the server, restarts it when the options changed, or stops it (options.enabled false). A server that
+    // cannot start (the port is taken, the token unreadable) is an error, and the server that ran keeps running.
+    Status configure(const http::HttpOptions &options);
+    bool running() const { return server_ != nullptr; }
+    // Adds the server's fds to the loop (null: removes them).
+    void attachLoop(EventLoop *loop);
+
+    // The sink worker that encodes the overlaid stream for the feed (one JPEG per frame, only while wanted).
+    std::unique_ptr<SinkWorker> makeSink();
+    // The pipeline's tap before the overlay, for raw snapshots.
+    void onRawFrame(const FrameView &frame, const FrameMetadata &metadata) { rawTap_(frame, metadata); }
+
+private:
+    Result<std::unique_ptr<http::HttpServer>> startServer(const http::HttpOptions &options);
+    void addToLoop();
+    void removeFromLoop();
+    void pump(); // libmicrohttpd's work, then its next deadline on the timer
+
+    Logger &logger_;
+    std::atomic<int> quality_{80};
+    std::unique_ptr<http::JpegFeed> feed_;
+    std::optional<Timer> timeout_, tick_;
+    HttpApi api_;
+    RawSnapshotTap rawTap_;
+    std::unique_ptr<http::HttpServer> server_;
+    http::HttpOptions options_;
+    EventLoop *loop_ = nullptr;
+    int watchedFd_ = -1; // the server's epoll fd while in the loop
+};
+
+} // namespace overlayd

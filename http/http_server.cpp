@@ -1,0 +1,554 @@
+// The server's libmicrohttpd side: request bodies within their limit, the control check, snapshot waits and MJPEG
+// streams as suspended connections, and every answer with the headers a browser should see.
+#include "http/http_server.h"
+
+#include <arpa/inet.h>
+#include <cstdarg>
+#include <cstring>
+#include <fstream>
+#include <microhttpd.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+
+#include "http/page_files.h"
+
+namespace overlayd::http {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr const char *kBoundary = "overlaydframe";
+constexpr auto kIdleResend = std::chrono::seconds(1);   // an idle stream repeats its last frame this often
+constexpr auto kSnapshotWait = std::chrono::seconds(3); // then /snapshot answers 503
+constexpr size_t kStreamBlockBytes = 64 * 1024;         // what libmicrohttpd asks the stream for at once
+
+std::string peerOf(MHD_Connection *connection)
+{
+    const MHD_ConnectionInfo *info = MHD_get_connection_info(connection, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
+    if (!info || !info->client_addr)
+        return "unix";
+    char text[INET6_ADDRSTRLEN] = "?";
+    if (info->client_addr->sa_family == AF_INET)
+        inet_ntop(AF_INET, &reinterpret_cast<const sockaddr_in *>(info->client_addr)->sin_addr, text, sizeof(text));
+    else if (info->client_addr->sa_family == AF_INET6)
+        inet_ntop(AF_INET6, &reinterpret_cast<const sockaddr_in6 *>(info->client_addr)->sin6_addr, text, sizeof(text));
+    else
+        return "unix";
+    return text;
+}
+
+std::string header(MHD_Connection *connection, const char *name)
+{
+    const char *value = MHD_lookup_connection_value(connection, MHD_HEADER_KIND, name);
+    return value ? value : "";
+}
+
+MHD_Result collectQuery(void *out, MHD_ValueKind, const char *key, const char *value)
+{
+    auto &query = *static_cast<std::map<std::string, std::string> *>(out);
+    query[key ? key : ""] = value ? value : "";
+    return MHD_YES;
+}
+
+// Equal strings in time that does not depend on where they differ.
+bool sameToken(const std::string &given, const std::string &expected)
+{
+    unsigned char difference = given.size() == expected.size() ? 0 : 1;
+    for (size_t i = 0; i < given.size(); ++i)
+        difference |= static_cast<unsigned char>(given[i] ^ expected[i % std::max<size_t>(expected.size(), 1)]);
+    return difference == 0 && !expected.empty();
+}
+
+Result<std::string> readToken(const std::string &path)
+{
+    std::ifstream in(path);
+    std::string token;
+    if (!in || !std::getline(in, token))
+        return makeError(ErrorCode::NotFound, "http.token_file '" + path + "': cannot read it (control = \"token\")");
+    while (!token.empty() && (token.back() == '\r' || token.back() == ' ' || token.back() == '\t'))
+        token.pop_back();
+    if (token.empty() || token.size() > kMaxTokenBytes)
+        return makeError(ErrorCode::InvalidArgument, "http.token_file '" + path +
+                                                         "': the first line must hold a token of 1 to " +
+                                                         std::to_string(kMaxTokenBytes) + " characters");
+    return token;
+}
+
+} // namespace
+
+// One TCP connection, between libmicrohttpd's "started" and "closed" notices.
+struct HttpServer::Connection {
+    int fd = -1;
+    bool inRequest = false; // a request's headers are complete and it is not finished yet
+};
+
+struct HttpServer::Exchange {
+    std::string body;
+    bool tooLarge = false;
+    bool waiting = false; // suspended until a JPEG newer than afterGeneration is published
+    bool raw = false;
+    uint64_t afterGeneration = 0;
+    Clock::time_point deadline{};
+};
+
+struct HttpServer::StreamClient {
+    HttpServer *server = nullptr;
+    MHD_Connection *connection = nullptr;
+    std::string partHeader;
+    std::shared_ptr<const JpegFrame> frame;
+    size_t offset = 0; // into partHeader + frame + trailer
+    bool first = true;
+    uint64_t lastGeneration = 0;
+    Clock::time_point nextDue{}, lastSent{};
+    // parts per second over the last window, for /state
+    Clock::time_point windowStart = Clock::now();
+    unsigned windowParts = 0;
+    double fps = 0.0;
+};
+
+HttpResponse HttpResponse::json(unsigned status, std::string body)
+{
+    HttpResponse response;
+    response.status = status;
+    response.body = std::move(body);
+    if (response.body.empty() || response.body.back() != '\n')
+        response.body += '\n';
+    return response;
+}
+
+HttpResponse HttpResponse::error(unsigned status, const std::string &message)
+{
+    std::string escaped;
+    for (const char c : message) {
+        if (c == '"' || c == '\\')
+            escaped += '\\';
+        if (static_cast<unsigned char>(c) < 0x20)
+            escaped += ' ';
+        else
+            escaped += c;
+    }
+    return json(status, "{\"error\":\"" + escaped + "\"}");
+}
+
+struct MhdCallbacks {
+    static MHD_Result access(void *self, MHD_Connection *connection, const char *url, const char *method, const char *,
+                             const char *uploadData, size_t *uploadSize, void **state)
+    {
+        auto &server = *static_cast<HttpServer *>(self);
+        if (!*state) {
+            *state = new HttpServer::Exchange;
+            if (const MHD_ConnectionInfo *info =
+                    MHD_get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT))
+                if (auto *open = static_cast<HttpServer::Connection *>(info->socket_context))
+                    open->inRequest = true;
+            // A body announced over the limit is refused before any of it is read.
+            const std::string length = header(connection, MHD_HTTP_HEADER_CONTENT_LENGTH);
+            if (!length.empty() && std::strtoull(length.c_str(), nullptr, 10) > kMaxBodyBytes)
+                return MHD_Result(server.answer(
+                    connection,
+                    HttpResponse::error(413, "the body is over " + std::to_string(kMaxBodyBytes) + " bytes")));
+            return MHD_YES;
+        }
+        auto &exchange = *static_cast<HttpServer::Exchange *>(*state);
+        if (*uploadSize) {
+            if (exchange.body.size() + *uploadSize > kMaxBodyBytes)
+                exchange.tooLarge = true;
+            else
+                exchange.body.append(uploadData, *uploadSize);
+            *uploadSize = 0;
+            return MHD_YES;
+        }
+        return MHD_Result(server.access(connection, url ? url : "", method ? method : "", exchange));
+    }
+
+    static void completed(void *self, MHD_Connection *connection, void **state, MHD_RequestTerminationCode)
+    {
+        if (const MHD_ConnectionInfo *info = MHD_get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT))
+            if (auto *open = static_cast<HttpServer::Connection *>(info->socket_context))
+                open->inRequest = false; // a keep-alive connection waits for its next request
+        auto *exchange = static_cast<HttpServer::Exchange *>(*state);
+        if (exchange && exchange->waiting)
+            static_cast<HttpServer *>(self)->feed_.addSnapshotWaiter(exchange->raw, -1);
+        delete exchange;
+        *state = nullptr;
+    }
+
+    static void connection(void *self, MHD_Connection *connection, void **socketState,
+                           MHD_ConnectionNotificationCode change)
+    {
+        auto &server = *static_cast<HttpServer *>(self);
+        if (change == MHD_CONNECTION_NOTIFY_STARTED) {
+            auto *open = new HttpServer::Connection;
+            if (const MHD_ConnectionInfo *info = MHD_get_connection_info(connection, MHD_CONNECTION_INFO_CONNECTION_FD))
+                open->fd = info->connect_fd;
+            *socketState = open;
+            server.connections_.push_back(open);
+            ++server.counters_.connections;
+            return;
+        }
+        auto *open = static_cast<HttpServer::Connection *>(*socketState);
+        std::erase(server.connections_, open);
+        delete open;
+        *socketState = nullptr;
+        if (server.counters_.connections > 0)
+            --server.counters_.connections;
+    }
+
+    static ssize_t readStream(void *client, uint64_t, char *buffer, size_t max)
+    {
+        auto &stream = *static_cast<HttpServer::StreamClient *>(client);
+        return stream.server->fillStream(stream, buffer, max);
+    }
+
+    static void freeStream(void *client)
+    {
+        auto *stream = static_cast<HttpServer::StreamClient *>(client);
+        HttpServer &server = *stream->server;
+        std::erase(server.streams_, stream);
+        server.feed_.setWatchers(unsigned(server.streams_.size()));
+        delete stream;
+    }
+
+    static void log(void *self, const char *format, va_list arguments)
+    {
+        char text[512];
+        std::vsnprintf(text, sizeof(text), format, arguments);
+        std::string line = text;
+        while (!line.empty() && line.back() == '\n')
+            line.pop_back();
+        static_cast<HttpServer *>(self)->logger_.debug("http: " + line);
+    }
+};
+
+Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options, JpegFeed &feed, ApiHandler api,
+                                                      Logger &logger)
+{
+    auto address = parseListenAddress(options.listen);
+    if (!address)
+        return makeError(address.error().code, "http.listen " + address.error().message);
+    if (options.control == ControlMode::Open && !address->isLocal())
+        return makeError(ErrorCode::InvalidArgument,
+                         "http.control = \"open\" only on loopback or a unix socket, not " + address->describe());
+    std::unique_ptr<HttpServer> server(new HttpServer(options, *address, feed, std::move(api), logger));
+    if (options.control == ControlMode::Token) {
+        auto token = readToken(options.tokenFile);
+        if (!token)
+            return token.error();
+        server->token_ = *token;
+    }
+    if (server->options_.pageDirectory.empty())
+        server->options_.pageDirectory = defaultPageDirectory();
+    auto socket = openListeningSocket(*address, int(options.maxClients));
+    if (!socket)
+        return socket.error();
+    server->daemon_ = MHD_start_daemon(
+        MHD_USE_EPOLL | MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG, 0, nullptr, nullptr, &MhdCallbacks::access,
+        server.get(), MHD_OPTION_LISTEN_SOCKET, socket->get(), MHD_OPTION_CONNECTION_LIMIT, options.maxClients,
+        MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutSec, MHD_OPTION_CONNECTION_MEMORY_LIMIT, kConnectionMemoryBytes,
+        MHD_OPTION_NOTIFY_COMPLETED, &MhdCallbacks::completed, server.get(), MHD_OPTION_NOTIFY_CONNECTION,
+        &MhdCallbacks::connection, server.get(), MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(),
+        MHD_OPTION_END);
+    if (!server->daemon_)
+        return makeError(ErrorCode::Io, "http: libmicrohttpd could not start on " + address->describe());
+    [[maybe_unused]] const int owned = socket->release(); // libmicrohttpd closes it when it stops
+    return server;
+}
+
+HttpServer::~HttpServer()
+{
+    if (!daemon_)
+        return;
+    // Suspended connections must be resumed before the daemon stops (libmicrohttpd's rule); streams then end.
+    stopping_ = true;
+    resumeAll();
+    MHD_run(daemon_);
+    MHD_stop_daemon(daemon_);
+}
+
+int HttpServer::fd() const
+{
+    const MHD_DaemonInfo *info = MHD_get_daemon_info(daemon_, MHD_DAEMON_INFO_EPOLL_FD);
+    return info ? info->epoll_fd : -1;
+}
+
+void HttpServer::run()
+{
+    // A connection still ready after one pass (a stream part larger than a block) is served again at once, up to a
+    // bound, rather than a loop turn later.
+    constexpr int kMaxPasses = 16;
+    for (int pass = 0; pass < kMaxPasses; ++pass) {
+        MHD_run(daemon_);
+        MHD_UNSIGNED_LONG_LONG ms = 1;
+        const bool again = closeHungUp() || (MHD_get_timeout(daemon_, &ms) == MHD_YES && ms == 0);
+        if (!again)
+            break;
+    }
+}
+
+bool HttpServer::closeHungUp()
+{
+    // libmicrohttpd 0.9.75's epoll mode misses the end of a connection whose client sent part of a request and
+    // closed at once (the FIN arrives with the data; the edge-triggered read never looks again), and would hold its
+    // slot until the idle timeout: a few such clients a second would fill max_clients. Such a connection can never
+    // complete its request; shutting it down here gives libmicrohttpd an event it does see.
+    std::vector<pollfd> waiting;
+    for (const Connection *open : connections_)
+        if (!open->inRequest && open->fd >= 0)
+            waiting.push_back({open->fd, POLLRDHUP, 0});
+    if (waiting.empty() || ::poll(waiting.data(), waiting.size(), 0) <= 0)
+        return false;
+    bool closed = false;
+    for (const pollfd &p : waiting)
+        if (p.revents & (POLLRDHUP | POLLHUP | POLLERR)) {
+            ::shutdown(p.fd, SHUT_RDWR);
+            closed = true;
+        }
+    return closed;
+}
+
+std::optional<std::chrono::milliseconds> HttpServer::timeout() const
+{
+    MHD_UNSIGNED_LONG_LONG ms = 0;
+    if (MHD_get_timeout(daemon_, &ms) != MHD_YES)
+        return std::nullopt;
+    return std::chrono::milliseconds(ms);
+}
+
+void HttpServer::resumeAll()
+{
+    std::vector<MHD_Connection *> waiting;
+    waiting.swap(suspended_);
+    for (MHD_Connection *connection : waiting)
+        MHD_resume_connection(connection);
+}
+
+void HttpServer::onJpeg()
+{
+    feed_.consumeWake();
+    resumeAll();
+    MHD_run(daemon_);
+}
+
+void HttpServer::onTick()
+{
+    const Clock::time_point now = Clock::now();
+    for (StreamClient *stream : streams_) {
+        const double seconds = std::chrono::duration<double>(now - stream->windowStart).count();
+        if (seconds >= 1.0) {
+            stream->fps = stream->windowParts / seconds;
+            stream->windowParts = 0;
+            stream->windowStart = now;
+        }
+    }
+    resumeAll(); // idle streams resend, and snapshot waits past their deadline answer
+    MHD_run(daemon_);
+}
+
+HttpCounters HttpServer::counters() const
+{
+    HttpCounters out = counters_;
+    out.streamClients = unsigned(streams_.size());
+    for (const StreamClient *stream : streams_)
+        out.streamFps.push_back(stream->fps);
+    return out;
+}
+
+int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
+{
+    MHD_Response *r = MHD_create_response_from_buffer(response.body.size(), const_cast<char *>(response.body.data()),
+                                                      MHD_RESPMEM_MUST_COPY);
+    if (!r)
+        return MHD_NO;
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, response.contentType.c_str());
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    bool cacheSet = false;
+    for (const auto &[name, value] : response.headers) {
+        MHD_add_response_header(r, name.c_str(), value.c_str());
+        cacheSet = cacheSet || name == MHD_HTTP_HEADER_CACHE_CONTROL;
+    }
+    if (!cacheSet)
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    const MHD_Result queued = MHD_queue_response(connection, response.status, r);
+    MHD_destroy_response(r);
+    ++counters_.requests;
+    if (response.status >= 400)
+        ++counters_.refused;
+    return queued;
+}
+
+std::optional<HttpResponse> HttpServer::refuseControl(MHD_Connection *connection) const
+{
+    switch (options_.control) {
+    case ControlMode::Open:
+        return std::nullopt;
+    case ControlMode::Off:
+        return HttpResponse::error(403, "control is off (http.control = \"off\")");
+    case ControlMode::Token:
+        break;
+    }
+    const std::string authorization = header(connection, MHD_HTTP_HEADER_AUTHORIZATION);
+    constexpr std::string_view kBearer = "Bearer ";
+    if (authorization.rfind(kBearer, 0) == 0 && sameToken(authorization.substr(kBearer.size()), token_))
+        return std::nullopt;
+    HttpResponse refused = HttpResponse::error(401, "control needs the token: Authorization: Bearer TOKEN");
+    refused.headers.emplace_back(MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer");
+    return refused;
+}
+
+int HttpServer::access(MHD_Connection *connection, const std::string &url, const std::string &method,
+                       Exchange &exchange)
+{
+    if (exchange.tooLarge)
+        return answer(connection,
+                      HttpResponse::error(413, "the body is over " + std::to_string(kMaxBodyBytes) + " bytes"));
+    HttpRequest request;
+    request.method = method;
+    request.path = url;
+    MHD_get_connection_values(connection, MHD_GET_ARGUMENT_KIND, &collectQuery, &request.query);
+    size_t urlBytes = url.size();
+    for (const auto &[key, value] : request.query)
+        urlBytes += key.size() + value.size() + 2;
+    if (urlBytes > kMaxUrlBytes)
+        return answer(connection,
+                      HttpResponse::error(414, "the URL is over " + std::to_string(kMaxUrlBytes) + " bytes"));
+    const bool reading = method == "GET" || method == "HEAD";
+    if (!reading && method != "PUT" && method != "POST")
+        return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));
+    if (reading && url == "/stream")
+        return startStream(connection);
+    if (reading && url == "/snapshot") {
+        exchange.raw = request.query.count("raw") && request.query["raw"] != "0";
+        return answerSnapshot(connection, exchange);
+    }
+    if (reading) {
+        if (auto file = readPageFile(options_.pageDirectory, url)) {
+            HttpResponse response;
+            response.contentType = file->contentType;
+            response.body = std::move(file->body);
+            response.headers.emplace_back(MHD_HTTP_HEADER_CACHE_CONTROL, "no-cache");
+            response.headers.emplace_back("Content-Security-Policy", "default-src 'self'; img-src 'self' blob:");
+            return answer(connection, response);
+        }
+    } else if (auto refused = refuseControl(connection)) {
+        return answer(connection, *refused);
+    }
+    request.body = std::move(exchange.body);
+    request.peer = peerOf(connection);
+    return answer(connection, api_(request));
+}
+
+int HttpServer::answerSnapshot(MHD_Connection *connection, Exchange &exchange)
+{
+    const Clock::time_point now = Clock::now();
+    if (!exchange.waiting) {
+        // The next frame after the request (two publications: the one being encoded may predate it), so that a
+        // snapshot after a control change shows the change.
+        const auto latest = feed_.latest(exchange.raw);
+        exchange.afterGeneration = (latest ? latest->generation : 0) + 1;
+        exchange.deadline = now + kSnapshotWait;
+        exchange.waiting = true;
+        feed_.addSnapshotWaiter(exchange.raw, +1);
+    }
+    const auto latest = feed_.latest(exchange.raw);
+    if (!latest || latest->generation <= exchange.afterGeneration) {
+        if (now < exchange.deadline) {
+            MHD_suspend_connection(connection);
+            suspended_.push_back(connection);
+            return MHD_YES;
+        }
+        exchange.waiting = false;
+        feed_.addSnapshotWaiter(exchange.raw, -1);
+        return answer(connection, HttpResponse::error(503, "no frame within 3 s: the source is not delivering"));
+    }
+    exchange.waiting = false;
+    feed_.addSnapshotWaiter(exchange.raw, -1);
+    HttpResponse response;
+    response.contentType = "image/jpeg";
+    response.body.assign(latest->bytes.begin(), latest->bytes.end());
+    response.headers = {{"X-Timestamp-Us", std::to_string(latest->timestampUs)},
+                        {"X-Sequence", std::to_string(latest->sequence)},
+                        {MHD_HTTP_HEADER_PRAGMA, "no-cache"}};
+    return answer(connection, response);
+}
+
+int HttpServer::startStream(MHD_Connection *connection)
+{
+    auto *client = new StreamClient;
+    client->server = this;
+    client->connection = connection;
+    client->nextDue = Clock::now();
+    MHD_Response *r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, kStreamBlockBytes, &MhdCallbacks::readStream,
+                                                        client, &MhdCallbacks::freeStream);
+    if (!r) {
+        delete client;
+        return MHD_NO;
+    }
+    streams_.push_back(client);
+    feed_.setWatchers(unsigned(streams_.size()));
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE,
+                            (std::string("multipart/x-mixed-replace;boundary=") + kBoundary).c_str());
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    MHD_add_response_header(r, MHD_HTTP_HEADER_PRAGMA, "no-cache");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    const MHD_Result queued = MHD_queue_response(connection, MHD_HTTP_OK, r);
+    MHD_destroy_response(r);
+    ++counters_.requests;
+    return queued;
+}
+
+ssize_t HttpServer::fillStream(StreamClient &client, char *buffer, size_t max)
+{
+    if (stopping_)
+        return MHD_CONTENT_READER_END_WITH_ERROR;
+    static const std::string kTrailer = std::string("\r\n--") + kBoundary + "\r\n";
+    const size_t partBytes = client.frame ? client.partHeader.size() + client.frame->bytes.size() + kTrailer.size() : 0;
+    if (client.offset >= partBytes) {
+        // The newest frame, not the next one: a client that reads slowly skips frames instead of falling behind.
+        const Clock::time_point now = Clock::now();
+        const auto latest = feed_.latest();
+        const bool fresh = latest && latest->generation != client.lastGeneration;
+        const bool due = now + std::chrono::milliseconds(2) >= client.nextDue;
+        const bool idle = latest && now - client.lastSent >= kIdleResend;
+        if (!((fresh && due) || idle)) {
+            MHD_suspend_connection(client.connection);
+            suspended_.push_back(client.connection);
+            return 0;
+        }
+        const auto interval =
+            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.streamFps));
+        client.nextDue = client.nextDue + interval < now ? now + interval : client.nextDue + interval;
+        client.frame = latest;
+        client.lastGeneration = latest->generation;
+        client.lastSent = now;
+        client.offset = 0;
+        client.partHeader = (client.first ? std::string("--") + kBoundary + "\r\n" : std::string()) +
+                            "Content-Type: image/jpeg\r\nContent-Length: " + std::to_string(latest->bytes.size()) +
+                            "\r\nX-Timestamp-Us: " + std::to_string(latest->timestampUs) +
+                            "\r\nX-Sequence: " + std::to_string(latest->sequence) + "\r\n\r\n";
+        client.first = false;
+        ++client.windowParts;
+        ++counters_.partsSent;
+    }
+    // Copy from the three pieces of the part: its headers, the JPEG, the next boundary (sent at once, so that a
+    // browser shows this part without waiting for the next one).
+    const std::string_view pieces[] = {
+        client.partHeader,
+        std::string_view(reinterpret_cast<const char *>(client.frame->bytes.data()), client.frame->bytes.size()),
+        kTrailer};
+    size_t copied = 0, start = 0;
+    for (const std::string_view piece : pieces) {
+        if (copied < max && client.offset < start + piece.size()) {
+            const size_t from = client.offset - start;
+            const size_t n = std::min(max - copied, piece.size() - from);
+            std::memcpy(buffer + copied, piece.data() + from, n);
+            copied += n;
+            client.offset += n;
+        }
+        start += piece.size();
+    }
+    return ssize_t(copied);
+}
+
+} // namespace overlayd::http

@@ -1,0 +1,117 @@
+// HttpServer: libmicrohttpd in its epoll mode, driven by the daemon's event loop (no thread per client; streams
+// and snapshot waits are suspended connections resumed when a JPEG is published). It serves the stream, snapshots
+// and the page itself and hands every other request to the daemon's API handler, after the control check.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "base/logger.h"
+#include "base/result.h"
+#include "http/http_options.h"
+#include "http/jpeg_feed.h"
+#include "http/listen_address.h"
+
+struct MHD_Daemon;
+struct MHD_Connection;
+
+namespace overlayd::http {
+
+struct HttpRequest {
+    std::string method;
+    std::string path; // without the query
+    std::map<std::string, std::string> query;
+    std::string body;
+    std::string peer;
+};
+
+struct HttpResponse {
+    unsigned status = 200;
+    std::string contentType = "application/json";
+    std::string body;
+    std::vector<std::pair<std::string, std::string>> headers;
+
+    static HttpResponse json(unsigned status, std::string body);
+    // {"error": message}
+    static HttpResponse error(unsigned status, const std::string &message);
+};
+
+// The daemon's endpoints (/state, /metrics, /api/...), called on the loop thread.
+using ApiHandler = std::function<HttpResponse(const HttpRequest &)>;
+
+struct HttpCounters {
+    unsigned connections = 0;      // open now
+    unsigned streamClients = 0;    // of which /stream
+    uint64_t requests = 0;         // answered since start
+    uint64_t partsSent = 0;        // JPEG parts written to /stream clients
+    uint64_t refused = 0;          // 4xx/5xx answers
+    std::vector<double> streamFps; // each /stream client's recent parts per second
+};
+
+class HttpServer
+{
+public:
+    // Listens and starts serving; the token (control = "token") is read here.
+    static Result<std::unique_ptr<HttpServer>> start(const HttpOptions &options, JpegFeed &feed, ApiHandler api,
+                                                     Logger &logger);
+    ~HttpServer();
+    HttpServer(const HttpServer &) = delete;
+    HttpServer &operator=(const HttpServer &) = delete;
+
+    // Readable when libmicrohttpd has work: the loop calls run() then.
+    int fd() const;
+    void run();
+    // When run() must be called again at the latest (connection timeouts), nullopt: no deadline.
+    std::optional<std::chrono::milliseconds> timeout() const;
+    // A JPEG was published: resume the streams and snapshots waiting for it.
+    void onJpeg();
+    // Once a second: idle streams resend their last frame, overdue snapshot waits answer 503.
+    void onTick();
+
+    const ListenAddress &address() const { return address_; }
+    const HttpOptions &options() const { return options_; }
+    HttpCounters counters() const;
+
+    struct StreamClient;
+    struct Exchange;
+    struct Connection;
+
+private:
+    HttpServer(const HttpOptions &options, ListenAddress address, JpegFeed &feed, ApiHandler api, Logger &logger)
+        : options_(options), address_(std::move(address)), feed_(feed), api_(std::move(api)), logger_(logger)
+    {}
+
+    friend struct MhdCallbacks; // libmicrohttpd's C callbacks, in http_server.cpp
+
+    int access(MHD_Connection *connection, const std::string &url, const std::string &method, Exchange &exchange);
+    int answer(MHD_Connection *connection, const HttpResponse &response);
+    int answerSnapshot(MHD_Connection *connection, Exchange &exchange);
+    int startStream(MHD_Connection *connection);
+    int serveFile(MHD_Connection *connection, const std::string &path);
+    std::optional<HttpResponse> refuseControl(MHD_Connection *connection) const;
+    ssize_t fillStream(StreamClient &client, char *buffer, size_t max);
+    void resumeAll();
+    bool closeHungUp();
+
+    HttpOptions options_;
+    ListenAddress address_;
+    JpegFeed &feed_;
+    ApiHandler api_;
+    Logger &logger_;
+    std::string token_;
+    MHD_Daemon *daemon_ = nullptr;
+    bool stopping_ = false;
+
+    std::vector<MHD_Connection *> suspended_; // resumed on the next JPEG or tick
+    std::vector<StreamClient *> streams_;
+    std::vector<Connection *> connections_; // every open connection
+    HttpCounters counters_;
+};
+
+} // namespace overlayd::http

@@ -1,0 +1,27 @@
+// Where the server listens: "HOST:PORT" (IPv4 dotted quad, "[IPv6]", or "localhost") or "unix:/path".
+#pragma once
+
+#include <string>
+
+#include "base/result.h"
+#include "base/unique_fd.h"
+
+namespace overlayd::http {
+
+struct ListenAddress {
+    enum class Kind { Ipv4, Ipv6, Unix } kind = Kind::Ipv4;
+    std::string host; // numeric address; the socket path for Unix
+    unsigned port = 0;
+
+    // Loopback addresses and unix sockets: only local processes can connect (what control = "open" requires).
+    bool isLocal() const;
+    std::string describe() const;
+};
+
+// Refuses anything else with a reason that says what is expected.
+Result<ListenAddress> parseListenAddress(const std::string &text);
+
+// A bound, listening, non-blocking socket (a stale unix socket file is replaced; its folder must exist).
+Result<UniqueFd> openListeningSocket(const ListenAddress &address, int backlog);
+
+} // namespace overlayd::http

@@ -1,0 +1,281 @@
+#!/usr/bin/python3
+"""The alignment page in a real browser against a real `overlayd run`: pose edit, click-to-ground, layer toggle.
+
+    tests/http/browser_test.py --overlayd build/daemon/overlayd --workdir /tmp/bt [--config config/examples/demo.toml]
+
+--config (default: the repository's config/examples/demo.toml) is the scene to serve: the test copies it into WORKDIR
+without its [[sink]]s and adds an [http] section on a free loopback port with control = "open". Needs /usr/bin/chromium (or --chromium), ffmpeg (the stdlib has no JPEG
+decoder) and Debian's python3-websocket. WORKDIR keeps overlayd.log, chromium.log, the config and page.png.
+Exit 0: pass; 1: a check failed (the message says which); 2: set-up failed. Bounded by --timeout (90 s).
+"""
+import argparse
+import json
+import os
+import shutil
+import signal
+import sys
+import time
+import urllib.request
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import daemon_fixture  # noqa: E402
+from devtools import Chromium, Page  # noqa: E402
+
+HUD_ROWS = 100  # demo.toml's timestamp and frame counter change every frame; the overlay check looks below them
+OVERLAY_THRESHOLD = 40  # grey levels between overlaid and raw that count as overlay, well above JPEG noise
+
+
+class Failure(AssertionError):
+    """A failed check. An AssertionError, as daemon_fixture raises when overlayd dies or never serves /state, so that
+    main() reports both the same way."""
+
+
+
+def http(base, path, method='GET', body=None):
+    data = None if body is None else json.dumps(body).encode()
+    request = urllib.request.Request(base + path, data=data, method=method,
+                                     headers={'Content-Type': 'application/json'} if data else {})
+    with daemon_fixture.loopback_opener.open(request, timeout=5) as response:
+        return response.read(), response.headers
+
+
+def get_state(base):
+    return json.loads(http(base, '/state')[0])
+
+
+def write_config(source, workdir, port):
+    """WORKDIR/overlayd.toml: the scene to serve without its [[sink]]s, and control open, as the page needs to edit."""
+    path = os.path.join(workdir, 'overlayd.toml')
+    with open(path, 'w') as file:
+        file.write(daemon_fixture.config_without_sinks(source) + daemon_fixture.http_section(port, control='open'))
+    return path
+
+
+def start_daemon(args, workdir, cleanup):
+    """overlayd serving the scene on a free loopback port, once it streams. It runs in WORKDIR, so that nothing lands
+    where the test was started, and logs to WORKDIR/overlayd.log, where the usage above says to look."""
+    port = daemon_fixture.free_port()
+    daemon = daemon_fixture.Daemon(args.overlayd, write_config(args.config, workdir, port), workdir, port,
+                                   log_path=os.path.join(workdir, 'overlayd.log'), cwd=workdir)
+    cleanup.append(daemon.stop)
+    daemon.wait_ready(20)
+    return daemon
+
+
+def poll(check, timeout, what):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        value = check()
+        if value:
+            return value
+        time.sleep(0.1)
+    raise Failure(f'timed out after {timeout} s waiting for {what}')
+
+
+# ---- Snapshots: the overlay is where the overlaid frame differs from the raw one --------------------------------
+
+def checked_grey(image, workdir, name):
+    """daemon_fixture.grey_pixels, failing unless ffmpeg gave one byte per pixel of the size ffprobe read."""
+    width, height, pixels = daemon_fixture.grey_pixels(image, workdir, name)
+    if len(pixels) != width * height:
+        raise Failure(f'{name}: ffmpeg gave {len(pixels)} bytes for {width}x{height}')
+    return width, height, pixels
+
+
+def overlay_mask(base, workdir, name):
+    """Marks the overlay's pixels: where the overlaid snapshot differs from the raw one. They are two frames (each
+    request waits for the next), alike below the HUD while the scene stands still; change_yaw measures the rest."""
+    overlaid = http(base, '/snapshot')[0]
+    raw = http(base, '/snapshot?raw=1')[0]
+    width, height, top = checked_grey(overlaid, workdir, f'{name}.jpg')
+    _, _, bottom = checked_grey(raw, workdir, f'{name}-raw.jpg')
+    start = HUD_ROWS * width
+    return bytes(abs(a - b) > OVERLAY_THRESHOLD for a, b in zip(top[start:], bottom[start:]))
+
+
+def mask_change(a, b):
+    return sum(x != y for x, y in zip(a, b))
+
+
+def shown_change(before_png, after_png, box, frame_width, workdir):
+    """Pixels of the page's <img> that changed between two screenshots, below the HUD (scaled to the display)."""
+    width, _, before = checked_grey(before_png, workdir, 'page-before.png')
+    _, _, after = checked_grey(after_png, workdir, 'page-after.png')
+    left, top, right, bottom = (round(box[key]) for key in ('left', 'top', 'right', 'bottom'))
+    top += round(HUD_ROWS * (right - left) / frame_width)
+    return sum(abs(before[row * width + col] - after[row * width + col]) > OVERLAY_THRESHOLD
+               for row in range(top, bottom) for col in range(left, right))
+
+
+# ---- The steps ---------------------------------------------------------------------------------------------------
+
+def open_page(page, base):
+    page.call('Page.navigate', url=base + '/')
+    # Not the MJPEG <img>'s load event, which never fires: app.js marks the page ready once /state filled it in.
+    page.wait_for("document.body && document.body.dataset.ready === 'true'", 15, 'the page to load /state')
+
+
+def set_yaw(page, base):
+    """Types yaw + 10 into the yaw field as a user would and waits for the server to take it."""
+    yaw = float(page.evaluate("document.getElementById('yaw').value"))
+    target = round(yaw + 10, 3)
+    page.evaluate(f"""(() => {{
+        const field = document.getElementById('yaw');
+        field.value = '{target}';
+        field.dispatchEvent(new Event('input', {{bubbles: true}}));
+        field.dispatchEvent(new Event('change', {{bubbles: true}}));
+    }})()""")
+    poll(lambda: abs(get_state(base)['camera']['yaw'] - target) < 1e-3, 5, f'/state camera yaw to become {target}')
+    return yaw, target
+
+
+def sequence(base):
+    value = http(base, '/snapshot')[1].get('X-Sequence')
+    return int(value) if value is not None else None
+
+
+def stream_box(page, frame_width):
+    """The <img>'s box once it shows the stream; its naturalWidth is the only sign, MJPEG never fires "load"."""
+    page.wait_for(f"document.getElementById('stream').naturalWidth === {frame_width}", 10, 'the stream on the page')
+    return page.evaluate("document.getElementById('stream').getBoundingClientRect().toJSON()")
+
+
+def change_yaw(page, base, workdir):
+    frame_width = get_state(base)['source']['width']
+    box = stream_box(page, frame_width)
+    screen_before = page.screenshot(os.path.join(workdir, 'page-before.png'))
+    before = overlay_mask(base, workdir, 'before')
+    noise = mask_change(before, overlay_mask(base, workdir, 'before-again'))
+    if sum(before) == 0:
+        raise Failure('the overlaid and raw snapshots are the same: no overlay to compare')
+    yaw, target = set_yaw(page, base)
+    # The frame that carries the new overlay comes a few frames after the request was answered.
+    applied_at = sequence(base)
+    if applied_at is None:
+        time.sleep(0.5)
+    else:
+        poll(lambda: sequence(base) >= applied_at + 3, 5, 'frames after the pose change')
+    after = overlay_mask(base, workdir, 'after')
+    moved = mask_change(before, after)
+    print(f'yaw {yaw} -> {target}: {moved} overlay pixels changed in /snapshot (same-pose noise {noise})')
+    if moved < max(2000, 5 * noise):
+        raise Failure(f'the overlay barely changed after yaw {yaw} -> {target}: {moved} pixels, noise {noise}')
+    time.sleep(0.5)  # a few /stream parts (stream_fps 15) for the browser to show
+    shown = shown_change(screen_before, page.screenshot(os.path.join(workdir, 'page.png')), box, frame_width, workdir)
+    print(f'{shown} pixels of the page\'s stream changed')
+    if shown < 1000:
+        raise Failure(f'the stream on the page barely changed after the yaw edit ({shown} pixels): see page.png')
+
+
+def click_centre(page, base):
+    rect = page.evaluate("""(() => {
+        const image = document.getElementById('stream');
+        image.scrollIntoView({block: 'center'});
+        const r = image.getBoundingClientRect();
+        return {x: r.left + r.width / 2, y: r.top + r.height / 2, width: r.width};
+    })()""")
+    page.click(rect['x'], rect['y'])
+    found = page.wait_for("(() => { const li = document.querySelector('#click-results li');"
+                          " return li && {className: li.className, text: li.textContent,"
+                          " pixel: li.dataset.pixel, hit: li.dataset.hit}; })()", 5, 'a ground point on the page')
+    if found['className'] != 'hit' or not found.get('hit'):
+        raise Failure(f'the click gave no ground point: {found["text"]!r}')
+    state = get_state(base)
+    width, height = state['source']['width'], state['source']['height']
+    u, v = map(float, found['pixel'].split(','))
+    # One CSS pixel of the scaled-down image covers about width / displayed width image pixels.
+    slack = 1.5 * width / rect['width'] + 0.5
+    if abs(u - (width - 1) / 2) > slack or abs(v - (height - 1) / 2) > slack:
+        raise Failure(f'clicking the image centre gave pixel ({u}, {v}), not about ({(width - 1) / 2}, '
+                      f'{(height - 1) / 2}): the CSS scaling is not accounted for')
+    expected = json.loads(http(base, '/api/unproject', 'POST', {'pixels': [[u, v]]})[0])[0]['hit']
+    shown = [float(value) for value in found['hit'].split(',')]
+    if any(abs(a - b) > 1e-6 for a, b in zip(shown[:2], expected[:2])):
+        raise Failure(f'the page shows ground point {shown}, the server says {expected}')
+    print(f'clicked pixel ({u}, {v}): page shows {found["text"]!r}')
+
+
+def hide_layer(page, base):
+    name = next(layer['name'] for layer in get_state(base)['layers'] if layer['visible'])
+    selector = f'input[data-layer={json.dumps(name)}]'
+    clicked = page.evaluate(f"(() => {{ const box = document.querySelector({json.dumps(selector)});"
+                            " if (!box) return false; box.click(); return true; })()")
+    if not clicked:
+        raise Failure(f'no checkbox for layer {name!r} on the page')
+    poll(lambda: any(layer['name'] == name and not layer['visible'] for layer in get_state(base)['layers']), 5,
+         f'/state to report layer {name!r} hidden')
+    print(f'layer {name!r} hidden through its checkbox')
+
+
+def check_narrow(page, workdir):
+    page.call('Emulation.setDeviceMetricsOverride', width=360, height=800, deviceScaleFactor=1, mobile=True)
+    overflow = page.wait_for('(() => { void document.body.offsetWidth;'
+                             ' return {scroll: document.documentElement.scrollWidth, view: innerWidth}; })()',
+                             5, 'the narrow layout')
+    page.screenshot(os.path.join(workdir, 'page-narrow.png'))
+    if overflow['scroll'] > overflow['view'] + 1:
+        raise Failure(f'at 360 px wide the page scrolls sideways ({overflow["scroll"]} px of content)')
+
+
+def run(args, workdir, cleanup):
+    daemon = start_daemon(args, workdir, cleanup)
+    base = daemon.base
+
+    browser = Chromium(args.chromium, os.path.join(workdir, 'chrome'), os.path.join(workdir, 'chromium.log'))
+    cleanup.append(browser.stop)
+    page = Page(browser.browser_url(20), timeout=10)
+    cleanup.append(page.close)
+
+    open_page(page, base)
+    change_yaw(page, base, workdir)
+    click_centre(page, base)
+    hide_layer(page, base)
+    check_narrow(page, workdir)
+    if page.problems:
+        raise Failure('the page ran into errors:\n' + '\n'.join(map(str, page.problems)))
+    if daemon.process.poll() is not None:
+        raise Failure(f'overlayd exited with {daemon.process.returncode} during the test:\n{daemon.log_tail()}')
+
+
+def on_alarm(signum, frame):
+    raise Failure('the test ran out of time')
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--overlayd', required=True)
+    parser.add_argument('--config', default=daemon_fixture.DEMO)
+    parser.add_argument('--workdir', required=True)
+    parser.add_argument('--chromium', default='/usr/bin/chromium')
+    parser.add_argument('--timeout', type=int, default=90)
+    args = parser.parse_args()
+    for tool in (args.overlayd, args.chromium, shutil.which('ffmpeg'), shutil.which('ffprobe')):
+        if not tool or not os.access(tool, os.X_OK):
+            print(f'browser_test: set-up: {tool or "ffmpeg/ffprobe"} is not an executable', file=sys.stderr)
+            return 2
+    workdir = os.path.abspath(args.workdir)
+    shutil.rmtree(os.path.join(workdir, 'chrome'), ignore_errors=True)  # a stale profile from an earlier run
+    os.makedirs(workdir, exist_ok=True)
+    args.overlayd, args.config = os.path.abspath(args.overlayd), os.path.abspath(args.config)
+
+    cleanup = []
+    signal.signal(signal.SIGALRM, on_alarm)
+    signal.alarm(args.timeout)
+    try:
+        run(args, workdir, cleanup)
+    except AssertionError as error:  # a Failure, or daemon_fixture's: overlayd died or never served /state
+        print(f'browser_test: FAIL: {error}', file=sys.stderr)
+        return 1
+    except Exception as error:  # the browser, HTTP or ffmpeg broke: still a failure, named by its type
+        print(f'browser_test: FAIL: {type(error).__name__}: {error}', file=sys.stderr)
+        return 1
+    finally:
+        signal.alarm(0)
+        for step in reversed(cleanup):
+            step()
+    print(f'browser_test: PASS (screenshots in {workdir})')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

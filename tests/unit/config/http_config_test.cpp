@@ -1,0 +1,175 @@
+// [http] and the HTTP API's camera requests, read by the config file's readers: defaults, every refusal at its key,
+// the drop-in `POST /api/save` writes read back over the main file.
+#include <filesystem>
+#include <fstream>
+
+#include "config/camera_request.h"
+#include "config_test_util.h"
+#include "http/listen_address.h"
+#include "projection/pose.h"
+
+using namespace overlayd;
+using overlayd::test::loadInvalid;
+using overlayd::test::loadValid;
+
+namespace {
+
+const std::string kBase = R"(
+[source]
+kind = "synthetic"
+width = 640
+height = 480
+[camera]
+position = [0.0, -6.0, 3.0]
+yaw = 90.0
+pitch = 25.0
+fov = 60.0
+)";
+
+bool hasProblem(const std::vector<ConfigProblem> &problems, const std::string &key, const std::string &words)
+{
+    for (const ConfigProblem &p : problems)
+        if (p.key == key && p.message.find(words) != std::string::npos)
+            return true;
+    std::string all;
+    for (const ConfigProblem &p : problems)
+        all += p.format() + "\n";
+    ADD_FAILURE() << "no problem at " << key << " saying '" << words << "' in:\n" << all;
+    return false;
+}
+
+std::filesystem::path scratch(const std::string &name)
+{
+    const auto dir = std::filesystem::temp_directory_path() / ("overlayd-http-config-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+} // namespace
+
+TEST(HttpConfig, AbsentMeansNoServerAndTheDefaultsAreTheDocumentedOnes)
+{
+    EXPECT_FALSE(loadValid(kBase).http.enabled);
+    const DaemonConfig config = loadValid(kBase + "[http]\ncontrol = \"off\"\n");
+    EXPECT_TRUE(config.http.enabled);
+    EXPECT_EQ(config.http.listen, "127.0.0.1:8080");
+    EXPECT_EQ(config.http.maxClients, 32u);
+    EXPECT_EQ(config.http.streamFps, 15.0);
+    EXPECT_EQ(config.http.jpegQuality, 80);
+}
+
+TEST(HttpConfig, EveryBadValueIsRefusedAtItsKey)
+{
+    const auto problems = loadInvalid(kBase + R"([http]
+listen = "0.0.0.0:http"
+max_clients = 0
+stream_fps = 0.0
+jpeg_quality = 101
+control = "opne"
+streem_fps = 3
+)");
+    hasProblem(problems, "http.listen", "port");
+    hasProblem(problems, "http.max_clients", "");
+    hasProblem(problems, "http.stream_fps", "");
+    hasProblem(problems, "http.jpeg_quality", "");
+    hasProblem(problems, "http.control", "did you mean 'open'");
+    hasProblem(problems, "http.streem_fps", "did you mean 'stream_fps'");
+    hasProblem(problems, "http.token_file", "missing");
+}
+
+TEST(HttpConfig, AnOpenControlApiOnlyListensLocally)
+{
+    EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"127.0.0.1:9000\"\ncontrol = \"open\"\n").http.enabled);
+    EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"unix:/run/o.sock\"\ncontrol = \"open\"\n").http.enabled);
+    EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"[::1]:9000\"\ncontrol = \"open\"\n").http.enabled);
+    for (const char *listen : {"0.0.0.0:9000", "[::]:9000", "192.168.1.2:80"})
+        hasProblem(loadInvalid(kBase + "[http]\nlisten = \"" + listen + "\"\ncontrol = \"open\"\n"), "http.control",
+                   "only on loopback");
+}
+
+TEST(HttpConfig, TheTokenFileIsResolvedBesideTheConfigAndMustBeReadable)
+{
+    const auto dir = scratch("token");
+    std::ofstream(dir / "front.token") << "abc\n";
+    const DaemonConfig config = loadValid(kBase + "[http]\ntoken_file = \"front.token\"\n", dir.string());
+    EXPECT_EQ(config.http.tokenFile, (dir / "front.token").string());
+    hasProblem(loadInvalid(kBase + "[http]\ntoken_file = \"absent.token\"\n", dir.string()), "http.token_file",
+               "cannot read");
+}
+
+TEST(ListenAddress, ParsesEveryFormAndRefusesTheRest)
+{
+    EXPECT_EQ(http::parseListenAddress("127.0.0.1:8080")->port, 8080u);
+    EXPECT_EQ(http::parseListenAddress("[::1]:80")->kind, http::ListenAddress::Kind::Ipv6);
+    EXPECT_EQ(http::parseListenAddress("unix:/run/x.sock")->host, "/run/x.sock");
+    EXPECT_EQ(http::parseListenAddress("localhost:1")->host, "127.0.0.1");
+    for (const char *bad : {"", "8080", "127.0.0.1", "127.0.0.1:0", "127.0.0.1:65536", "host.example:80", "[::1:80",
+                            "unix:relative.sock", "1.2.3:80", "127.0.0.1:80x"})
+        EXPECT_FALSE(http::parseListenAddress(bad).ok()) << bad;
+    EXPECT_TRUE(http::parseListenAddress("127.5.0.1:1")->isLocal());
+    EXPECT_FALSE(http::parseListenAddress("10.0.0.1:1")->isLocal());
+}
+
+// The API's camera requests go through [camera]'s readers: any pose form, intrinsics over the live camera.
+TEST(CameraRequest, AnyPoseFormReplacesThePoseAndKeepsTheIntrinsics)
+{
+    const DaemonConfig config = loadValid(kBase);
+    auto moved = cameraFromJson(R"({"eye": [1, -5, 2], "target": [0, 0, 0]})", config.camera, 640, 480);
+    ASSERT_TRUE(moved.ok()) << moved.error().message;
+    EXPECT_EQ(moved->pose, *poseLookAt({1, -5, 2}, {0, 0, 0}, {0, 0, 1}));
+    EXPECT_EQ(moved->fovDeg, config.camera.fovDeg);
+    auto zoomed = cameraFromJson(R"({"fov": 40})", config.camera, 640, 480);
+    ASSERT_TRUE(zoomed.ok()) << zoomed.error().message;
+    EXPECT_EQ(zoomed->fovDeg, 40.0);
+    EXPECT_EQ(zoomed->pose, config.camera.pose);
+}
+
+TEST(CameraRequest, RefusalsNameTheKeyInTheConfigFilesWords)
+{
+    const DaemonConfig config = loadValid(kBase);
+    const auto refused = [&](const std::string &json) {
+        auto result = cameraFromJson(json, config.camera, 640, 480);
+        EXPECT_FALSE(result.ok()) << json;
+        return result.ok() ? std::string() : result.error().message;
+    };
+    EXPECT_NE(refused("{").find("not JSON"), std::string::npos);
+    EXPECT_NE(refused("{}").find("JSON object"), std::string::npos);
+    EXPECT_NE(refused(R"({"eye": [0,0,1], "gaze": [0,0,1], "up": [0,0,1]})").find("camera.up"), std::string::npos);
+    EXPECT_NE(refused(R"({"position": [0,0,1], "yaw": 1, "pitch": "x"})").find("camera.pitch"), std::string::npos);
+    EXPECT_NE(refused(R"({"position": [0,0,1], "yw": 1})").find("did you mean 'yaw'"), std::string::npos);
+    EXPECT_NE(refused(R"({"calibration": "/etc/passwd"})").find("camera.calibration"), std::string::npos);
+    EXPECT_NE(refused(R"({"fov": 180})").find("camera.fov"), std::string::npos);
+    std::string deep = "{\"a\":" + std::string(20, '[') + std::string(20, ']') + "}";
+    EXPECT_NE(refused(deep).find("nested"), std::string::npos);
+}
+
+TEST(LiveDropIn, IsReadAfterTheMainFileAndReplacesItsPose)
+{
+    const auto dir = scratch("dropin");
+    const std::string path = (dir / "front.toml").string();
+    std::ofstream(path) << kBase;
+    EXPECT_EQ(liveDropInPath(path), (dir / "front.live.toml").string());
+
+    std::vector<ConfigProblem> problems;
+    const DaemonConfig before = *loadConfigFile(path, problems);
+    const CameraSpec live =
+        *cameraFromJson(R"({"eye": [2, -4, 1.5], "target": [0, 1, 0], "fov": 45})", before.camera, 640, 480);
+    std::ofstream(liveDropInPath(path)) << *liveDropInText(live, true);
+    auto after = loadConfigFile(path, problems);
+    ASSERT_TRUE(after.ok()) << after.error().message;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            EXPECT_NEAR(after->camera.pose.rotation[c][r], live.pose.rotation[c][r], 1e-12);
+    EXPECT_LT(glm::length(after->camera.pose.translation - live.pose.translation), 1e-12);
+    EXPECT_EQ(after->camera.fovDeg, 45.0);
+    EXPECT_EQ(after->camera.near, before.camera.near);
+
+    // A broken drop-in is reported at its own file and line.
+    std::ofstream(liveDropInPath(path)) << "[camera]\nposition = [1, 2]\norientation = [1, 0, 0, 0]\n";
+    EXPECT_FALSE(loadConfigFile(path, problems).ok());
+    ASSERT_FALSE(problems.empty());
+    EXPECT_EQ(problems.front().file, liveDropInPath(path));
+    EXPECT_EQ(problems.front().line, 2u);
+    EXPECT_EQ(problems.front().key, "camera.position");
+}
