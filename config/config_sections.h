@@ -23,6 +23,9 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
 void readSinks(TableReader &root, std::vector<SinkOptions> &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
 void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
+// [[input.text]] (after the annotations: their text slots are what inputs may feed).
+void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
+                inputs::InputOptions &out);
 // [http]: the server's options (see http/http_options.h).
 void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out);
 

@@ -12,6 +12,7 @@
 #include "drivers/source_options.h"
 #include "gpio/gpio_options.h"
 #include "http/http_options.h"
+#include "inputs/input_options.h"
 #include "overlay/shapes/annotation.h"
 
 namespace overlayd {
@@ -29,6 +30,7 @@ struct DaemonConfig {
     std::vector<SinkOptions> sinks;
     gpio::GpioOptions gpio;
     http::HttpOptions http;
+    inputs::InputOptions inputs;
     DaemonSettings daemon;
 };
 

@@ -3,7 +3,8 @@
 // `run` binds it.
 #include "config/config_sections.h"
 
-#include <fstream>
+#include <filesystem>
+#include <unistd.h>
 
 #include "http/listen_address.h"
 
@@ -46,8 +47,9 @@ void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOpt
     if (out.control == http::ControlMode::Token) {
         if (out.tokenFile.empty())
             table->problem("token_file", "missing: control = \"token\" needs the file that holds the token");
-        else if (std::ifstream probe(out.tokenFile); !probe)
-            table->problem("token_file", "cannot read '" + out.tokenFile + "'");
+        else if (std::error_code error;
+                 !std::filesystem::is_regular_file(out.tokenFile, error) || ::access(out.tokenFile.c_str(), R_OK) != 0)
+            table->problem("token_file", "cannot read '" + out.tokenFile + "' (a readable regular file)");
     }
     table->finish();
 }

@@ -7,7 +7,7 @@ Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factori
                DaemonOptions options)
     : logger_(logger), factories_(std::move(factories)), loader_(std::move(loader)), options_(std::move(options)),
       pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier), gpio_(logger, scene_),
-      http_(logger, *this)
+      textInputs_(logger, scene_), http_(logger, *this)
 {
     pipeline_.setRawTap([this](const FrameView &frame, const FrameMetadata &metadata) {
         if (http_.running())
@@ -72,6 +72,8 @@ Status Daemon::setUp()
             return lines;
         gpio_.applyLayers();
     }
+    if (auto watched = textInputs_.configure(config_.inputs.text); !watched)
+        return watched;
     if (auto served = http_.configure(config_.http); !served)
         return served;
     Status sinksBuilt = Ok{};

@@ -21,6 +21,7 @@
 #include "daemon/source_supervisor.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
+#include "daemon/text_inputs.h"
 
 namespace overlayd {
 
@@ -65,6 +66,7 @@ public:
     SceneControl &scene() { return scene_; }
     const GpioControl &gpio() const { return gpio_; }
     GpioControl &gpio() { return gpio_; }
+    const TextInputs &textInputs() const { return textInputs_; }
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }
@@ -91,8 +93,9 @@ private:
     Pipeline pipeline_;
     SceneControl scene_;
     HealthReporter health_;
-    GpioControl gpio_; // after scene_, whose layers it switches
-    HttpFront http_;   // after everything its API reads
+    GpioControl gpio_;      // after scene_, whose layers it switches
+    TextInputs textInputs_; // after scene_, whose slots it feeds
+    HttpFront http_;        // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running
     std::optional<SignalReader> signals_; // created before any sink thread, so that every thread blocks them

@@ -36,6 +36,7 @@ int Daemon::run()
     source_->attachLoop(loop_);
     gpio_.attachLoop(loop_);
     http_.attachLoop(loop_);
+    textInputs_.attachLoop(loop_);
     while (state() != State::Finished) {
         gpio_.onState(state()); // outputs follow the state the last turn left
         if (auto status = loop->runOnce(); !status) {
@@ -44,6 +45,7 @@ int Daemon::run()
         }
     }
     shutdown();
+    textInputs_.attachLoop(nullptr);
     http_.attachLoop(nullptr);
     gpio_.attachLoop(nullptr);
     source_->attachLoop(nullptr);
@@ -127,12 +129,22 @@ bool Daemon::reload()
     if (gpioChanged)
         if (auto lines = gpio_.configure(next.gpio); !lines)
             return reject(lines.error().message);
+    // Text inputs next (a folder that cannot be watched refuses the reload).
+    const bool inputsChanged = config_.inputs != next.inputs;
+    if (inputsChanged)
+        if (auto watched = textInputs_.configure(next.inputs.text); !watched) {
+            if (gpioChanged)
+                (void)gpio_.configure(config_.gpio);
+            return reject(watched.error().message);
+        }
     // The HTTP server next (a port already taken refuses the reload; the old server keeps serving).
     const bool httpChanged = config_.http != next.http;
     if (httpChanged)
         if (auto served = http_.configure(next.http); !served) {
             if (gpioChanged)
                 (void)gpio_.configure(config_.gpio);
+            if (inputsChanged)
+                (void)textInputs_.configure(config_.inputs.text);
             return reject(served.error().message);
         }
     std::unique_ptr<OverlayRenderer> renderer;
@@ -143,6 +155,8 @@ bool Daemon::reload()
             (void)gpio_.configure(config_.gpio); // the old lines again
         if (httpChanged)
             (void)http_.configure(config_.http);
+        if (inputsChanged)
+            (void)textInputs_.configure(config_.inputs.text);
         return reject(applied.error().message);
     }
 
@@ -155,6 +169,7 @@ bool Daemon::reload()
     config_ = std::move(next);
     if (gpioChanged)
         gpio_.applyLayers(); // the new rules, on the new scene's layers
+    textInputs_.showAll();   // the files' lines in the new scene's slots
     applyLogLevel();
     armStats();
     if (sourceChanged) {

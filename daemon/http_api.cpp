@@ -229,6 +229,16 @@ HttpResponse HttpApi::state()
                   {"requests", http.requests}}}};
     if (!daemon_.gpio().empty())
         out["gpio"] = daemon_.gpio().describe();
+    json inputs = json::array();
+    const auto now = std::chrono::steady_clock::now();
+    for (const TextInputs::Reading &reading : daemon_.textInputs().readings())
+        inputs.push_back({{"kind", "text"},
+                          {"slot", reading.slot},
+                          {"file", reading.file},
+                          {"value", reading.text},
+                          {"age_s", std::chrono::duration<double>(now - reading.changed).count()}});
+    if (!inputs.empty())
+        out["inputs"] = inputs;
     return HttpResponse::json(200, out.dump());
 }
 

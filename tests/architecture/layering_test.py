@@ -15,9 +15,10 @@ ALLOWED = {
     "drivers": {"base", "media", "projection"},
     "gpio": {"base"},
     "http": {"base"},
+    "inputs": {"base"},
     "alignment": {"base", "projection"},
-    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "alignment", "config"},
+    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.

@@ -17,14 +17,30 @@ inline std::string sourceDir()
     return OVERLAYD_SOURCE_DIR;
 }
 
+// Every problem, one "file:line:column: key: message" per line, for failure messages.
+inline std::string formatProblems(const std::vector<ConfigProblem> &problems)
+{
+    std::string all;
+    for (const ConfigProblem &p : problems)
+        all += p.format() + "\n";
+    return all;
+}
+
+// Whether some problem is at `key` and its message holds `words`.
+inline bool hasProblem(const std::vector<ConfigProblem> &problems, const std::string &key, const std::string &words)
+{
+    for (const ConfigProblem &p : problems)
+        if (p.key == key && p.message.find(words) != std::string::npos)
+            return true;
+    return false;
+}
+
 // Loads text that must be valid; fails the test with every problem otherwise.
 inline DaemonConfig loadValid(const std::string &text, const std::string &base = ".")
 {
     std::vector<ConfigProblem> problems;
     auto config = loadConfigText(text, "test.toml", base, problems);
-    std::string all;
-    for (const ConfigProblem &p : problems)
-        all += p.format() + "\n";
+    const std::string all = formatProblems(problems);
     EXPECT_TRUE(config.ok()) << all;
     EXPECT_TRUE(problems.empty()) << all;
     return config ? config.value() : DaemonConfig{};

@@ -17,14 +17,6 @@ type = "axes"
 style = { layer = "logo" }
 )";
 
-std::string allText(const std::vector<ConfigProblem> &problems)
-{
-    std::string all;
-    for (const ConfigProblem &p : problems)
-        all += p.format() + "\n";
-    return all;
-}
-
 TEST(GpioConfig, EveryKeyIsRead)
 {
     const DaemonConfig config = loadValid(kScene + R"(
@@ -77,7 +69,7 @@ TEST(GpioConfig, DefaultsAreTheDocumentedOnes)
 TEST(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
 {
     const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guide\"]\n");
-    ASSERT_EQ(problems.size(), 1u) << allText(problems);
+    ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
     EXPECT_EQ(problems[0].key, "gpio.input[0].show_layers");
     EXPECT_EQ(problems[0].line, 12u);
     EXPECT_NE(problems[0].message.find("no annotation draws in layer 'guide'"), std::string::npos);
@@ -97,7 +89,7 @@ name = "led"
 chip = "gpiochip0"
 line = "REV"
 )");
-    ASSERT_EQ(problems.size(), 1u) << allText(problems);
+    ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
     EXPECT_EQ(problems[0].key, "gpio.output[0].line");
     EXPECT_EQ(problems[0].line, 18u);
     EXPECT_NE(problems[0].message.find("gpiochip0 line 'REV' is already used by input 'reverse'"), std::string::npos)
@@ -118,7 +110,7 @@ line = 3
 signal = "streamin"
 colour = "red"
 )");
-    const std::string all = allText(problems);
+    const std::string all = test::formatProblems(problems);
     for (const char *expected :
          {"gpio.input[0].chip: missing", "gpio.input[0].line:", "gpio.input[0].bias:", "gpio.input[0].debounce_ms:",
           "gpio.input[0].show_layers: expected an array of strings",
@@ -129,7 +121,7 @@ colour = "red"
 TEST(GpioConfig, AnInputThatSwitchesNothingIsRefused)
 {
     const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\n");
-    ASSERT_EQ(problems.size(), 1u) << allText(problems);
+    ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
     EXPECT_NE(problems[0].message.find("needs show_layers or hide_layers"), std::string::npos);
 }
 
@@ -139,7 +131,8 @@ TEST(GpioConfig, InputsAreLimited)
     for (size_t i = 0; i <= gpio::kMaxInputs; ++i)
         text += "[[gpio.input]]\nchip = \"c\"\nline = " + std::to_string(i) + "\nshow_layers = [\"guides\"]\n";
     const auto problems = loadInvalid(text);
-    EXPECT_NE(allText(problems).find("at most 32 inputs"), std::string::npos) << allText(problems);
+    EXPECT_NE(test::formatProblems(problems).find("at most 32 inputs"), std::string::npos)
+        << test::formatProblems(problems);
 }
 
 } // namespace

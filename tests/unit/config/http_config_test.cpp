@@ -26,15 +26,12 @@ pitch = 25.0
 fov = 60.0
 )";
 
+// Reports every problem when the expected one is missing.
 bool hasProblem(const std::vector<ConfigProblem> &problems, const std::string &key, const std::string &words)
 {
-    for (const ConfigProblem &p : problems)
-        if (p.key == key && p.message.find(words) != std::string::npos)
-            return true;
-    std::string all;
-    for (const ConfigProblem &p : problems)
-        all += p.format() + "\n";
-    ADD_FAILURE() << "no problem at " << key << " saying '" << words << "' in:\n" << all;
+    if (test::hasProblem(problems, key, words))
+        return true;
+    ADD_FAILURE() << "no problem at " << key << " saying '" << words << "' in:\n" << test::formatProblems(problems);
     return false;
 }
 

@@ -1,0 +1,80 @@
+#include "inputs/text_file_watch.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <sys/inotify.h>
+#include <unistd.h>
+
+namespace overlayd::inputs {
+
+namespace {
+
+// What a writer does: write and close, rename over, create, delete, or keep writing an open file.
+constexpr uint32_t kEvents = IN_CLOSE_WRITE | IN_MODIFY | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MOVED_FROM;
+
+} // namespace
+
+std::string slotLine(std::string_view content, size_t maxBytes)
+{
+    std::string line;
+    for (const char c : content) {
+        if (c == '\n')
+            break;
+        if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f)
+            line += c;
+    }
+    if (line.size() > maxBytes) {
+        size_t cut = maxBytes;
+        while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80)
+            --cut; // not inside a UTF-8 sequence
+        line.resize(cut);
+    }
+    return line;
+}
+
+Result<TextFileWatch> TextFileWatch::open(const std::string &path, size_t maxBytes)
+{
+    const std::filesystem::path file(path);
+    const std::string folder = file.parent_path().empty() ? "." : file.parent_path().string();
+    UniqueFd fd(::inotify_init1(IN_NONBLOCK | IN_CLOEXEC));
+    if (fd.get() < 0)
+        return makeError(ErrorCode::Io, std::string("inotify: ") + std::strerror(errno));
+    if (::inotify_add_watch(fd.get(), folder.c_str(), kEvents) < 0)
+        return makeError(errno == ENOENT ? ErrorCode::NotFound : ErrorCode::Io,
+                         "cannot watch the folder " + folder + " of " + path + ": " + std::strerror(errno));
+    return TextFileWatch(std::move(fd), path, file.filename().string(), maxBytes);
+}
+
+bool TextFileWatch::consume()
+{
+    alignas(inotify_event) char buffer[4096];
+    bool ours = false;
+    for (;;) {
+        const ssize_t got = ::read(fd_.get(), buffer, sizeof(buffer));
+        if (got <= 0)
+            return ours;
+        for (ssize_t at = 0; at < got;) {
+            const auto *event = reinterpret_cast<const inotify_event *>(buffer + at);
+            // IN_Q_OVERFLOW: events were lost; read the file again to be sure.
+            if ((event->mask & IN_Q_OVERFLOW) || (event->len && name_ == event->name))
+                ours = true;
+            at += ssize_t(sizeof(inotify_event) + event->len);
+        }
+    }
+}
+
+std::string TextFileWatch::read() const
+{
+    UniqueFd fd(::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+    if (fd.get() < 0)
+        return {};
+    // Enough for the longest line a slot shows plus what slotLine drops; the rest of the file is never read.
+    std::string content(maxBytes_ * 4 + 64, '\0');
+    const ssize_t got = ::read(fd.get(), content.data(), content.size());
+    content.resize(got > 0 ? size_t(got) : 0);
+    return slotLine(content, maxBytes_);
+}
+
+} // namespace overlayd::inputs

@@ -1,0 +1,39 @@
+// TextFileWatch: a text file other programs write, watched with inotify. The folder is watched, not the file, so
+// that a file replaced by rename (the safe way to write it), created late or deleted is followed too.
+#pragma once
+
+#include <string>
+
+#include "base/result.h"
+#include "base/unique_fd.h"
+
+namespace overlayd::inputs {
+
+// The line a slot shows: the first line of `content`, other control characters dropped, cut to at most maxBytes
+// at a UTF-8 character boundary.
+std::string slotLine(std::string_view content, size_t maxBytes);
+
+class TextFileWatch
+{
+public:
+    // The folder must exist (a missing file is fine: it reads as empty until it appears).
+    static Result<TextFileWatch> open(const std::string &path, size_t maxBytes);
+
+    // Readable when something happened in the folder; consume() then says whether it was this file.
+    int fd() const { return fd_.get(); }
+    bool consume();
+    // The file's line now ("" when it does not exist or cannot be read).
+    std::string read() const;
+    const std::string &path() const { return path_; }
+
+private:
+    TextFileWatch(UniqueFd fd, std::string path, std::string name, size_t maxBytes)
+        : fd_(std::move(fd)), path_(std::move(path)), name_(std::move(name)), maxBytes_(maxBytes)
+    {}
+
+    UniqueFd fd_;
+    std::string path_, name_; // name_: the file's name within its folder
+    size_t maxBytes_;
+};
+
+} // namespace overlayd::inputs
