@@ -25,6 +25,7 @@ struct FrameSamples {
     unsigned width = 0, height = 0;
     unsigned chromaWidth = 0, chromaHeight = 0, hSub = 1, vSub = 1;
     bool hasChroma = false;
+    unsigned lumaOutStride = 0; // the luma scratch plane's row length (the width padded to whole chroma sites)
 };
 
 // Luma steps by plane 0's bytes per pixel (both of a group's Y bytes must follow that step); chroma by its plane's
@@ -93,7 +94,7 @@ void convertRange(const FrameSamples &s, const JfifMapping &m, const std::array<
                 mapRow(s.cr.row(cy), s.cr.step, out[2] + size_t(cy) * s.chromaWidth, s.chromaWidth, chromaTable);
         }
         if (out[0])
-            mapRow(s.y.row(y), s.y.step, out[0] + size_t(y) * s.width, s.width, lumaTable);
+            mapRow(s.y.row(y), s.y.step, out[0] + size_t(y) * s.lumaOutStride, s.width, lumaTable);
     }
 }
 
@@ -146,9 +147,20 @@ void convertMatrix(const FrameSamples &s, const JfifMapping &m, const std::array
         const unsigned lastRow = std::min((cy + 1) * s.vSub, s.height);
         withStep(s.y.step, [&](auto step) {
             for (unsigned y = cy * s.vSub; y < lastRow; ++y)
-                matrixLumaRow(s.y.row(y), step, out[0] + size_t(y) * s.width, s.width, s.hSub, offsets, m);
+                matrixLumaRow(s.y.row(y), step, out[0] + size_t(y) * s.lumaOutStride, s.width, s.hSub, offsets, m);
         });
     }
+}
+
+// Repeats the last column and row of a width x height plane into its padding up to paddedWidth x paddedHeight.
+void padPlane(uint8_t *plane, unsigned width, unsigned height, unsigned paddedWidth, unsigned paddedHeight)
+{
+    for (unsigned y = 0; y < height && paddedWidth > width; ++y) {
+        uint8_t *row = plane + size_t(y) * paddedWidth;
+        std::fill(row + width, row + paddedWidth, row[width - 1]);
+    }
+    for (unsigned y = height; y < paddedHeight; ++y)
+        std::copy_n(plane + size_t(height - 1) * paddedWidth, paddedWidth, plane + size_t(y) * paddedWidth);
 }
 
 } // namespace
@@ -158,14 +170,20 @@ Status JfifPlanes::gather(const FrameView &frame, const JfifMapping &mapping)
     auto located = locate(frame);
     if (!located)
         return located.error();
-    const FrameSamples &s = *located;
+    FrameSamples &s = *located;
+    // tjCompressFromYUVPlanes reads luma up to whole chroma sites (an odd-sized 4:2:0 frame: one more column and
+    // row than it has): such a frame's luma is copied into a plane with that padding, its edge samples repeated.
+    const unsigned paddedWidth = (s.width + s.hSub - 1) / s.hSub * s.hSub;
+    const unsigned paddedHeight = (s.height + s.vSub - 1) / s.vSub * s.vSub;
+    const bool lumaPadded = paddedWidth != s.width || paddedHeight != s.height;
+    s.lumaOutStride = paddedWidth;
     const std::array<const Samples *, 3> in{&s.y, &s.cb, &s.cr};
-    const std::array<unsigned, 3> widths{s.width, s.chromaWidth, s.chromaWidth};
-    const std::array<unsigned, 3> heights{s.height, s.chromaHeight, s.chromaHeight};
+    const std::array<unsigned, 3> widths{paddedWidth, s.chromaWidth, s.chromaWidth};
+    const std::array<unsigned, 3> heights{paddedHeight, s.chromaHeight, s.chromaHeight};
     count_ = s.hasChroma ? 3 : 1;
     std::array<uint8_t *, 3> out{}; // the scratch planes this frame converts into; nullptr: used in place
     for (unsigned p = 0; p < count_; ++p) {
-        if (mapping.identity() && in[p]->step == 1) {
+        if (mapping.identity() && in[p]->step == 1 && !(p == 0 && lumaPadded)) {
             data_[p] = in[p]->base, strides_[p] = int(in[p]->stride);
             continue;
         }
@@ -176,6 +194,8 @@ Status JfifPlanes::gather(const FrameView &frame, const JfifMapping &mapping)
         convertMatrix(s, mapping, out, lumaOffsets_);
     else
         convertRange(s, mapping, out);
+    if (lumaPadded)
+        padPlane(out[0], s.width, s.height, paddedWidth, paddedHeight);
     return Ok{};
 }
 

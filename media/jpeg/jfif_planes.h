@@ -18,7 +18,8 @@ public:
     // Points at the planes of `frame` (a checked Y'CbCr frame) wherever they already hold contiguous samples that
     // need no conversion (I420's three planes, NV12's luma, in full-range BT.601), and converts the rest into
     // scratch planes: packed 4:2:2 is de-interleaved, semi-planar chroma split, the range expanded and the matrix
-    // changed as `mapping` says. The scratch planes keep their memory while the frame size stays the same.
+    // changed as `mapping` says; luma is given the padding to whole chroma sites libjpeg-turbo reads (an odd-sized
+    // frame's luma is always copied). The scratch planes keep their memory while the frame size stays the same.
     // Unsupported for a table entry whose samples are not at fixed steps (none today).
     Status gather(const FrameView &frame, const JfifMapping &mapping);
 
