@@ -1,6 +1,7 @@
-// [[input.text]]: text slots fed by files. The slot must be shown by some text annotation (a typo would feed
-// nothing, silently), one slot is fed by one input, and the file's folder must exist (the file itself may appear
-// later: a program that writes it may start after the daemon).
+// [[input.text]]: text slots fed by files; [[input.can]]: signals on a CAN bus, into the guide lines' steering or
+// a text slot. A target must exist in the scene (a typo would feed nothing, silently) and is fed by one input; a
+// text file's folder must exist (the file itself may appear later: a program that writes it may start after the
+// daemon). A CAN interface is not checked: like a camera it may appear after the daemon starts.
 #include "config/config_sections.h"
 
 #include <algorithm>
@@ -47,6 +48,88 @@ void readTextInput(TableReader &table, const std::string &baseDirectory, const s
     table.finish();
 }
 
+// "ANNOTATION.steering" or "slot:NAME".
+void readCanTarget(TableReader &table, const OverlayScene &scene, const std::vector<std::string> &slots,
+                   std::vector<std::string> &fed, inputs::CanTarget &out)
+{
+    const std::optional<std::string> target = table.string("target");
+    if (!target) {
+        if (!table.has("target"))
+            table.problem("target", "missing: \"GUIDE-LINES NAME.steering\" or \"slot:NAME\"");
+        return;
+    }
+    if (target->starts_with("slot:")) {
+        out = {inputs::CanTarget::Kind::Slot, target->substr(5)};
+        if (std::find(slots.begin(), slots.end(), out.name) == slots.end())
+            table.problem("target", "no text annotation shows {slot:" + out.name + "}");
+    } else if (target->ends_with(".steering")) {
+        out = {inputs::CanTarget::Kind::Steering, target->substr(0, target->size() - 9)};
+        const auto annotation = std::find_if(scene.annotations.begin(), scene.annotations.end(),
+                                             [&](const Annotation &a) { return a.name == out.name; });
+        if (annotation == scene.annotations.end() || !std::holds_alternative<GuideLinesShape>(annotation->shape))
+            table.problem("target", "no guide-lines annotation is named '" + out.name + "'");
+    } else {
+        table.problem("target", "expected \"GUIDE-LINES NAME.steering\" or \"slot:NAME\", got \"" + *target + "\"");
+        return;
+    }
+    const std::string key = (out.kind == inputs::CanTarget::Kind::Slot ? "slot:" : "steering:") + out.name;
+    if (std::find(fed.begin(), fed.end(), key) != fed.end())
+        table.problem("target", "'" + *target + "' is already fed by another input");
+    fed.push_back(key);
+}
+
+void readCanInput(TableReader &table, const OverlayScene &scene, const std::vector<std::string> &slots,
+                  std::vector<std::string> &fed, inputs::CanInputOptions &out)
+{
+    out.name = table.string("name").value_or("");
+    if (auto interface = table.string("interface")) {
+        out.interface = *interface;
+        if (interface->empty() || interface->size() > 15 || interface->find('/') != std::string::npos)
+            table.problem("interface",
+                          "a network interface name of 1..15 characters (e.g. can0), got \"" + *interface + "\"");
+    } else if (!table.has("interface")) {
+        table.problem("interface", "missing: the SocketCAN interface (e.g. can0)");
+    }
+    out.id.extended = table.boolean("id_extended").value_or(false);
+    const int64_t maxId = out.id.extended ? inputs::kMaxExtendedCanId : inputs::kMaxStandardCanId;
+    if (auto id = table.integer("id", 0, maxId))
+        out.id.id = uint32_t(*id);
+    else if (!table.has("id"))
+        table.problem("id", "missing: the frame's CAN id (0..0x7FF, or up to 0x1FFFFFFF with id_extended = true)");
+    inputs::CanSignalLayout &layout = out.layout;
+    const bool haveStart = table.has("start_bit") && table.has("length");
+    layout.startBit = unsigned(table.integer("start_bit", 0, 63).value_or(0));
+    layout.length = unsigned(table.integer("length", 1, 64).value_or(8));
+    if (!haveStart)
+        table.problem(table.has("start_bit") ? "length" : "start_bit", "missing: the signal's start_bit and length");
+    using Order = std::pair<std::string_view, bool>;
+    layout.bigEndian =
+        table.choice<bool>("byte_order", {Order{"little-endian", false}, Order{"big-endian", true}}).value_or(false);
+    layout.isSigned = table.boolean("signed").value_or(false);
+    layout.scale = table.number("scale").value_or(1.0);
+    if (layout.scale == 0.0)
+        table.problem("scale", "a scale of 0 makes every value the offset");
+    layout.offset = table.number("offset").value_or(0.0);
+    if (haveStart)
+        if (const std::string problem = inputs::canLayoutProblem(layout); !problem.empty())
+            table.problem("start_bit", problem);
+    out.unit = table.string("unit").value_or("");
+    out.min = table.number("min").value_or(out.min);
+    out.max = table.number("max").value_or(out.max);
+    if (out.min >= out.max)
+        table.problem("max", "max must be greater than min");
+    out.timeoutMs = int(table.integer("timeout_ms", 1, inputs::kMaxCanTimeoutMs).value_or(out.timeoutMs));
+    out.step = table.number("step", 0.0).value_or(out.step);
+    out.decimals = int(table.integer("decimals", 0, 9).value_or(out.decimals));
+    out.staleText = table.string("stale_text").value_or(out.staleText);
+    if (out.staleText.size() > inputs::kMaxTextBytes)
+        table.problem("stale_text", "at most " + std::to_string(inputs::kMaxTextBytes) + " bytes");
+    readCanTarget(table, scene, slots, fed, out.target);
+    if (out.name.empty())
+        out.name = out.interface + ":" + std::to_string(out.id.id);
+    table.finish();
+}
+
 } // namespace
 
 void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
@@ -62,6 +145,14 @@ void readInputs(TableReader &root, const std::string &baseDirectory, const Overl
         input->problem("text", "at most " + std::to_string(inputs::kMaxTextInputs) + " text inputs");
     for (size_t i = 0; i < texts.size() && i < inputs::kMaxTextInputs; ++i)
         readTextInput(texts[i], baseDirectory, slots, fed, out.text.emplace_back());
+    std::vector<std::string> fedByCan;
+    for (const std::string &slot : fed)
+        fedByCan.push_back("slot:" + slot);
+    std::vector<TableReader> cans = input->tables("can");
+    if (cans.size() > inputs::kMaxCanInputs)
+        input->problem("can", "at most " + std::to_string(inputs::kMaxCanInputs) + " CAN inputs");
+    for (size_t i = 0; i < cans.size() && i < inputs::kMaxCanInputs; ++i)
+        readCanInput(cans[i], scene, slots, fedByCan, out.can.emplace_back());
     input->finish();
 }
 

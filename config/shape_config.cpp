@@ -129,6 +129,8 @@ Shape readGuideLines(TableReader &t)
     s.length = t.positive("length", 1000).value_or(s.length);
     s.distanceMarks = t.numbers("distance_marks").value_or(s.distanceMarks);
     s.markColours = t.colours("mark_colours").value_or(s.markColours);
+    s.steeringRatio = t.positive("steering_ratio", 100).value_or(s.steeringRatio);
+    s.staleColour = t.colour("stale_colour").value_or(s.staleColour);
     return s;
 }
 

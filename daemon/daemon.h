@@ -12,6 +12,7 @@
 
 #include "base/logger.h"
 #include "config/daemon_config.h"
+#include "daemon/can_inputs.h"
 #include "daemon/event_loop.h"
 #include "daemon/gpio_control.h"
 #include "daemon/health_reporter.h"
@@ -67,6 +68,8 @@ public:
     const GpioControl &gpio() const { return gpio_; }
     GpioControl &gpio() { return gpio_; }
     const TextInputs &textInputs() const { return textInputs_; }
+    const CanInputs &canInputs() const { return canInputs_; }
+    CanInputs &canInputs() { return canInputs_; }
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }
@@ -95,6 +98,7 @@ private:
     HealthReporter health_;
     GpioControl gpio_;      // after scene_, whose layers it switches
     TextInputs textInputs_; // after scene_, whose slots it feeds
+    CanInputs canInputs_;   // after scene_, whose guide lines and slots it feeds
     HttpFront http_;        // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running

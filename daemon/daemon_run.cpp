@@ -37,6 +37,7 @@ int Daemon::run()
     gpio_.attachLoop(loop_);
     http_.attachLoop(loop_);
     textInputs_.attachLoop(loop_);
+    canInputs_.attachLoop(loop_);
     while (state() != State::Finished) {
         gpio_.onState(state()); // outputs follow the state the last turn left
         if (auto status = loop->runOnce(); !status) {
@@ -45,6 +46,7 @@ int Daemon::run()
         }
     }
     shutdown();
+    canInputs_.attachLoop(nullptr);
     textInputs_.attachLoop(nullptr);
     http_.attachLoop(nullptr);
     gpio_.attachLoop(nullptr);
@@ -70,6 +72,8 @@ void Daemon::onStats()
     health_.onStats(pipeline_, state() == State::Streaming);
     if (!gpio_.empty())
         logger_.info(cat("gpio: ", gpio_.describe()));
+    if (canInputs_.size() > 0)
+        logger_.info(cat("input.can: ", canInputs_.describe(CanInputs::Clock::now())));
 }
 
 void Daemon::onWatchdog()
@@ -170,6 +174,10 @@ bool Daemon::reload()
     if (gpioChanged)
         gpio_.applyLayers(); // the new rules, on the new scene's layers
     textInputs_.showAll();   // the files' lines in the new scene's slots
+    if (inputsChanged)       // CAN inputs cannot refuse a reload: an interface that is not there is retried
+        canInputs_.configure(config_.inputs.can);
+    else
+        canInputs_.showAll(); // the signals' values on the new scene's guide lines and slots
     applyLogLevel();
     armStats();
     if (sourceChanged) {

@@ -237,6 +237,30 @@ HttpResponse HttpApi::state()
                           {"file", reading.file},
                           {"value", reading.text},
                           {"age_s", std::chrono::duration<double>(now - reading.changed).count()}});
+    const CanInputs &can = daemon_.canInputs();
+    for (size_t i = 0; i < can.size(); ++i) {
+        const inputs::CanInputOptions &options = can.options(i);
+        const CanInputs::Reading &reading = can.reading(i);
+        const bool any = reading.state != CanInputs::State::NoData;
+        json entry = {
+            {"kind", "can"},
+            {"name", options.name},
+            {"interface", options.interface},
+            {"id", options.id.id},
+            {"target", options.target.kind == inputs::CanTarget::Kind::Slot ? "slot:" + options.target.name
+                                                                            : options.target.name + ".steering"},
+            {"value", any ? json(reading.value) : json(nullptr)},
+            {"unit", options.unit},
+            {"state", CanInputs::stateName(reading.state)},
+            {"age_s", any ? json(std::chrono::duration<double>(now - reading.updated).count()) : json(nullptr)},
+            {"frames", reading.frames},
+            {"malformed", reading.malformed},
+            {"out_of_range", reading.outOfRange},
+            {"connected", reading.connected}};
+        if (!reading.connected)
+            entry["error"] = reading.error;
+        inputs.push_back(std::move(entry));
+    }
     if (!inputs.empty())
         out["inputs"] = inputs;
     return HttpResponse::json(200, out.dump());
@@ -267,6 +291,16 @@ HttpResponse HttpApi::metrics()
                label);
         metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
                label);
+    }
+    const CanInputs &can = daemon_.canInputs();
+    for (size_t i = 0; i < can.size(); ++i) {
+        const std::string label = "input=" + json(can.options(i).name).dump();
+        const CanInputs::Reading &reading = can.reading(i);
+        metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames), label);
+        metric("overlayd_can_malformed_total", "counter", "CAN frames too short for the signal (ignored).",
+               double(reading.malformed), label);
+        metric("overlayd_can_value_valid", "gauge", "1 while the signal's value is fresh and in range.",
+               reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
     }
     metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
     metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);

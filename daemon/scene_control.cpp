@@ -3,6 +3,7 @@
 #include "daemon/scene_control.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "overlay/shapes/scene_checks.h"
 
@@ -65,6 +66,8 @@ Status SceneControl::apply(const SceneChange &change, std::unique_ptr<OverlayRen
         return applyLayer(*layer);
     if (const auto *text = std::get_if<TextChange>(&change))
         return applyText(*text);
+    if (const auto *steering = std::get_if<SteeringChange>(&change))
+        return applySteering(*steering);
     return applyScene(std::get<SceneReplacement>(change), replaced);
 }
 
@@ -143,6 +146,29 @@ Status SceneControl::applyText(const TextChange &change)
             return set;
     slotTexts_.insert_or_assign(change.slot, change.text);
     return Ok{};
+}
+
+Status SceneControl::applySteering(const SteeringChange &change)
+{
+    // The config's own limit for steering_deg.
+    constexpr double kMaxRoadWheelDeg = 80.0;
+    for (Annotation &annotation : scene_.annotations) {
+        auto *guide = std::get_if<GuideLinesShape>(&annotation.shape);
+        if (annotation.name != change.annotation || !guide)
+            continue;
+        std::optional<double> road;
+        if (change.wheelDeg && std::isfinite(*change.wheelDeg))
+            road = *change.wheelDeg / guide->steeringRatio;
+        if (road && !(std::abs(*road) < kMaxRoadWheelDeg))
+            road.reset();
+        if (renderer_)
+            if (auto set = renderer_->setGuideSteering(change.annotation, road); !set)
+                return set;
+        guide->steeringKnown = road.has_value();
+        guide->steeringDeg = road.value_or(0.0);
+        return Ok{};
+    }
+    return makeError(ErrorCode::InvalidArgument, "no guide-lines annotation named '" + change.annotation + "'");
 }
 
 std::vector<std::string> SceneControl::layerNames() const

@@ -37,13 +37,22 @@ struct TextChange {
     std::string text;
 };
 
+// A live steering-wheel angle for a guide-lines annotation (its steering_ratio turns it into the road-wheel angle),
+// or nullopt when the angle is unknown: the wheel tracks go and the marks show straight, in the stale colour. A
+// road-wheel angle the geometry cannot draw (80 degrees or more) counts as unknown. The angle outlives renderer
+// rebuilds.
+struct SteeringChange {
+    std::string annotation;
+    std::optional<double> wheelDeg;
+};
+
 // A whole new scene and camera (a reload that keeps the source): built completely before it replaces the old one.
 struct SceneReplacement {
     OverlayScene scene;
     CameraSpec camera;
 };
 
-using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SceneReplacement>;
+using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SteeringChange, SceneReplacement>;
 
 // Builds a stream's overlay from a scene and the camera resolved for the stream's frame size; null: nothing to draw.
 using RendererFactory = std::function<Result<std::unique_ptr<OverlayRenderer>>(
@@ -82,6 +91,7 @@ private:
     Status applyCamera(const CameraChange &change);
     Status applyLayer(const LayerChange &change);
     Status applyText(const TextChange &change);
+    Status applySteering(const SteeringChange &change);
     Status applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced);
     Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const Camera &camera,
                                                       const StreamFormat &format) const;

@@ -1,4 +1,5 @@
-// What [[input.text]] asks for: live data from outside the config file, into the running scene's text slots.
+// What [[input.text]] and [[input.can]] ask for: live data from outside the config file, into the running scene
+// (text slots, and the guide lines' steering angle).
 // Compared whole (defaulted ==), so that a reload re-opens exactly the inputs that changed.
 #pragma once
 
@@ -6,9 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "inputs/can_signal.h"
+#include "inputs/can_socket.h"
+
 namespace overlayd::inputs {
 
 inline constexpr size_t kMaxTextInputs = 32;
+inline constexpr size_t kMaxCanInputs = 16;
+inline constexpr int kMaxCanTimeoutMs = 60000;
 inline constexpr size_t kMaxTextBytes = 256; // a slot's limit (overlay/shapes/text_tokens.h kMaxSlotTextBytes)
 
 // A text slot fed by a file another program writes: its first line, on the next frame after each change.
@@ -19,9 +25,34 @@ struct TextInputOptions {
     bool operator==(const TextInputOptions &) const = default;
 };
 
+// What a CAN signal drives.
+struct CanTarget {
+    enum class Kind { Steering, Slot } kind = Kind::Steering;
+    std::string name; // the guide-lines annotation, or the {slot:NAME}
+    bool operator==(const CanTarget &) const = default;
+};
+
+// One signal on a SocketCAN interface. A value outside [min, max], or none for timeoutMs, is not shown as if it
+// were true: the steering target hides its wheel tracks, a slot shows staleText.
+struct CanInputOptions {
+    std::string name;
+    std::string interface;
+    CanId id;
+    CanSignalLayout layout;
+    std::string unit;
+    double min = -1e300, max = 1e300;
+    int timeoutMs = 500;
+    double step = 0.0; // a new value reaches the scene only when it differs from the shown one by at least this
+    int decimals = 1;  // a slot's text: the value with this many decimals, then the unit
+    std::string staleText = "--";
+    CanTarget target;
+    bool operator==(const CanInputOptions &) const = default;
+};
+
 struct InputOptions {
     std::vector<TextInputOptions> text;
-    bool empty() const { return text.empty(); }
+    std::vector<CanInputOptions> can;
+    bool empty() const { return text.empty() && can.empty(); }
     bool operator==(const InputOptions &) const = default;
 };
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,6 +36,10 @@ public:
     // What a {slot:NAME} token shows from the next frame on (checkSlotText's rules); an unknown slot is an
     // InvalidArgument error.
     virtual Status setSlotText(std::string_view slot, std::string_view text) = 0;
+    // A guide-lines annotation's road-wheel steering angle (degrees, |angle| < 89) from the next frame on, or
+    // nullopt when it is unknown (its wheel tracks go). Like a camera change, it re-projects the world layers:
+    // drawn straight into frames while it keeps changing. An unknown annotation is an InvalidArgument error.
+    virtual Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) = 0;
 
     // Frame path (no exceptions; no allocation once the text layers have warmed up and while the camera holds
     // still): refreshes token text if it changed and blends every enabled layer into the frame in place. fps feeds

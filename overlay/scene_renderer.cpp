@@ -124,6 +124,25 @@ Status SceneRenderer::setCamera(const Camera &camera)
     return Ok{};
 }
 
+Status SceneRenderer::setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg)
+{
+    if (steeringDeg && !(std::abs(*steeringDeg) < 89.0))
+        return makeError(ErrorCode::InvalidArgument, "a steering angle must be finite and below 89 degrees");
+    for (Annotation &a : scene_.annotations) {
+        auto *guide = std::get_if<GuideLinesShape>(&a.shape);
+        if (a.name != annotation || !guide)
+            continue;
+        if (guide->steeringKnown == steeringDeg.has_value() && guide->steeringDeg == steeringDeg.value_or(0.0))
+            return Ok{};
+        guide->steeringKnown = steeringDeg.has_value();
+        guide->steeringDeg = steeringDeg.value_or(0.0);
+        worldStale_ = true;
+        cameraChangedSinceBlend_ = true;
+        return Ok{};
+    }
+    return makeError(ErrorCode::InvalidArgument, "no guide-lines annotation named \"" + std::string(annotation) + "\"");
+}
+
 Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
 {
     for (Layer &layer : layers_) {

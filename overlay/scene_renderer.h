@@ -4,7 +4,7 @@
 //
 // A camera that keeps moving (setCamera before two blends in a row) is drawn straight into each frame instead:
 // a cached layer would be redrawn and converted every frame for one use. When the camera holds still for a frame,
-// the layers are rendered once more and the cached blend takes over again.
+// the layers are rendered once more and the cached blend takes over again. A live steering angle takes the same path.
 #pragma once
 
 #include <memory>
@@ -30,6 +30,7 @@ public:
     Status setLayerEnabled(std::string_view layer, bool enabled) override;
     std::vector<std::string> layerNames() const override;
     Status setSlotText(std::string_view slot, std::string_view text) override;
+    Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) override;
     Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) override;
 
     // Re-projects and re-rasterizes every world layer (called by create and setCamera).

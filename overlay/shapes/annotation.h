@@ -88,7 +88,9 @@ struct HorizonShape {
 
 // Reverse-camera guide lines: the ground track of a car-like vehicle (Ackermann geometry) for a steering angle,
 // starting at the rear axle (the frame's origin, x forward, y left, z up) and going backwards for `length`
-// metres; one line per rear wheel edge plus distance marks across the track.
+// metres; one line per rear wheel edge plus distance marks across the track. A live steering input ([[input.can]])
+// sets steeringDeg through steeringRatio; while its value is unknown (stale, out of range) the wheel tracks are not
+// drawn and the marks lie straight behind the car in staleColour, so a wrong curve is never shown as true.
 struct GuideLinesShape {
     double wheelbase = 2.7;
     double trackWidth = 1.6;
@@ -96,6 +98,9 @@ struct GuideLinesShape {
     double length = 5.0;
     std::vector<double> distanceMarks{1.0, 2.0, 3.0};
     std::vector<Rgba> markColours{}; // per distance mark; empty: the style's colour
+    double steeringRatio = 1.0;      // steering-wheel angle / road-wheel angle, for a live steering input
+    bool steeringKnown = true;
+    Rgba staleColour{158, 158, 158, 255};
 };
 
 // Another camera's frustum as a wireframe, from its pose and projection matrix (Projection::matrix()), cut at

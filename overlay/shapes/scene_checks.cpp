@@ -128,8 +128,8 @@ void Checker::check(const HorizonShape &s)
 void Checker::check(const GuideLinesShape &s)
 {
     require(positive(s.wheelbase, 100) && positive(s.trackWidth, 100) && positive(s.length, 1000) &&
-                finite(s.steeringDeg) && std::abs(s.steeringDeg) < 89,
-            "guide lines need wheelbase, track width and length > 0 and |steering| < 89 degrees");
+                finite(s.steeringDeg) && std::abs(s.steeringDeg) < 89 && positive(s.steeringRatio, 100),
+            "guide lines need wheelbase, track width, length and steering ratio > 0 and |steering| < 89 degrees");
     for (double d : s.distanceMarks)
         require(finite(d), "distance marks must be finite");
 }

@@ -62,6 +62,13 @@ void buildHorizon(const ShapeContext &ctx, const HorizonShape &shape)
 
 void buildGuideLines(const ShapeContext &ctx, const GuideLinesShape &shape)
 {
+    if (!shape.steeringKnown) {
+        GuideLinesShape straight = shape;
+        straight.steeringDeg = 0.0;
+        for (const auto &mark : guideGeometry(straight).marks)
+            ctx.segment(ctx.stroke(shape.staleColour), mark[0], mark[1]);
+        return;
+    }
     const GuideGeometry geometry = guideGeometry(shape);
     StrokeItem &wheels = ctx.stroke();
     for (const auto &track : geometry.wheels)

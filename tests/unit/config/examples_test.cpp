@@ -114,6 +114,8 @@ TEST(Examples, OtherExamplesUseTheirFeature)
     const DaemonConfig reverse = loadExample("reverse_camera.toml");
     EXPECT_EQ(reverse.camera.mountFrame, "car");
     EXPECT_EQ(shapesOf<GuideLinesShape>(reverse).size(), 1u);
+    ASSERT_EQ(reverse.inputs.can.size(), 1u);
+    EXPECT_EQ(reverse.inputs.can[0].target.name, "guide lines");
 }
 
 } // namespace

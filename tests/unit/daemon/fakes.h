@@ -7,6 +7,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,11 +80,45 @@ public:
     Status setCamera(const Camera &) override { return Ok{}; }
     Status setLayerEnabled(std::string_view, bool) override { return Ok{}; }
     Status setSlotText(std::string_view, std::string_view) override { return Ok{}; }
+    Status setGuideSteering(std::string_view, std::optional<double>) override { return Ok{}; }
     std::vector<std::string> layerNames() const override { return {}; }
     Status blend(const FrameView &frame, const FrameMetadata &, double) override;
 
 private:
     uint8_t mark_;
+};
+
+// Records what SceneControl asked of it (its layer names are the ones scene_control_test's scene uses).
+class RecordingRenderer : public OverlayRenderer
+{
+public:
+    Status setCamera(const Camera &camera) override
+    {
+        cameras.push_back(camera.projection().matrix());
+        return Ok{};
+    }
+    Status setLayerEnabled(std::string_view layer, bool enabled) override
+    {
+        layers.emplace_back(std::string(layer), enabled);
+        return Ok{};
+    }
+    std::vector<std::string> layerNames() const override { return {"grid", "labels"}; }
+    Status setSlotText(std::string_view slot, std::string_view text) override
+    {
+        slots.emplace_back(std::string(slot), std::string(text));
+        return Ok{};
+    }
+    Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) override
+    {
+        steerings.emplace_back(std::string(annotation), steeringDeg);
+        return Ok{};
+    }
+    Status blend(const FrameView &, const FrameMetadata &, double) override { return Ok{}; }
+
+    std::vector<std::pair<std::string, std::optional<double>>> steerings;
+    std::vector<glm::dmat4> cameras;
+    std::vector<std::pair<std::string, bool>> layers;
+    std::vector<std::pair<std::string, std::string>> slots;
 };
 
 class RecordingNotifier : public SystemdNotifier

@@ -9,33 +9,6 @@
 namespace overlayd {
 namespace {
 
-// Records what SceneControl asked of it.
-class RecordingRenderer : public OverlayRenderer
-{
-public:
-    Status setCamera(const Camera &camera) override
-    {
-        cameras.push_back(camera.projection().matrix());
-        return Ok{};
-    }
-    Status setLayerEnabled(std::string_view layer, bool enabled) override
-    {
-        layers.emplace_back(std::string(layer), enabled);
-        return Ok{};
-    }
-    std::vector<std::string> layerNames() const override { return {"grid", "labels"}; }
-    Status setSlotText(std::string_view slot, std::string_view text) override
-    {
-        slots.emplace_back(std::string(slot), std::string(text));
-        return Ok{};
-    }
-    Status blend(const FrameView &, const FrameMetadata &, double) override { return Ok{}; }
-
-    std::vector<glm::dmat4> cameras;
-    std::vector<std::pair<std::string, bool>> layers;
-    std::vector<std::pair<std::string, std::string>> slots;
-};
-
 OverlayScene twoLayers()
 {
     OverlayScene scene;
@@ -51,14 +24,14 @@ OverlayScene twoLayers()
 
 struct SceneControlTest : ::testing::Test {
     bool factoryFails = false;
-    RecordingRenderer *last = nullptr; // the renderer the factory made last
+    test::RecordingRenderer *last = nullptr; // the renderer the factory made last
     SceneControl control{[this](const OverlayScene &scene, const Camera &,
                                 const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
         if (factoryFails)
             return makeError(ErrorCode::InvalidArgument, "annotation 'x': unknown frame 'base'");
         if (scene.annotations.empty())
             return std::unique_ptr<OverlayRenderer>();
-        auto renderer = std::make_unique<RecordingRenderer>();
+        auto renderer = std::make_unique<test::RecordingRenderer>();
         last = renderer.get();
         return std::unique_ptr<OverlayRenderer>(std::move(renderer));
     }};

@@ -1,0 +1,45 @@
+// CanSocket: one signal's frames from a SocketCAN interface (can0, vcan0, ...), through the kernel's own raw CAN
+// socket API: a filter in the kernel lets only the signal's id through, so a busy bus wakes the daemon only for
+// the frames it wants.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "base/result.h"
+#include "base/unique_fd.h"
+
+namespace overlayd::inputs {
+
+struct CanId {
+    uint32_t id = 0;
+    bool extended = false; // 29-bit
+    bool operator==(const CanId &) const = default;
+};
+
+// A received data frame: its id and data bytes (the DLC says how many are valid).
+struct CanFrame {
+    CanId id;
+    uint8_t length = 0;
+    uint8_t data[8]{};
+    std::span<const uint8_t> bytes() const { return {data, length}; }
+};
+
+class CanSocket
+{
+public:
+    // Binds a non-blocking raw socket on the interface, filtered to the id (remote frames and error frames are
+    // not received). NotFound when the interface does not exist, Io otherwise (errno in the message).
+    static Result<CanSocket> open(const std::string &interface, CanId id);
+
+    int fd() const { return fd_.get(); }
+    // The next queued frame: false when none is queued (EAGAIN); an error when the interface went down or away.
+    Result<bool> read(CanFrame &frame);
+
+private:
+    explicit CanSocket(UniqueFd fd) : fd_(std::move(fd)) {}
+    UniqueFd fd_;
+};
+
+} // namespace overlayd::inputs
