@@ -157,6 +157,7 @@ void CanInputs::onFrame(size_t input, const inputs::CanFrame &frame, Clock::time
         return;
     }
     r.value = *value;
+    r.received = now;
     if (!(*value >= in.options.min && *value <= in.options.max)) {
         ++r.outOfRange;
         r.state = State::OutOfRange;
@@ -216,7 +217,7 @@ std::string CanInputs::describe(Clock::time_point now) const
         out += r.state == State::NoData ? std::string("-") : formatValue(r.value, in.options.decimals, in.options.unit);
         out += cat(" ", stateName(r.state));
         if (r.state != State::NoData)
-            out += cat(" age ", std::chrono::duration_cast<std::chrono::milliseconds>(now - r.updated).count(), " ms");
+            out += cat(" age ", std::chrono::duration_cast<std::chrono::milliseconds>(now - r.received).count(), " ms");
         if (r.malformed)
             out += cat(" malformed ", r.malformed);
         if (!r.connected)

@@ -43,7 +43,8 @@ public:
     struct Reading {
         State state = State::NoData;
         double value = 0.0;        // the last decoded value (also when out of range)
-        Clock::time_point updated; // when the last valid frame came
+        Clock::time_point updated;  // when the last valid frame came (the timeout counts from it)
+        Clock::time_point received; // when `value` came (valid or out of range)
         uint64_t frames = 0, malformed = 0, outOfRange = 0;
         bool connected = false;
         std::string error; // why the socket is not open

@@ -252,7 +252,7 @@ HttpResponse HttpApi::state()
             {"value", any ? json(reading.value) : json(nullptr)},
             {"unit", options.unit},
             {"state", CanInputs::stateName(reading.state)},
-            {"age_s", any ? json(std::chrono::duration<double>(now - reading.updated).count()) : json(nullptr)},
+            {"age_s", any ? json(std::chrono::duration<double>(now - reading.received).count()) : json(nullptr)},
             {"frames", reading.frames},
             {"malformed", reading.malformed},
             {"out_of_range", reading.outOfRange},

@@ -15,6 +15,7 @@ packages=(
     ffmpeg v4l-utils systemd
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     qemu-system-x86 busybox-static cpio kmod xz-utils python3 binutils make ustreamer # tests/vm: the real-driver tier
+    can-utils # tests/vm: cansend and candump, the CAN check's other end of the bus
 )
 
 missing=()

@@ -8,7 +8,7 @@
 # Defaults: build/daemon/overlayd and build/vm-work/ (guest.log, the staged overlayd, the guest's artifacts).
 #
 # Environment: OVERLAYD_SKIP_VM=1 skips; OVERLAYD_VM_CACHE (default ~/.cache/overlayd-vm) keeps downloads and
-# built pieces per kernel version; OVERLAYD_VM_ACCEL=auto|kvm|tcg; OVERLAYD_VM_TIMEOUT (s, default 600).
+# built pieces per kernel version; OVERLAYD_VM_ACCEL=auto|kvm|tcg; OVERLAYD_VM_TIMEOUT (s, default 1200).
 set -euo pipefail
 VM_HERE=$(cd "$(dirname "$0")" && pwd)
 . "$VM_HERE/lib/common.sh"

@@ -27,7 +27,7 @@ vmStage() {
 VM_HOST_TOOLS=(
     "qemu-system-x86_64 qemu-system-x86" "cpio cpio" "depmod kmod" "xz xz-utils"
     "python3 python3" "strip binutils" "gcc-12 gcc-12" "make make" "v4l2-ctl v4l-utils" "v4l2-compliance v4l-utils"
-    "ffprobe ffmpeg" "cam libcamera-tools" "gpioinfo gpiod" "curl curl" "ustreamer ustreamer"
+    "ffprobe ffmpeg" "cam libcamera-tools" "gpioinfo gpiod" "curl curl" "ustreamer ustreamer" "cansend can-utils"
     "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf fonts-dejavu-core"
     "/usr/lib/x86_64-linux-gnu/libcamera/ipa_vimc.so libcamera-ipa"
 )

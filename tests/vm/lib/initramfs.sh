@@ -4,11 +4,15 @@
 # the initramfs rather than on the 9p share: under TCG, loading them over 9p took a minute per process.
 # shellcheck shell=bash
 
-VM_GUEST_MODULES="vivid vimc gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci"
+# Debian's modules the checks load, with their dependencies (modprobe --show-depends): SocketCAN's core, raw
+# sockets and the virtual CAN bus for checks/90-can-steering.sh.
+VM_GUEST_MODULES="vivid vimc gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci can can-raw vcan"
 
 vmBaseInitramfs() {
     local out=$VM_KCACHE/base.cpio root=$VM_KCACHE/base-root kimg=$VM_KCACHE/kimg
-    [ -s "$out" ] && [ "$out" -nt "$VM_KCACHE/extra" ] && return 0
+    # Rebuilt when the out-of-tree modules are newer or the module list changed (base.modules records it).
+    [ -s "$out" ] && [ "$out" -nt "$VM_KCACHE/extra" ] &&
+        [ "$(cat "$VM_KCACHE/base.modules" 2>/dev/null)" = "$VM_GUEST_MODULES" ] && return 0
     vmUnpackModules "$kimg"
     rm -rf "$root" && mkdir -p "$root"/usr/{bin,sbin,lib64,lib/x86_64-linux-gnu} "$root"/{proc,sys,dev,tmp,run,etc,mnt}
     ln -s usr/bin "$root/bin" && ln -s usr/sbin "$root/sbin" && ln -s usr/lib "$root/lib" && ln -s usr/lib64 "$root/lib64"
@@ -28,6 +32,7 @@ vmBaseInitramfs() {
     cp "$mods"/modules.{order,builtin,builtin.modinfo} "$root/usr/lib/modules/$VM_KVER/"
     depmod -b "$root" "$VM_KVER"
     (cd "$root" && find . -print0 | cpio --null -o -H newc --quiet) >"$out.tmp" && mv "$out.tmp" "$out"
+    echo "$VM_GUEST_MODULES" >"$VM_KCACHE/base.modules"
     rm -rf "$root" "$kimg"
 }
 
@@ -40,6 +45,7 @@ vmRunInitramfs() {
     vmStageGpiod "$root"
     vmStageUdev "$root"
     vmStageHttp "$root"
+    vmStageCan "$root"
     cp -a "$work/sysroot/." "$root/"
     install -m755 "$VM_HERE/guest/init" "$root/init"
     cp -r "$VM_HERE/guest/lib.sh" "$VM_HERE/guest/checks" "$VM_HERE/configs" "$root/vm/"
@@ -78,6 +84,15 @@ vmStageHttp() {
     done
     [ -e "$font" ] && install -D -m644 "$font" "$root$font"
     return 0
+}
+
+# can-utils' cansend, cangen and candump (checks/90-can-steering.sh): the bus's other end, an independent sender and
+# reader of the frames overlayd decodes. The guest's `ip` (busybox) makes the vcan interface.
+vmStageCan() {
+    local root=$1 tool tools=()
+    for tool in cansend cangen candump; do [ -x "/usr/bin/$tool" ] && tools+=("/usr/bin/$tool"); done
+    [ ${#tools[@]} -gt 0 ] || { vmLog "no can-utils on the host: the CAN check will fail"; return 0; }
+    vmCopyWithLibraries "$root" "${tools[@]}"
 }
 
 # udevd, so that the guest has what a real system has: libcamera enumerates only devices udev has initialised, and

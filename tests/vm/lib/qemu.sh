@@ -30,7 +30,7 @@ vmChooseAccel() {
 # the timeout only catches a hung guest.
 vmBoot() {
     local checks=$1 log=$2
-    timeout "${OVERLAYD_VM_TIMEOUT:-600}" qemu-system-x86_64 "${VM_ACCEL_ARGS[@]}" -m 1536 -smp 2 \
+    timeout "${OVERLAYD_VM_TIMEOUT:-1200}" qemu-system-x86_64 "${VM_ACCEL_ARGS[@]}" -m 1536 -smp 2 \
         -nographic -nic none -no-reboot -kernel "$VM_KCACHE/vmlinux" -initrd "$VM_WORK/initramfs.cpio" \
         -append "console=ttyS0 quiet loglevel=3 panic=-1 vm.checks=$checks" \
         -virtfs "local,path=$VM_WORK/share,mount_tag=share,security_model=none,id=share" >"$log" 2>&1 </dev/null

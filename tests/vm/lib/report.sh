@@ -30,6 +30,16 @@ vmFfprobeArtifacts() {
     done
 }
 
+# checks/90-can-steering.sh kept /snapshot JPEGs for steering angles A and B, stale and out of range: the wheel tracks
+# must lie where the host's own Ackermann geometry, projected by `overlayd project` (this overlayd, the config the
+# guest ran), puts them (host/can_steering.py: python3's standard library and ffmpeg).
+vmCanSteeringArtifacts() {
+    local overlayd=$1 out=$VM_WORK/share/out
+    [ -e "$out/can-steering-angles.txt" ] || [ -e "$out/can-steering-a.jpg" ] || return 0
+    python3 "$VM_HERE/host/can_steering.py" "$out" "$overlayd" "$out/can-steering.toml" 2>&1 ||
+        vmHostCheck can-steering-host 1 "host/can_steering.py failed (exit $?)"
+}
+
 # Prints the summary; returns 0 if every check passed and the guest finished.
 vmReport() {
     local log=$1 boot_status=$2 overlayd=$3 lines
@@ -40,6 +50,7 @@ vmReport() {
         grep -a -q '== VM DONE' "$log" ||
             vmHostCheck guest-finished 1 "the guest did not finish (QEMU status $boot_status); see $log"
         vmFfprobeArtifacts
+        vmCanSteeringArtifacts "$overlayd"
     )
     echo "$lines"
     grep -a '^MEASURE ' "$log" | tr -d '\r' || true # figures for the docs, counted neither way
