@@ -42,6 +42,8 @@ void readFrames(TableReader &root, std::vector<FrameSpec> &out);
 void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out);
 void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, Shape &out);
 Shape readFrustumShape(TableReader &table, const std::string &baseDirectory);
+// type = "image": decodes the file (relative to the config's folder).
+Shape readImageShape(TableReader &table, const std::string &baseDirectory);
 std::optional<Style> readStyle(TableReader &style, const Style &base);
 
 } // namespace overlayd::config

@@ -176,6 +176,10 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
         out = readFrustumShape(table, baseDirectory);
         return;
     }
+    if (type == "image") {
+        out = readImageShape(table, baseDirectory);
+        return;
+    }
     static const ShapeReader kReaders[] = {
         {"axes", {}, readAxes},
         {"grid", {}, readGrid},
@@ -190,7 +194,7 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
         {"crosshair", {}, readCrosshair},
         {"rect", {"size"}, readRect},
     };
-    std::vector<std::string> names{"frustum"};
+    std::vector<std::string> names{"frustum", "image"};
     for (const ShapeReader &reader : kReaders) {
         if (reader.type == type) {
             requireKeys(table, reader.required, type);

@@ -3,7 +3,13 @@
 #include "overlay/scene_renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
+#include <glm/common.hpp>
+#include <opencv2/core.hpp>
+
+#include "overlay/raster/image_warp.h"
+#include "overlay/shapes/image_quad.h"
 #include "overlay/shapes/scene_checks.h"
 #include "overlay/shapes/shape_builder.h"
 
@@ -20,6 +26,8 @@ SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const 
         const auto *text = std::get_if<ScreenTextShape>(&annotation.shape);
         if (text && hasTokens(text->text))
             texts_.push_back(TextSlot{i, layer, {}, {}, false, std::nullopt});
+        else if (std::holds_alternative<ImageShape>(annotation.shape))
+            images_.push_back(ImageSprite{i, layer, false, std::nullopt});
         else
             layers_[layer].annotations.push_back(i);
     }
@@ -60,6 +68,8 @@ Status SceneRenderer::renderWorld()
     }
     for (TextSlot &slot : texts_)
         slot.rendered = false; // the viewport may have moved them
+    for (ImageSprite &sprite : images_)
+        sprite.rendered = false;
     return convertAll();
 }
 
@@ -91,12 +101,7 @@ Status SceneRenderer::renderText(TextSlot &slot)
     slot.native.reset();
     if (drawList_.texts.empty())
         return Ok{};
-    const LayerRect box = rasterizer_.textBox(drawList_.texts.front()).intersect(scissor());
-    const int h = format_.format->hSubSampling, v = format_.format->vSubSampling;
-    const int width = int(format_.width), height = int(format_.height);
-    const int x0 = std::max(box.x0, 0) / h * h, y0 = std::max(box.y0, 0) / v * v;
-    const int x1 = std::min((std::min(box.x1, width) + h - 1) / h * h, width);
-    const int y1 = std::min((std::min(box.y1, height) + v - 1) / v * v, height);
+    const auto [x0, y0, x1, y1] = macropixelBox(rasterizer_.textBox(drawList_.texts.front()));
     if (x0 >= x1 || y0 >= y1)
         return Ok{};
     OverlayLayer pixels(unsigned(x1 - x0), unsigned(y1 - y0));
@@ -110,6 +115,76 @@ Status SceneRenderer::renderText(TextSlot &slot)
     return Ok{};
 }
 
+// The image's quad, widened to whole macropixels, becomes a layer of its own placed on the frame.
+Status SceneRenderer::renderImage(ImageSprite &sprite)
+{
+    sprite.rendered = true;
+    sprite.native.reset();
+    const Annotation &annotation = scene_.annotations[sprite.annotation];
+    const auto &shape = std::get<ImageShape>(annotation.shape);
+    glm::dmat4 worldFromFrame(1.0);
+    if (shape.anchor) {
+        const Result<glm::dmat4> matrix = graph_.worldMatrix(annotation.frame);
+        if (!matrix)
+            return matrix.error();
+        worldFromFrame = *matrix;
+    }
+    std::optional<std::array<glm::dvec2, 4>> quad = imageQuad(shape, worldFromFrame, camera_);
+    if (!quad)
+        return Ok{};
+    glm::dvec2 low = (*quad)[0], high = (*quad)[0];
+    for (const glm::dvec2 &corner : *quad)
+        low = glm::min(low, corner), high = glm::max(high, corner);
+    constexpr double kFar = 1e6; // corners far outside the frame (a plane nearly edge-on) before the int cast
+    low = glm::clamp(low, glm::dvec2(-kFar), glm::dvec2(kFar)),
+    high = glm::clamp(high, glm::dvec2(-kFar), glm::dvec2(kFar));
+    const auto [x0, y0, x1, y1] = macropixelBox({int(std::floor(low.x + 0.5)), int(std::floor(low.y + 0.5)),
+                                                 int(std::ceil(high.x + 0.5)), int(std::ceil(high.y + 0.5))});
+    if (x0 >= x1 || y0 >= y1)
+        return Ok{};
+    OverlayLayer pixels(unsigned(x1 - x0), unsigned(y1 - y0));
+    for (glm::dvec2 &corner : *quad)
+        corner -= glm::dvec2(x0, y0);
+    try {
+        if (!warpImage(*shape.image, *quad, shape.opacity, pixels))
+            return Ok{};
+    } catch (const cv::Exception &error) { // a homography OpenCV cannot use: the image is left out, not the frame
+        return Ok{};
+    }
+    pixels.updateSpans();
+    auto native = NativeLayer::convert(pixels, *format_.format, colorimetry_,
+                                       {unsigned(x0), unsigned(y0), format_.width, format_.height});
+    if (!native)
+        return native.error();
+    sprite.native = std::move(*native);
+    return Ok{};
+}
+
+Status SceneRenderer::blendImages(const FrameView &frame)
+{
+    for (ImageSprite &sprite : images_) {
+        if (!layers_[sprite.layer].enabled)
+            continue;
+        if (!sprite.rendered)
+            if (Status status = renderImage(sprite); !status)
+                return status;
+        if (sprite.native)
+            sprite.native->blendChecked(frame);
+    }
+    return Ok{};
+}
+
+LayerRect SceneRenderer::macropixelBox(LayerRect box) const
+{
+    box = box.intersect(scissor());
+    const int h = format_.format->hSubSampling, v = format_.format->vSubSampling;
+    const int width = int(format_.width), height = int(format_.height);
+    const int x0 = std::max(box.x0, 0) / h * h, y0 = std::max(box.y0, 0) / v * v;
+    const int x1 = std::min((std::min(box.x1, width) + h - 1) / h * h, width);
+    const int y1 = std::min((std::min(box.y1, height) + v - 1) / v * v, height);
+    return {x0, y0, x1, y1};
+}
+
 Status SceneRenderer::setCamera(const Camera &camera)
 {
     if (camera.viewport().frameWidth() != int(format_.width) || camera.viewport().frameHeight() != int(format_.height))
@@ -121,6 +196,8 @@ Status SceneRenderer::setCamera(const Camera &camera)
     cameraChangedSinceBlend_ = true;
     for (TextSlot &slot : texts_)
         slot.rendered = false; // the viewport may have moved them
+    for (ImageSprite &sprite : images_)
+        sprite.rendered = false;
     return Ok{};
 }
 
@@ -213,6 +290,8 @@ Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadat
     drewDirectly_ = worldStale_ && movingFrames_ >= 2;
     if (drewDirectly_) {
         drawWorldInto(frame);
+        if (Status status = blendImages(frame); !status)
+            return status;
         return blendTexts(frame, metadata, fps);
     }
     if (worldStale_) {
@@ -223,6 +302,8 @@ Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadat
         if (layer.enabled && layer.native)
             layer.native->blendChecked(frame);
     }
+    if (Status status = blendImages(frame); !status)
+        return status;
     return blendTexts(frame, metadata, fps);
 }
 

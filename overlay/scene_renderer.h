@@ -1,6 +1,7 @@
 // SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One full-frame OverlayLayer per named layer
 // (so switching a layer off costs nothing and re-projects nothing), plus one small layer per screen text with
-// tokens, re-rendered only when its expanded string changes.
+// tokens, re-rendered only when its expanded string changes; likewise one small layer per image, warped from its
+// pixels again only when the camera (or the viewport) changes.
 //
 // A camera that keeps moving (setCamera before two blends in a row) is drawn straight into each frame instead:
 // a cached layer would be redrawn and converted every frame for one use. When the camera holds still for a frame,
@@ -48,6 +49,12 @@ private:
         std::optional<NativeLayer> native;
         std::vector<size_t> annotations; // indices into scene_.annotations, in drawing order
     };
+    struct ImageSprite {
+        size_t annotation = 0;
+        size_t layer = 0;
+        bool rendered = false;
+        std::optional<NativeLayer> native;
+    };
     struct TextSlot {
         size_t annotation = 0;
         size_t layer = 0;
@@ -57,6 +64,10 @@ private:
     };
 
     Status renderText(TextSlot &slot);
+    Status renderImage(ImageSprite &sprite);
+    Status blendImages(const FrameView &frame);
+    // A frame-pixel box widened to whole macropixels and cut to the frame and the scissor.
+    LayerRect macropixelBox(LayerRect box) const;
     // The moving-camera path: every enabled world layer projected and painted into this frame.
     void drawWorldInto(const FrameView &frame);
     Status blendTexts(const FrameView &frame, const FrameMetadata &metadata, double fps);
@@ -75,6 +86,7 @@ private:
     Rasterizer rasterizer_;
     std::vector<Layer> layers_;
     std::vector<TextSlot> texts_;
+    std::vector<ImageSprite> images_;
     std::vector<std::string> slotNames_; // the {slot:NAME} tokens the scene's texts use
     SlotTexts slotTexts_;
     FrameCoverageSink frameSink_;

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -112,6 +114,27 @@ struct FrustumShape {
     double farDistance = 2.0;
 };
 
+// An image's pixels as decoded from its file: rows of width * 4 bytes, R G B A, colour premultiplied by A. Shared by
+// every renderer of the scene (a reload decodes the file again).
+struct ImagePixels {
+    unsigned width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// An image (a logo, a sign, a map): on the screen, with its corner nearest the viewport's origin at `position`
+// (upright under either origin) and `sizePx` (default: the image's own size); or on a plane in the world, centred
+// at `anchor` in the annotation's frame, `size` metres along axisU (the image's rows, left to right) and axisV (its
+// columns, bottom to top). Drawn above the world layers, below token text.
+struct ImageShape {
+    std::shared_ptr<const ImagePixels> image;
+    std::optional<glm::dvec2> position{};
+    std::optional<glm::dvec2> sizePx{};
+    std::optional<glm::dvec3> anchor{};
+    glm::dvec2 size{1.0, 1.0};
+    glm::dvec3 axisU{1.0, 0.0, 0.0}, axisV{0.0, 1.0, 0.0};
+    double opacity = 1.0;
+};
+
 // Screen-space items, in pixels of the viewport, in its origin convention.
 // Text tokens: {frame} (sequence number), {fps}, {time:FORMAT} (strftime of the frame's wall clock, e.g.
 // {time:%Y-%m-%d %H:%M:%S}), {ms} (milliseconds of the wall clock), {{ and }} for literal braces.
@@ -130,8 +153,9 @@ struct RectShape {
     bool filled = false;
 };
 
-using Shape = std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape,
-                           HorizonShape, GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape>;
+using Shape =
+    std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape, HorizonShape,
+                 GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape, ImageShape>;
 
 struct Annotation {
     std::string name;                       // for logs and error messages

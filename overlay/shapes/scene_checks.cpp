@@ -71,6 +71,7 @@ struct Checker {
     void check(const ScreenTextShape &s);
     void check(const CrosshairShape &s);
     void check(const RectShape &s);
+    void check(const ImageShape &s);
 };
 
 void Checker::check(const AxesShape &s)
@@ -159,6 +160,24 @@ void Checker::check(const RectShape &s)
             "rect position must be finite and its size > 0");
 }
 
+void Checker::check(const ImageShape &s)
+{
+    require(s.image && s.image->width > 0 && s.image->height > 0 &&
+                s.image->rgba.size() == size_t(s.image->width) * s.image->height * 4,
+            "image has no pixels");
+    require(s.position.has_value() != s.anchor.has_value(), "image needs either a screen position or a world anchor");
+    if (s.position)
+        require(
+            finite(*s.position) && glm::length(*s.position) < kMaxPixels &&
+                (!s.sizePx || (positive(s.sizePx->x) && positive(s.sizePx->y) && glm::length(*s.sizePx) < kMaxPixels)),
+            "image position must be finite and its size > 0");
+    if (s.anchor)
+        require(finite(*s.anchor) && positive(s.size.x) && positive(s.size.y) &&
+                    glm::length(glm::cross(s.axisU, s.axisV)) > 1e-9,
+                "image anchor must be finite, its size > 0 and its axes non-zero and not parallel");
+    require(s.opacity >= 0.0 && s.opacity <= 1.0, "image opacity must be 0..1");
+}
+
 } // namespace
 
 Status checkScene(const OverlayScene &scene, const SceneGraph &graph)
@@ -167,9 +186,11 @@ Status checkScene(const OverlayScene &scene, const SceneGraph &graph)
         Checker checker;
         checker.style(annotation.style);
         std::visit([&](const auto &shape) { checker.check(shape); }, annotation.shape);
-        const bool screen = std::holds_alternative<ScreenTextShape>(annotation.shape) ||
-                            std::holds_alternative<CrosshairShape>(annotation.shape) ||
-                            std::holds_alternative<RectShape>(annotation.shape);
+        const bool screen =
+            std::holds_alternative<ScreenTextShape>(annotation.shape) ||
+            std::holds_alternative<CrosshairShape>(annotation.shape) ||
+            std::holds_alternative<RectShape>(annotation.shape) ||
+            (std::holds_alternative<ImageShape>(annotation.shape) && std::get<ImageShape>(annotation.shape).position);
         if (!screen && !graph.contains(annotation.frame))
             checker.require(false, "unknown frame \"" + annotation.frame + "\"");
         if (!checker.problem.empty())

@@ -23,19 +23,17 @@ void buildPrimitives(const Annotation &annotation, const glm::dmat4 &worldFromFr
 {
     const ShapeContext ctx{camera, worldFromFrame, annotation.style, out};
     std::visit(Overloaded{
-                   [&](const AxesShape &s) { buildAxes(ctx, s); },
-                   [&](const GridShape &s) { buildGrid(ctx, s); },
+                   [&](const AxesShape &s) { buildAxes(ctx, s); }, [&](const GridShape &s) { buildGrid(ctx, s); },
                    [&](const PolylineShape &s) { buildPolyline(ctx, s); },
-                   [&](const MarkersShape &s) { buildMarkers(ctx, s); },
-                   [&](const BoxShape &s) { buildBox(ctx, s); },
-                   [&](const ArcShape &s) { buildArc(ctx, s); },
-                   [&](const LabelShape &s) { buildLabel(ctx, s); },
+                   [&](const MarkersShape &s) { buildMarkers(ctx, s); }, [&](const BoxShape &s) { buildBox(ctx, s); },
+                   [&](const ArcShape &s) { buildArc(ctx, s); }, [&](const LabelShape &s) { buildLabel(ctx, s); },
                    [&](const HorizonShape &s) { buildHorizon(ctx, s); },
                    [&](const GuideLinesShape &s) { buildGuideLines(ctx, s); },
                    [&](const FrustumShape &s) { buildFrustum(ctx, s); },
                    [&](const ScreenTextShape &s) { buildScreenText(ctx, s); },
                    [&](const CrosshairShape &s) { buildCrosshair(ctx, s); },
                    [&](const RectShape &s) { buildRect(ctx, s); },
+                   [&](const ImageShape &) {}, // pixels, not primitives: SceneRenderer warps them (image_quad.h)
                },
                annotation.shape);
 }

@@ -6,8 +6,15 @@
 //   memcpy       one frame copy over a ring of frames larger than the caches (cold), the floor.
 //   touch        one read and one write of each cache line the cached overlay's runs touch, nothing else: what
 //                reaching those lines of a cold frame costs, the floor under `static`.
+// and config/examples/reverse_camera.toml's scene (guide lines 4 px wide with three distance marks, seen by a camera
+// behind and above the rear axle looking back and down, plus its hint text on a translucent box):
+//   steering     the road-wheel angle changes before every blend (setGuideSteering, sweeping -30..30 degrees by
+//                0.7 a frame, as a 30 Hz steering input would): drawn straight into the frame;
+//   steady       setGuideSteering with the angle it already has before every blend (a no-op): the cached blend.
 // Ratios are printed at the end from the same run; targets: static/memcpy <= 0.5, opencv_naive/static >= 25,
-// dynamic/memcpy <= 2; static/touch says how far the static blend is from its own floor.
+// dynamic/memcpy <= 2, steering/memcpy <= 2 (the moving-scene target), steady/memcpy <= 0.5 (the static target);
+// static/touch says how far the static blend is from its own floor.
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -155,6 +162,131 @@ void dynamicBench(benchmark::State &state, const char *formatName, unsigned widt
     }
 }
 
+// config/examples/reverse_camera.toml's camera: in frame "car" (at the world origin) 1 m behind the rear axle and 1 m
+// up, looking back (yaw 180) and 35 degrees down, 110 degrees across horizontally.
+Camera reverseCamera(unsigned width, unsigned height)
+{
+    const auto viewport = Viewport::create(ViewportSpec{int(width), int(height)});
+    const auto projection = Projection::perspective(FovAxis::Horizontal, 110.0, viewport->windowAspect(), 0.05, 50.0,
+                                                    DepthRange::MinusOneToOne);
+    const auto pose = poseFromYawPitchRoll({-1.0, 0.0, 1.0}, 180.0, 35.0, 0.0);
+    return *Camera::create(*pose, *projection, Distortion{}, *viewport);
+}
+
+constexpr const char *kGuideLines = "guide lines";
+constexpr double kReverseSteeringDeg = 10.0; // the example's steering_deg
+
+// config/examples/reverse_camera.toml's annotations: the guide lines (layer "guides") and the hint (layer "hud").
+OverlayScene reverseScene()
+{
+    OverlayScene scene;
+    scene.frames.push_back(FrameSpec{"car", SceneGraph::kWorld, Transform{}});
+    GuideLinesShape guide;
+    guide.wheelbase = 2.7;
+    guide.trackWidth = 1.6;
+    guide.steeringDeg = kReverseSteeringDeg;
+    guide.length = 4.0;
+    guide.distanceMarks = {1.5, 2.5, 3.5};
+    guide.markColours = {kRed, Rgba{255, 255, 0, 255}, kGreen};
+    Annotation lines = item(kGuideLines, guide, Rgba{255, 255, 0, 255}, 4.0);
+    lines.frame = "car";
+    lines.style.layer = "guides";
+    scene.annotations.push_back(std::move(lines));
+    ScreenTextShape hint;
+    hint.text = "Check surroundings for safety";
+    hint.position = {400.0, 680.0};
+    hint.sizePx = 22.0;
+    hint.background = Rgba{0, 0, 0, 0x99};
+    Annotation text = item("hint", hint, kWhite, 2.0);
+    text.style.layer = "hud";
+    scene.annotations.push_back(std::move(text));
+    return scene;
+}
+
+// The reverse-camera scene's renderer; nullptr (the benchmark skipped) if it cannot be made.
+std::unique_ptr<OverlayRenderer> reverseRenderer(benchmark::State &state, const char *formatName, unsigned width,
+                                                 unsigned height)
+{
+    auto renderer =
+        OverlayRenderer::create(reverseScene(), reverseCamera(width, height), streamFormat(formatName, width, height));
+    if (!renderer) {
+        state.SkipWithError(renderer.error().message.c_str());
+        return nullptr;
+    }
+    return std::move(*renderer);
+}
+
+// The road-wheel angle of frame i: a triangle wave between -30 and 30 degrees, 0.7 degrees a frame.
+double sweptSteering(size_t i)
+{
+    constexpr double kStep = 0.7, kSpan = 60.0;
+    const double phase = std::fmod(double(i) * kStep, 2.0 * kSpan);
+    return phase < kSpan ? -30.0 + phase : 30.0 - (phase - kSpan);
+}
+
+// Sets the angle and blends one frame, checking that both took; false (the benchmark skipped) if not.
+bool steerAndBlend(benchmark::State &state, OverlayRenderer &renderer, double steeringDeg, const FrameView &frame)
+{
+    if (Status status = renderer.setGuideSteering(kGuideLines, steeringDeg); !status) {
+        state.SkipWithError(status.error().message.c_str());
+        return false;
+    }
+    if (Status status = renderer.blend(frame, FrameMetadata{}, 30.0); !status) {
+        state.SkipWithError(status.error().message.c_str());
+        return false;
+    }
+    return true;
+}
+
+// Before timing, a few frames of the case's input must take the path the case is named for (drawn straight into the
+// frame while the wheel turns, the cached layers while it holds still), else the figure would time something else.
+void steeringBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height, bool turning)
+{
+    const auto renderer = reverseRenderer(state, formatName, width, height);
+    if (!renderer)
+        return;
+    const auto &scene = dynamic_cast<const SceneRenderer &>(*renderer);
+    Ring ring(*pixelFormatFromName(formatName), width, height);
+    for (size_t k = 0; k < 4; ++k) {
+        if (!steerAndBlend(state, *renderer, turning ? sweptSteering(k) : kReverseSteeringDeg,
+                           ring.layout.view(ring.frame(k))))
+            return;
+    }
+    if (scene.drewDirectly() != turning) {
+        state.SkipWithError(turning ? "a turning wheel did not draw straight into the frame"
+                                    : "a steady wheel did not blend the cached layers");
+        return;
+    }
+    // The last warm-up frame, blended once, against one no blend has reached yet: the scene must show.
+    const size_t frameBytes = ring.layout.totalSize;
+    size_t changed = 0;
+    for (size_t b = 0; b < frameBytes; ++b)
+        changed += ring.frame(3)[b] != ring.frame(ring.count - 1)[b];
+    if (changed == 0) {
+        state.SkipWithError("the reverse-camera scene drew nothing");
+        return;
+    }
+    state.counters["changed_bytes_%"] = 100.0 * double(changed) / double(frameBytes);
+    size_t i = 0;
+    for (auto _ : state) {
+        const double angle = turning ? sweptSteering(i) : kReverseSteeringDeg;
+        benchmark::DoNotOptimize(renderer->setGuideSteering(kGuideLines, angle).ok());
+        benchmark::DoNotOptimize(renderer->blend(ring.layout.view(ring.frame(i++)), FrameMetadata{}, 30.0).ok());
+    }
+    if (scene.drewDirectly() != turning)
+        state.SkipWithError("the path changed while timing");
+}
+
+void steeringChangeBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    steeringBench(state, formatName, width, height, true);
+}
+
+void steadyWheelBench(benchmark::State &state, const char *formatName, unsigned width, unsigned height)
+{
+    steeringBench(state, formatName, width, height, false);
+}
+
 // What users write: projectPoints on the grid's end points (no near-plane clipping), cv::line and cv::putText on a
 // BGR copy, and the conversion back (OpenCV has no BGR -> YUYV/NV12, so chroma is repacked by hand from 4:4:4/I420).
 void toNative(const cv::Mat &bgr, const char *formatName, uint8_t *out, cv::Mat &scratch)
@@ -245,16 +377,18 @@ public:
     void Finalize() override
     {
         ConsoleReporter::Finalize();
-        std::printf("\n%-22s %14s %18s %15s %13s\n", "case", "static/memcpy", "naive/static", "dynamic/memcpy",
-                    "static/touch");
+        std::printf("\n%-22s %14s %18s %15s %13s %16s %15s\n", "case", "static/memcpy", "naive/static",
+                    "dynamic/memcpy", "static/touch", "steering/memcpy", "steady/memcpy");
         for (const auto &[name, time] : seconds_) {
             if (name.rfind("memcpy/", 0) != 0)
                 continue;
             const std::string which = name.substr(7);
             const double copy = time, fixed = get("static/" + which), naive = get("opencv_naive/" + which),
-                         dynamic = get("dynamic/" + which), touch = get("touch/" + which);
-            std::printf("%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2) %13.2f\n", which.c_str(), fixed / copy,
-                        naive / fixed, dynamic / copy, fixed / touch);
+                         dynamic = get("dynamic/" + which), touch = get("touch/" + which),
+                         steering = get("steering/" + which), steady = get("steady/" + which);
+            std::printf("%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2) %13.2f %10.3f (<=2) %8.3f (<=0.5)\n",
+                        which.c_str(), fixed / copy, naive / fixed, dynamic / copy, fixed / touch, steering / copy,
+                        steady / copy);
         }
     }
 
@@ -278,6 +412,8 @@ int main(int argc, char **argv)
         bench::registerCase("touch", touchBench, c);
         bench::registerCase("static", staticBench, c);
         bench::registerCase("dynamic", dynamicBench, c);
+        bench::registerCase("steering", steeringChangeBench, c);
+        bench::registerCase("steady", steadyWheelBench, c);
         bench::registerCase("opencv_naive", opencvNaiveBench, c);
     }
     RatioReporter reporter;

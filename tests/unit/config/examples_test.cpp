@@ -111,6 +111,9 @@ TEST(Examples, OtherExamplesUseTheirFeature)
     const DaemonConfig replay = loadExample("replay.toml");
     EXPECT_EQ(replay.source.kind, SourceKind::Replay);
     EXPECT_EQ(replay.source.replay.path, sourceDir() + "/config/examples/recorded.y4m");
+    const DaemonConfig images = loadExample("images.toml");
+    ASSERT_EQ(shapesOf<ImageShape>(images).size(), 2u);
+    EXPECT_EQ(shapesOf<ImageShape>(images)[0]->image->width, 160u);
     const DaemonConfig reverse = loadExample("reverse_camera.toml");
     EXPECT_EQ(reverse.camera.mountFrame, "car");
     EXPECT_EQ(shapesOf<GuideLinesShape>(reverse).size(), 1u);

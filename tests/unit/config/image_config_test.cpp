@@ -1,0 +1,176 @@
+// type = "image": the file is decoded at load time into premultiplied RGBA (grey, colour, alpha, 16-bit, JPEG), placed
+// on the screen or on a world plane; a file that cannot be used and a placement that is not one of the two are
+// refused at their keys. The test images are written by OpenCV's imwrite and the expected pixels worked out here.
+#include <filesystem>
+#include <fstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "config_test_util.h"
+
+using namespace overlayd;
+using overlayd::test::loadInvalid;
+using overlayd::test::loadValid;
+
+namespace {
+
+const std::string kScene = R"(
+[source]
+kind = "synthetic"
+width = 640
+height = 480
+)";
+
+struct ImageFolder {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "overlayd-image-config-test";
+    ImageFolder() { std::filesystem::create_directories(dir); }
+    ~ImageFolder() { std::filesystem::remove_all(dir); }
+    std::string write(const std::string &name, const cv::Mat &image) const
+    {
+        const std::string path = (dir / name).string();
+        EXPECT_TRUE(cv::imwrite(path, image)) << path;
+        return path;
+    }
+};
+
+const ImageShape &imageOf(const DaemonConfig &config, size_t index = 0)
+{
+    return std::get<ImageShape>(config.scene.annotations.at(index).shape);
+}
+
+std::array<uint8_t, 4> pixelOf(const ImagePixels &image, unsigned x, unsigned y)
+{
+    const uint8_t *p = image.rgba.data() + (size_t(y) * image.width + x) * 4;
+    return {p[0], p[1], p[2], p[3]};
+}
+
+} // namespace
+
+TEST(ImageConfig, ColourAlphaGreyAnd16BitFilesBecomePremultipliedRgba)
+{
+    ImageFolder folder;
+    cv::Mat bgra(2, 3, CV_8UC4, cv::Scalar(0, 0, 0, 0));
+    bgra.at<cv::Vec4b>(0, 0) = {10, 20, 200, 128}; // B G R A
+    bgra.at<cv::Vec4b>(1, 2) = {255, 255, 255, 255};
+    folder.write("logo.png", bgra);
+    cv::Mat grey(4, 4, CV_8UC1, cv::Scalar(77));
+    folder.write("grey.png", grey);
+    cv::Mat deep(2, 2, CV_16UC3, cv::Scalar(65535, 0, 32896)); // B G R, 16 bits
+    folder.write("deep.png", deep);
+    folder.write("photo.jpg", cv::Mat(16, 16, CV_8UC3, cv::Scalar(0, 128, 255)));
+
+    const DaemonConfig config = loadValid(kScene + R"(
+[[annotation]]
+type = "image"
+path = "logo.png"
+position = [16.0, 20.0]
+size_px = [30.0, 20.0]
+[[annotation]]
+type = "image"
+path = "grey.png"
+anchor = [1.0, 2.0, 0.0]
+size = [2.0, 0.5]
+axis_u = [0.0, 1.0, 0.0]
+axis_v = [-1.0, 0.0, 0.0]
+opacity = 0.5
+[[annotation]]
+type = "image"
+path = "deep.png"
+position = [0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "photo.jpg"
+position = [0.0, 0.0]
+)",
+                                          folder.dir.string());
+    const ImageShape &logo = imageOf(config, 0);
+    ASSERT_TRUE(logo.image);
+    EXPECT_EQ(logo.image->width, 3u);
+    EXPECT_EQ(logo.image->height, 2u);
+    // R 200, G 20, B 10 at alpha 128: each times 128 / 255, rounded.
+    EXPECT_EQ(pixelOf(*logo.image, 0, 0), (std::array<uint8_t, 4>{100, 10, 5, 128}));
+    EXPECT_EQ(pixelOf(*logo.image, 2, 1), (std::array<uint8_t, 4>{255, 255, 255, 255}));
+    EXPECT_EQ(pixelOf(*logo.image, 1, 0), (std::array<uint8_t, 4>{0, 0, 0, 0}));
+    EXPECT_EQ(logo.position, glm::dvec2(16.0, 20.0));
+    EXPECT_EQ(logo.sizePx, glm::dvec2(30.0, 20.0));
+    EXPECT_FALSE(logo.anchor);
+
+    const ImageShape &sign = imageOf(config, 1);
+    EXPECT_EQ(pixelOf(*sign.image, 3, 3), (std::array<uint8_t, 4>{77, 77, 77, 255}));
+    EXPECT_EQ(sign.anchor, glm::dvec3(1.0, 2.0, 0.0));
+    EXPECT_EQ(sign.size, glm::dvec2(2.0, 0.5));
+    EXPECT_EQ(sign.axisV, glm::dvec3(-1.0, 0.0, 0.0));
+    EXPECT_EQ(sign.opacity, 0.5);
+
+    // 16 bits: 65535 -> 255, 32896 -> 128 (x / 257).
+    EXPECT_EQ(pixelOf(*imageOf(config, 2).image, 1, 1), (std::array<uint8_t, 4>{128, 0, 255, 255}));
+    const auto jpeg = pixelOf(*imageOf(config, 3).image, 8, 8);
+    EXPECT_NEAR(jpeg[0], 255, 3);
+    EXPECT_NEAR(jpeg[1], 128, 3);
+    EXPECT_NEAR(jpeg[2], 0, 3);
+    EXPECT_EQ(jpeg[3], 255);
+}
+
+TEST(ImageConfig, EveryRefusalIsAtItsKey)
+{
+    ImageFolder folder;
+    folder.write("ok.png", cv::Mat(2, 2, CV_8UC3, cv::Scalar(1, 2, 3)));
+    folder.write("wide.png", cv::Mat(1, 4097, CV_8UC1, cv::Scalar(0)));
+    std::ofstream(folder.dir / "text.png") << "not an image\n";
+    const auto problems = loadInvalid(kScene + R"(
+[[annotation]]
+type = "image"
+position = [0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "missing.png"
+position = [0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "text.png"
+position = [0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "wide.png"
+position = [0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "ok.png"
+position = [0.0, 0.0]
+anchor = [0.0, 0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "ok.png"
+[[annotation]]
+type = "image"
+path = "ok.png"
+anchor = [0.0, 0.0, 0.0]
+size_px = [10.0, 10.0]
+opacity = 1.5
+axis_u = [1.0, 0.0, 0.0]
+axis_v = [2.0, 0.0, 0.0]
+[[annotation]]
+type = "image"
+path = "ok.png"
+position = [0.0, 0.0]
+size = [1.0, 1.0]
+size_px = [0.0, 10.0]
+)",
+                                      folder.dir.string());
+    const std::string all = test::formatProblems(problems);
+    const auto has = [&](const std::string &key, const std::string &words) {
+        return test::hasProblem(problems, key, words);
+    };
+    EXPECT_TRUE(has("annotation[0].path", "missing")) << all;
+    EXPECT_TRUE(has("annotation[1].path", "cannot read")) << all;
+    EXPECT_TRUE(has("annotation[2].path", "not a PNG or JPEG")) << all;
+    EXPECT_TRUE(has("annotation[3].path", "4097x1; at most 4096")) << all;
+    EXPECT_TRUE(has("annotation[4].anchor", "not both")) << all;
+    EXPECT_TRUE(has("annotation[5].position", "either")) << all;
+    EXPECT_TRUE(has("annotation[6].size", "missing")) << all;
+    EXPECT_TRUE(has("annotation[6].size_px", "world image")) << all;
+    EXPECT_TRUE(has("annotation[6].opacity", "")) << all;
+    EXPECT_TRUE(has("annotation[6].axis_v", "not parallel")) << all;
+    EXPECT_TRUE(has("annotation[7].size", "size_px")) << all;
+    EXPECT_TRUE(has("annotation[7].size_px", "> 0")) << all;
+}
