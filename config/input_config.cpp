@@ -1,4 +1,5 @@
-// [[input.text]]: text slots fed by files; [[input.can]]: signals on a CAN bus, into the guide lines' steering or
+// [[input.text]]: text slots fed by files; [[input.path]]: the points of a polyline or markers annotation from a
+// file; [[input.can]]: signals on a CAN bus, into the guide lines' steering or
 // a text slot. A target must exist in the scene (a typo would feed nothing, silently) and is fed by one input; a
 // text file's folder must exist (the file itself may appear later: a program that writes it may start after the
 // daemon). A CAN interface is not checked: like a camera it may appear after the daemon starts.
@@ -12,6 +13,19 @@
 namespace overlayd::config {
 
 namespace {
+
+bool folderExists(TableReader &table, const std::string &key, const std::string &file)
+{
+    std::filesystem::path folder = std::filesystem::path(file).parent_path();
+    if (folder.empty()) // a config given as a relative path in the working directory
+        folder = ".";
+    std::error_code error;
+    if (std::filesystem::is_directory(folder, error))
+        return true;
+    table.problem(key, "the folder " + folder.string() +
+                           " does not exist (the file may appear later; its folder must be there)");
+    return false;
+}
 
 void readTextInput(TableReader &table, const std::string &baseDirectory, const std::vector<std::string> &slots,
                    std::vector<std::string> &fed, inputs::TextInputOptions &out)
@@ -32,12 +46,7 @@ void readTextInput(TableReader &table, const std::string &baseDirectory, const s
     }
     if (auto file = table.string("file"); file && !file->empty()) {
         out.file = resolvePath(baseDirectory, *file);
-        const std::filesystem::path folder = std::filesystem::path(out.file).parent_path();
-        std::error_code error;
-        if (!std::filesystem::is_directory(folder, error))
-            table.problem("file", "the folder " + folder.string() +
-                                      " does not exist (the file may appear later; "
-                                      "its folder must be there)");
+        folderExists(table, "file", out.file);
     } else if (!file) {
         table.problem("file", "missing: the file another program writes");
     } else {
@@ -45,6 +54,41 @@ void readTextInput(TableReader &table, const std::string &baseDirectory, const s
     }
     if (auto bytes = table.integer("max_bytes", 1, int64_t(inputs::kMaxTextBytes)))
         out.maxBytes = size_t(*bytes);
+    table.finish();
+}
+
+void readPathInput(TableReader &table, const std::string &baseDirectory, const OverlayScene &scene,
+                   std::vector<std::string> &fed, inputs::PathInputOptions &out)
+{
+    if (auto name = table.string("annotation")) {
+        out.annotation = *name;
+        const auto found = std::find_if(scene.annotations.begin(), scene.annotations.end(),
+                                        [&](const Annotation &a) { return a.name == *name; });
+        std::vector<std::string> candidates;
+        for (const Annotation &a : scene.annotations)
+            if (std::holds_alternative<PolylineShape>(a.shape) || std::holds_alternative<MarkersShape>(a.shape))
+                candidates.push_back(a.name);
+        if (found == scene.annotations.end() ||
+            std::find(candidates.begin(), candidates.end(), *name) == candidates.end()) {
+            std::string message = "no polyline or markers annotation is named '" + *name + "'";
+            if (const std::string guess = closestMatch(*name, candidates); !guess.empty())
+                message += "; did you mean '" + guess + "'?";
+            table.problem("annotation", std::move(message));
+        } else if (std::find(fed.begin(), fed.end(), *name) != fed.end()) {
+            table.problem("annotation", "'" + *name + "' is already fed by another [[input.path]]");
+        }
+        fed.push_back(*name);
+    } else if (!table.has("annotation")) {
+        table.problem("annotation", "missing: the polyline or markers annotation whose points the file holds");
+    }
+    if (auto file = table.string("file"); file && !file->empty()) {
+        out.file = resolvePath(baseDirectory, *file);
+        folderExists(table, "file", out.file);
+    } else if (!file) {
+        table.problem("file", "missing: the file another program writes (one \"x y z\" per line)");
+    } else {
+        table.problem("file", "an empty path");
+    }
     table.finish();
 }
 
@@ -145,6 +189,12 @@ void readInputs(TableReader &root, const std::string &baseDirectory, const Overl
         input->problem("text", "at most " + std::to_string(inputs::kMaxTextInputs) + " text inputs");
     for (size_t i = 0; i < texts.size() && i < inputs::kMaxTextInputs; ++i)
         readTextInput(texts[i], baseDirectory, slots, fed, out.text.emplace_back());
+    std::vector<TableReader> paths = input->tables("path");
+    if (paths.size() > inputs::kMaxPathInputs)
+        input->problem("path", "at most " + std::to_string(inputs::kMaxPathInputs) + " path inputs");
+    std::vector<std::string> fedPaths;
+    for (size_t i = 0; i < paths.size() && i < inputs::kMaxPathInputs; ++i)
+        readPathInput(paths[i], baseDirectory, scene, fedPaths, out.paths.emplace_back());
     std::vector<std::string> fedByCan;
     for (const std::string &slot : fed)
         fedByCan.push_back("slot:" + slot);

@@ -7,7 +7,7 @@ Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factori
                DaemonOptions options)
     : logger_(logger), factories_(std::move(factories)), loader_(std::move(loader)), options_(std::move(options)),
       pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier), gpio_(logger, scene_),
-      textInputs_(logger, scene_), canInputs_(logger, scene_), http_(logger, *this)
+      textInputs_(logger, scene_), pathInputs_(logger, scene_), canInputs_(logger, scene_), http_(logger, *this)
 {
     pipeline_.setRawTap([this](const FrameView &frame, const FrameMetadata &metadata) {
         if (http_.running())
@@ -74,6 +74,9 @@ Status Daemon::setUp()
     }
     if (auto watched = textInputs_.configure(config_.inputs.text); !watched)
         return watched;
+    if (auto watched = pathInputs_.configure(config_.inputs.paths); !watched)
+        return watched;
+    pathInputs_.showAll();
     canInputs_.configure(config_.inputs.can);
     if (auto served = http_.configure(config_.http); !served)
         return served;

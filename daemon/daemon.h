@@ -17,6 +17,7 @@
 #include "daemon/gpio_control.h"
 #include "daemon/health_reporter.h"
 #include "daemon/http_front.h"
+#include "daemon/path_inputs.h"
 #include "daemon/pipeline.h"
 #include "daemon/scene_control.h"
 #include "daemon/source_supervisor.h"
@@ -68,6 +69,7 @@ public:
     const GpioControl &gpio() const { return gpio_; }
     GpioControl &gpio() { return gpio_; }
     const TextInputs &textInputs() const { return textInputs_; }
+    const PathInputs &pathInputs() const { return pathInputs_; }
     const CanInputs &canInputs() const { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
     const std::string &waitReason() const { return source_->waitReason(); }
@@ -98,6 +100,7 @@ private:
     HealthReporter health_;
     GpioControl gpio_;      // after scene_, whose layers it switches
     TextInputs textInputs_; // after scene_, whose slots it feeds
+    PathInputs pathInputs_; // after scene_, whose polylines and markers it feeds
     CanInputs canInputs_;   // after scene_, whose guide lines and slots it feeds
     HttpFront http_;        // after everything its API reads
 

@@ -37,6 +37,7 @@ int Daemon::run()
     gpio_.attachLoop(loop_);
     http_.attachLoop(loop_);
     textInputs_.attachLoop(loop_);
+    pathInputs_.attachLoop(loop_);
     canInputs_.attachLoop(loop_);
     while (state() != State::Finished) {
         gpio_.onState(state()); // outputs follow the state the last turn left
@@ -47,6 +48,7 @@ int Daemon::run()
     }
     shutdown();
     canInputs_.attachLoop(nullptr);
+    pathInputs_.attachLoop(nullptr);
     textInputs_.attachLoop(nullptr);
     http_.attachLoop(nullptr);
     gpio_.attachLoop(nullptr);
@@ -133,36 +135,41 @@ bool Daemon::reload()
     if (gpioChanged)
         if (auto lines = gpio_.configure(next.gpio); !lines)
             return reject(lines.error().message);
-    // Text inputs next (a folder that cannot be watched refuses the reload).
+    // File inputs next (a folder that cannot be watched refuses the reload).
     const bool inputsChanged = config_.inputs != next.inputs;
-    if (inputsChanged)
-        if (auto watched = textInputs_.configure(next.inputs.text); !watched) {
-            if (gpioChanged)
-                (void)gpio_.configure(config_.gpio);
-            return reject(watched.error().message);
-        }
+    bool textWatched = false, pathsWatched = false, httpServed = false;
+    // A refusal after some part was switched: the old lines, watches and server again.
+    const auto rollBack = [&](const std::string &why) {
+        if (gpioChanged)
+            (void)gpio_.configure(config_.gpio);
+        if (textWatched)
+            (void)textInputs_.configure(config_.inputs.text);
+        if (pathsWatched)
+            (void)pathInputs_.configure(config_.inputs.paths);
+        if (httpServed)
+            (void)http_.configure(config_.http);
+        return reject(why);
+    };
+    if (inputsChanged) {
+        if (auto watched = textInputs_.configure(next.inputs.text); !watched)
+            return rollBack(watched.error().message);
+        textWatched = true;
+        if (auto watched = pathInputs_.configure(next.inputs.paths); !watched)
+            return rollBack(watched.error().message);
+        pathsWatched = true;
+    }
     // The HTTP server next (a port already taken refuses the reload; the old server keeps serving).
     const bool httpChanged = config_.http != next.http;
-    if (httpChanged)
-        if (auto served = http_.configure(next.http); !served) {
-            if (gpioChanged)
-                (void)gpio_.configure(config_.gpio);
-            if (inputsChanged)
-                (void)textInputs_.configure(config_.inputs.text);
-            return reject(served.error().message);
-        }
+    if (httpChanged) {
+        if (auto served = http_.configure(next.http); !served)
+            return rollBack(served.error().message);
+        httpServed = true;
+    }
     std::unique_ptr<OverlayRenderer> renderer;
     if (sourceChanged || state() != State::Streaming)
         scene_.detach(); // nothing to rebuild now: the next stream is built from the new scene
-    if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied) {
-        if (gpioChanged)
-            (void)gpio_.configure(config_.gpio); // the old lines again
-        if (httpChanged)
-            (void)http_.configure(config_.http);
-        if (inputsChanged)
-            (void)textInputs_.configure(config_.inputs.text);
-        return reject(applied.error().message);
-    }
+    if (auto applied = scene_.apply(SceneReplacement{next.scene, next.camera}, &renderer); !applied)
+        return rollBack(applied.error().message);
 
     // The switch, between two frames (we are in the loop, not in the middle of one).
     if (sinksChanged) {
@@ -174,6 +181,7 @@ bool Daemon::reload()
     if (gpioChanged)
         gpio_.applyLayers(); // the new rules, on the new scene's layers
     textInputs_.showAll();   // the files' lines in the new scene's slots
+    pathInputs_.showAll();   // and their points in its polylines and markers
     if (inputsChanged)       // CAN inputs cannot refuse a reload: an interface that is not there is retried
         canInputs_.configure(config_.inputs.can);
     else

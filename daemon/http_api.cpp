@@ -237,6 +237,16 @@ HttpResponse HttpApi::state()
                           {"file", reading.file},
                           {"value", reading.text},
                           {"age_s", std::chrono::duration<double>(now - reading.changed).count()}});
+    for (const PathInputs::Reading &reading : daemon_.pathInputs().readings()) {
+        json entry = {{"kind", "path"},
+                      {"annotation", reading.annotation},
+                      {"file", reading.file},
+                      {"points", reading.points},
+                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
+        if (!reading.error.empty())
+            entry["error"] = reading.error;
+        inputs.push_back(std::move(entry));
+    }
     const CanInputs &can = daemon_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
         const inputs::CanInputOptions &options = can.options(i);

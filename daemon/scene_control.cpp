@@ -68,6 +68,8 @@ Status SceneControl::apply(const SceneChange &change, std::unique_ptr<OverlayRen
         return applyText(*text);
     if (const auto *steering = std::get_if<SteeringChange>(&change))
         return applySteering(*steering);
+    if (const auto *points = std::get_if<PointsChange>(&change))
+        return applyPoints(*points);
     return applyScene(std::get<SceneReplacement>(change), replaced);
 }
 
@@ -169,6 +171,21 @@ Status SceneControl::applySteering(const SteeringChange &change)
         return Ok{};
     }
     return makeError(ErrorCode::InvalidArgument, "no guide-lines annotation named '" + change.annotation + "'");
+}
+
+Status SceneControl::applyPoints(const PointsChange &change)
+{
+    for (Annotation &annotation : scene_.annotations) {
+        std::vector<glm::dvec3> *points = worldPointsOf(annotation);
+        if (annotation.name != change.annotation || !points)
+            continue;
+        if (renderer_)
+            if (auto set = renderer_->setWorldPoints(change.annotation, change.points); !set)
+                return set;
+        *points = change.points;
+        return Ok{};
+    }
+    return makeError(ErrorCode::InvalidArgument, "no polyline or markers annotation named '" + change.annotation + "'");
 }
 
 std::vector<std::string> SceneControl::layerNames() const

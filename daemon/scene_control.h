@@ -46,13 +46,20 @@ struct SteeringChange {
     std::optional<double> wheelDeg;
 };
 
+// New points for a polyline or markers annotation (a path file changed): from the next frame on, outliving renderer
+// rebuilds. No points is an empty path (nothing drawn).
+struct PointsChange {
+    std::string annotation;
+    std::vector<glm::dvec3> points;
+};
+
 // A whole new scene and camera (a reload that keeps the source): built completely before it replaces the old one.
 struct SceneReplacement {
     OverlayScene scene;
     CameraSpec camera;
 };
 
-using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SteeringChange, SceneReplacement>;
+using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SteeringChange, PointsChange, SceneReplacement>;
 
 // Builds a stream's overlay from a scene and the camera resolved for the stream's frame size; null: nothing to draw.
 using RendererFactory = std::function<Result<std::unique_ptr<OverlayRenderer>>(
@@ -92,6 +99,7 @@ private:
     Status applyLayer(const LayerChange &change);
     Status applyText(const TextChange &change);
     Status applySteering(const SteeringChange &change);
+    Status applyPoints(const PointsChange &change);
     Status applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced);
     Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const Camera &camera,
                                                       const StreamFormat &format) const;

@@ -13,47 +13,22 @@ Status TextInputs::configure(const std::vector<inputs::TextInputOptions> &option
         watches.push_back(std::move(*watch));
         readings.push_back({input.slot, input.file, {}, {}});
     }
-    wire(false);
-    watches_ = std::move(watches);
+    files_.replace(std::move(watches));
     readings_ = std::move(readings);
-    wire(true);
     showAll();
     return Ok{};
 }
 
 void TextInputs::showAll()
 {
-    for (size_t i = 0; i < watches_.size(); ++i)
+    for (size_t i = 0; i < files_.size(); ++i)
         show(i);
-}
-
-void TextInputs::attachLoop(EventLoop *loop)
-{
-    wire(false);
-    loop_ = loop;
-    wire(true);
-}
-
-void TextInputs::wire(bool add)
-{
-    if (!loop_)
-        return;
-    for (size_t i = 0; i < watches_.size(); ++i) {
-        if (!add) {
-            loop_->remove(watches_[i].fd());
-            continue;
-        }
-        (void)loop_->add(watches_[i].fd(), [this, i] {
-            if (watches_[i].consume())
-                show(i);
-        });
-    }
 }
 
 void TextInputs::show(size_t input)
 {
     Reading &reading = readings_[input];
-    std::string text = watches_[input].read();
+    std::string text = files_[input].read();
     if (text == reading.text && reading.changed != std::chrono::steady_clock::time_point{})
         return; // a write that changed nothing the slot shows
     if (auto applied = scene_.apply(TextChange{reading.slot, text}); !applied) {

@@ -9,15 +9,17 @@
 #include "base/logger.h"
 #include "daemon/event_loop.h"
 #include "daemon/scene_control.h"
+#include "daemon/watched_files.h"
 #include "inputs/input_options.h"
-#include "inputs/text_file_watch.h"
 
 namespace overlayd {
 
 class TextInputs
 {
 public:
-    TextInputs(Logger &logger, SceneControl &scene) : logger_(logger), scene_(scene) {}
+    TextInputs(Logger &logger, SceneControl &scene)
+        : logger_(logger), scene_(scene), files_([this](size_t input) { show(input); })
+    {}
 
     // Watches every file (replacing the watches of the previous config) and shows what each holds now. A folder
     // that cannot be watched is an error, and the previous watches stay.
@@ -25,7 +27,7 @@ public:
     // Puts every file's current line into its slot again (a new scene was loaded).
     void showAll();
     // Adds the watches' fds to the loop (null: removes them).
-    void attachLoop(EventLoop *loop);
+    void attachLoop(EventLoop *loop) { files_.attachLoop(loop); }
 
     struct Reading {
         std::string slot, file, text;
@@ -34,14 +36,12 @@ public:
     const std::vector<Reading> &readings() const { return readings_; }
 
 private:
-    void wire(bool add);
     void show(size_t input);
 
     Logger &logger_;
     SceneControl &scene_;
-    std::vector<inputs::TextFileWatch> watches_;
+    WatchedFiles files_;
     std::vector<Reading> readings_;
-    EventLoop *loop_ = nullptr;
 };
 
 } // namespace overlayd

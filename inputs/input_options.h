@@ -1,5 +1,5 @@
-// What [[input.text]] and [[input.can]] ask for: live data from outside the config file, into the running scene
-// (text slots, and the guide lines' steering angle).
+// What [[input.text]], [[input.path]] and [[input.can]] ask for: live data from outside the config file, into the
+// running scene (text slots, world points, and the guide lines' steering angle).
 // Compared whole (defaulted ==), so that a reload re-opens exactly the inputs that changed.
 #pragma once
 
@@ -23,6 +23,15 @@ struct TextInputOptions {
     std::string file; // absolute (resolved against the config's folder)
     size_t maxBytes = kMaxTextBytes;
     bool operator==(const TextInputOptions &) const = default;
+};
+
+inline constexpr size_t kMaxPathInputs = 16;
+
+// The points of a polyline or markers annotation, from a file another program writes (point_list.h).
+struct PathInputOptions {
+    std::string annotation;
+    std::string file; // absolute (resolved against the config's folder)
+    bool operator==(const PathInputOptions &) const = default;
 };
 
 // What a CAN signal drives.
@@ -51,8 +60,9 @@ struct CanInputOptions {
 
 struct InputOptions {
     std::vector<TextInputOptions> text;
+    std::vector<PathInputOptions> paths;
     std::vector<CanInputOptions> can;
-    bool empty() const { return text.empty() && can.empty(); }
+    bool empty() const { return text.empty() && paths.empty() && can.empty(); }
     bool operator==(const InputOptions &) const = default;
 };
 

@@ -12,7 +12,9 @@ namespace overlayd::inputs {
 namespace {
 
 // What a writer does: write and close, rename over, create, delete, or keep writing an open file.
-constexpr uint32_t kEvents = IN_CLOSE_WRITE | IN_MODIFY | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MOVED_FROM;
+constexpr uint32_t kEveryWrite = IN_CLOSE_WRITE | IN_MODIFY | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MOVED_FROM;
+// Only a complete version: closed after writing, renamed in, or gone.
+constexpr uint32_t kWhenComplete = IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE | IN_MOVED_FROM;
 
 } // namespace
 
@@ -34,14 +36,14 @@ std::string slotLine(std::string_view content, size_t maxBytes)
     return line;
 }
 
-Result<TextFileWatch> TextFileWatch::open(const std::string &path, size_t maxBytes)
+Result<TextFileWatch> TextFileWatch::open(const std::string &path, size_t maxBytes, Reread reread)
 {
     const std::filesystem::path file(path);
     const std::string folder = file.parent_path().empty() ? "." : file.parent_path().string();
     UniqueFd fd(::inotify_init1(IN_NONBLOCK | IN_CLOEXEC));
     if (fd.get() < 0)
         return makeError(ErrorCode::Io, std::string("inotify: ") + std::strerror(errno));
-    if (::inotify_add_watch(fd.get(), folder.c_str(), kEvents) < 0)
+    if (::inotify_add_watch(fd.get(), folder.c_str(), reread == Reread::EveryWrite ? kEveryWrite : kWhenComplete) < 0)
         return makeError(errno == ENOENT ? ErrorCode::NotFound : ErrorCode::Io,
                          "cannot watch the folder " + folder + " of " + path + ": " + std::strerror(errno));
     return TextFileWatch(std::move(fd), path, file.filename().string(), maxBytes);
@@ -67,14 +69,25 @@ bool TextFileWatch::consume()
 
 std::string TextFileWatch::read() const
 {
+    // Enough for the longest line a slot shows plus what slotLine drops; the rest of the file is never read.
+    return slotLine(readPrefix(maxBytes_ * 4 + 63), maxBytes_);
+}
+
+std::string TextFileWatch::readPrefix(size_t maxBytes) const
+{
     UniqueFd fd(::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
     if (fd.get() < 0)
         return {};
-    // Enough for the longest line a slot shows plus what slotLine drops; the rest of the file is never read.
-    std::string content(maxBytes_ * 4 + 64, '\0');
-    const ssize_t got = ::read(fd.get(), content.data(), content.size());
-    content.resize(got > 0 ? size_t(got) : 0);
-    return slotLine(content, maxBytes_);
+    std::string content(maxBytes + 1, '\0');
+    size_t have = 0;
+    while (have < content.size()) { // a regular file may return less than asked before its end
+        const ssize_t got = ::read(fd.get(), content.data() + have, content.size() - have);
+        if (got <= 0)
+            break;
+        have += size_t(got);
+    }
+    content.resize(have);
+    return content;
 }
 
 } // namespace overlayd::inputs

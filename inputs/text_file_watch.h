@@ -16,14 +16,20 @@ std::string slotLine(std::string_view content, size_t maxBytes);
 class TextFileWatch
 {
 public:
+    // When the file counts as changed: after every write (a one-line status: the newest text at once, even from a
+    // writer that keeps the file open), or only once a writer closes it or renames it in (a whole document such as
+    // a path: never read half-written; a truncating `>` would otherwise read as empty first).
+    enum class Reread { EveryWrite, WhenComplete };
     // The folder must exist (a missing file is fine: it reads as empty until it appears).
-    static Result<TextFileWatch> open(const std::string &path, size_t maxBytes);
+    static Result<TextFileWatch> open(const std::string &path, size_t maxBytes, Reread reread = Reread::EveryWrite);
 
     // Readable when something happened in the folder; consume() then says whether it was this file.
     int fd() const { return fd_.get(); }
     bool consume();
     // The file's line now ("" when it does not exist or cannot be read).
     std::string read() const;
+    // The file's first maxBytes + 1 bytes (so that a caller can tell a longer file); "" when it does not exist.
+    std::string readPrefix(size_t maxBytes) const;
     const std::string &path() const { return path_; }
 
 private:

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,6 +41,9 @@ public:
     // nullopt when it is unknown (its wheel tracks go). Like a camera change, it re-projects the world layers:
     // drawn straight into frames while it keeps changing. An unknown annotation is an InvalidArgument error.
     virtual Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) = 0;
+    // A polyline's or markers annotation's points (in its frame; at most kMaxWorldPoints, finite), re-projected like
+    // a camera change. An unknown annotation or a bad point is an InvalidArgument error, and nothing changes.
+    virtual Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) = 0;
 
     // Frame path (no exceptions; no allocation once the text layers have warmed up and while the camera holds
     // still): refreshes token text if it changed and blends every enabled layer into the frame in place. fps feeds

@@ -220,6 +220,26 @@ Status SceneRenderer::setGuideSteering(std::string_view annotation, std::optiona
     return makeError(ErrorCode::InvalidArgument, "no guide-lines annotation named \"" + std::string(annotation) + "\"");
 }
 
+Status SceneRenderer::setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points)
+{
+    if (points.size() > kMaxWorldPoints)
+        return makeError(ErrorCode::InvalidArgument, "at most " + std::to_string(kMaxWorldPoints) + " points");
+    for (const glm::dvec3 &p : points)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return makeError(ErrorCode::InvalidArgument, "points must be finite");
+    for (Annotation &a : scene_.annotations) {
+        std::vector<glm::dvec3> *target = worldPointsOf(a);
+        if (a.name != annotation || !target)
+            continue;
+        target->assign(points.begin(), points.end());
+        worldStale_ = true;
+        cameraChangedSinceBlend_ = true;
+        return Ok{};
+    }
+    return makeError(ErrorCode::InvalidArgument,
+                     "no polyline or markers annotation named \"" + std::string(annotation) + "\"");
+}
+
 Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
 {
     for (Layer &layer : layers_) {

@@ -32,6 +32,7 @@ public:
     std::vector<std::string> layerNames() const override;
     Status setSlotText(std::string_view slot, std::string_view text) override;
     Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) override;
+    Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) override;
     Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) override;
 
     // Re-projects and re-rasterizes every world layer (called by create and setCamera).

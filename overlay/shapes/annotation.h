@@ -49,6 +49,9 @@ struct GridShape {
     std::optional<Style> majorStyle{};
 };
 
+// The most points a polyline or markers annotation holds (the config's and a live path file's limit).
+inline constexpr size_t kMaxWorldPoints = 10000;
+
 struct PolylineShape {
     std::vector<glm::dvec3> points;
     bool closed = false;
@@ -163,6 +166,16 @@ struct Annotation {
     Style style{};
     Shape shape;
 };
+
+// The points of a polyline or markers annotation (what [[input.path]] replaces); null for other shapes.
+inline std::vector<glm::dvec3> *worldPointsOf(Annotation &annotation)
+{
+    if (auto *polyline = std::get_if<PolylineShape>(&annotation.shape))
+        return &polyline->points;
+    if (auto *markers = std::get_if<MarkersShape>(&annotation.shape))
+        return &markers->points;
+    return nullptr;
+}
 
 // Everything drawn on a stream: the frames annotations refer to and the annotations, in drawing order.
 struct OverlayScene {

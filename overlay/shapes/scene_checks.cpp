@@ -51,6 +51,7 @@ struct Checker {
     {
         for (const glm::dvec3 &p : ps)
             require(finite(p), "points must be finite");
+        require(ps.size() <= kMaxWorldPoints, "at most " + std::to_string(kMaxWorldPoints) + " points");
     }
     void text(const std::string &t, double sizePx)
     {

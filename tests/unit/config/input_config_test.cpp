@@ -27,6 +27,10 @@ name = "guide lines"
 type = "guide-lines"
 steering_ratio = 15.0
 stale_colour = "#808080"
+[[annotation]]
+name = "route"
+type = "polyline"
+points = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]
 )";
 
 } // namespace
@@ -188,4 +192,49 @@ target = "guide lines.steering"
     EXPECT_TRUE(has("input.can[2].target", "expected")) << all;
     EXPECT_FALSE(has("input.can[3].target", "")) << all;
     EXPECT_TRUE(has("input.can[4].target", "already fed")) << all;
+}
+
+TEST(InputConfig, APathInputFeedsAPolylineFromAFile)
+{
+    const std::string base = std::filesystem::temp_directory_path().string();
+    const DaemonConfig config =
+        loadValid(kScene + "[[input.path]]\nannotation = \"route\"\nfile = \"route.txt\"\n", base);
+    ASSERT_EQ(config.inputs.paths.size(), 1u);
+    EXPECT_EQ(config.inputs.paths[0].annotation, "route");
+    EXPECT_EQ(config.inputs.paths[0].file, base + "/route.txt");
+    // A config named by a relative path in the working directory: its folder is "".
+    EXPECT_EQ(
+        loadValid(kScene + "[[input.path]]\nannotation = \"route\"\nfile = \"route.txt\"\n", "").inputs.paths[0].file,
+        "route.txt");
+}
+
+TEST(InputConfig, EveryPathRefusalIsAtItsKey)
+{
+    const auto problems = loadInvalid(kScene + R"(
+[[input.path]]
+annotation = "rout"
+file = "/nonexistent-overlayd-folder/route.txt"
+[[input.path]]
+annotation = "guide lines"
+file = "/tmp/a.txt"
+[[input.path]]
+annotation = "route"
+file = "/tmp/b.txt"
+[[input.path]]
+annotation = "route"
+file = ""
+[[input.path]]
+)");
+    const std::string all = test::formatProblems(problems);
+    const auto has = [&](const std::string &key, const std::string &words) {
+        return test::hasProblem(problems, key, words);
+    };
+    EXPECT_TRUE(has("input.path[0].annotation", "did you mean 'route'")) << all;
+    EXPECT_TRUE(has("input.path[0].file", "does not exist")) << all;
+    EXPECT_TRUE(has("input.path[1].annotation", "no polyline or markers annotation")) << all;
+    EXPECT_FALSE(has("input.path[2].annotation", "")) << all;
+    EXPECT_TRUE(has("input.path[3].annotation", "already fed")) << all;
+    EXPECT_TRUE(has("input.path[3].file", "empty path")) << all;
+    EXPECT_TRUE(has("input.path[4].annotation", "missing")) << all;
+    EXPECT_TRUE(has("input.path[4].file", "missing")) << all;
 }

@@ -81,6 +81,7 @@ public:
     Status setLayerEnabled(std::string_view, bool) override { return Ok{}; }
     Status setSlotText(std::string_view, std::string_view) override { return Ok{}; }
     Status setGuideSteering(std::string_view, std::optional<double>) override { return Ok{}; }
+    Status setWorldPoints(std::string_view, std::span<const glm::dvec3>) override { return Ok{}; }
     std::vector<std::string> layerNames() const override { return {}; }
     Status blend(const FrameView &frame, const FrameMetadata &, double) override;
 
@@ -113,8 +114,14 @@ public:
         steerings.emplace_back(std::string(annotation), steeringDeg);
         return Ok{};
     }
+    Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) override
+    {
+        worldPoints.emplace_back(std::string(annotation), std::vector<glm::dvec3>(points.begin(), points.end()));
+        return Ok{};
+    }
     Status blend(const FrameView &, const FrameMetadata &, double) override { return Ok{}; }
 
+    std::vector<std::pair<std::string, std::vector<glm::dvec3>>> worldPoints;
     std::vector<std::pair<std::string, std::optional<double>>> steerings;
     std::vector<glm::dmat4> cameras;
     std::vector<std::pair<std::string, bool>> layers;

@@ -1,0 +1,52 @@
+#include "daemon/path_inputs.h"
+
+#include "inputs/point_list.h"
+
+namespace overlayd {
+
+Status PathInputs::configure(const std::vector<inputs::PathInputOptions> &options)
+{
+    std::vector<inputs::TextFileWatch> watches;
+    std::vector<Reading> readings;
+    for (const inputs::PathInputOptions &input : options) {
+        auto watch = inputs::TextFileWatch::open(input.file, inputs::kMaxPathFileBytes,
+                                                 inputs::TextFileWatch::Reread::WhenComplete);
+        if (!watch)
+            return makeError(watch.error().code, "input.path '" + input.annotation + "': " + watch.error().message);
+        watches.push_back(std::move(*watch));
+        readings.push_back({input.annotation, input.file, 0, {}, {}});
+    }
+    files_.replace(std::move(watches));
+    readings_ = std::move(readings);
+    return Ok{};
+}
+
+void PathInputs::showAll()
+{
+    for (size_t i = 0; i < files_.size(); ++i)
+        show(i);
+}
+
+void PathInputs::show(size_t input)
+{
+    Reading &reading = readings_[input];
+    const std::string content = files_[input].readPrefix(inputs::kMaxPathFileBytes);
+    Result<std::vector<glm::dvec3>> points =
+        content.size() > inputs::kMaxPathFileBytes
+            ? Result<std::vector<glm::dvec3>>(
+                  makeError(ErrorCode::Malformed,
+                            reading.file + ": more than " + std::to_string(inputs::kMaxPathFileBytes) + " bytes"))
+            : inputs::parsePointList(content, reading.file);
+    Status applied = points ? scene_.apply(PointsChange{reading.annotation, *points}) : Status(points.error());
+    if (!applied) {
+        reading.error = applied.error().message;
+        logger_.warning(cat("input.path '", reading.annotation, "': ", reading.error, " (the points shown stay)"));
+        return;
+    }
+    reading.error.clear();
+    reading.points = points->size();
+    reading.changed = std::chrono::steady_clock::now();
+    logger_.debug(cat("input.path '", reading.annotation, "': ", reading.points, " points"));
+}
+
+} // namespace overlayd

@@ -1,0 +1,12 @@
+// libFuzzer target: any bytes as an [[input.path]] file (what another program writes while the daemon runs).
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "inputs/point_list.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    (void)overlayd::inputs::parsePointList(std::string_view(reinterpret_cast<const char *>(data), size), "fuzz.txt");
+    return 0;
+}
