@@ -18,6 +18,10 @@
 namespace overlayd {
 
 // Which of Projection's constructors the intrinsics use.
+// How a stream of another aspect than the calibrated image was made from it (libcamera's ScalerCrop would describe
+// it): None refuses another aspect; Center is the largest centred region of the stream's aspect, scaled uniformly.
+enum class CalibrationCrop { None, Center };
+
 enum class IntrinsicsForm {
     FieldOfView,         // fovDeg across fovAxis, aspect from the viewport window (round circles)
     Frustum,             // bounds.left..top on the near plane (glFrustum)
@@ -37,8 +41,12 @@ public:
     // The steps of build(), separate so that the config loader can report each failure at the keys behind it.
     Result<Viewport> buildViewport(unsigned frameWidth, unsigned frameHeight) const;
     Result<Projection> buildProjection(const Viewport &viewport) const;
-    // Pinhole intrinsics rescaled to the viewport window: pixel centres map as u' = (u + 0.5) s - 0.5.
-    PinholeIntrinsics scaledPinhole(const Viewport &viewport) const;
+    // Pinhole intrinsics for the viewport window, from the image size they were calibrated at. The same aspect
+    // (within a pixel): scaled, pixel centres mapping as u' = (u + 0.5) s - 0.5. Another aspect is refused unless
+    // calibrationCrop says how the stream was cut from the calibrated image.
+    Result<PinholeIntrinsics> scaledPinhole(const Viewport &viewport) const;
+    // What scaledPinhole does to the calibration for this window, in words ("" when the sizes match), for a log.
+    std::string calibrationScaling(const Viewport &viewport) const;
     // World to the internal camera frame: the pose in its mount frame, after world to mount.
     glm::dmat4 view() const;
 
@@ -52,7 +60,8 @@ public:
     double fovDeg = 60.0;
     FrustumBounds bounds{};      // Frustum and Orthographic: left, right, bottom, top (near/far below)
     PinholeIntrinsics pinhole{}; // width, height 0: the stream's viewport window
-    WindowIntrinsics window{};   // focal, centre, half spans (near/far below)
+    CalibrationCrop calibrationCrop = CalibrationCrop::None;
+    WindowIntrinsics window{}; // focal, centre, half spans (near/far below)
     glm::dvec2 orthoSize{2.0, 2.0};
     double near = 0.1, far = 1000.0; // metres in front of the camera; far may be kInfiniteFar (perspective)
     DepthRange depth = DepthRange::MinusOneToOne;

@@ -186,10 +186,21 @@ void readIntrinsics(TableReader &camera, const std::string &baseDirectory, Camer
         else
             readForm(camera, *form, out);
     }
+    if (auto crop = camera.choice<CalibrationCrop>(
+            "calibration_crop", {{"none", CalibrationCrop::None}, {"center", CalibrationCrop::Center}}))
+        out.calibrationCrop = *crop;
     if (auto near = camera.positive("near"))
         out.near = *near;
-    if (auto far = readFar(camera))
+    if (auto far = readFar(camera)) {
         out.far = *far;
+        const bool orthographic =
+            out.form == IntrinsicsForm::Orthographic || out.form == IntrinsicsForm::Seed000Orthographic;
+        if (orthographic && *far == kInfiniteFar) {
+            // Otherwise the projection refuses its box as "not finite", at the form's key: say what is wrong here.
+            camera.problem("far", "an orthographic camera needs a finite far plane (\"inf\" is for perspective)");
+            out.far = 1000.0;
+        }
+    }
     if (auto depth = camera.choice<DepthRange>("depth_range",
                                                {{"-1..1", DepthRange::MinusOneToOne}, {"0..1", DepthRange::ZeroToOne}}))
         out.depth = *depth;

@@ -43,6 +43,8 @@ std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger
         logger.error(cat(path, ": camera: ", camera.error().message));
         return std::nullopt;
     }
+    if (const std::string scaling = config->camera.calibrationScaling(camera->viewport()); !scaling.empty())
+        logger.info(scaling);
     return ConfiguredCamera{std::move(*config), std::move(*camera)};
 }
 

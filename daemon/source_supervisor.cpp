@@ -21,6 +21,9 @@ Status SourceSupervisor::open()
         return source.error();
     source_ = std::move(*source);
     logger_.notice(cat("streaming from ", source_->describe(), ": ", pipeline_.format().describe()));
+    if (auto viewport = scene_.camera().buildViewport(pipeline_.format().width, pipeline_.format().height))
+        if (const std::string scaling = scene_.camera().calibrationScaling(*viewport); !scaling.empty())
+            logger_.info(scaling);
     watchSource();
     timers_.noSignal.disarm();
     timers_.retry.disarm();

@@ -79,6 +79,74 @@ TEST(Intrinsics, PinholeForAnotherImageSizeIsScaled)
     EXPECT_DOUBLE_EQ(camera.projection().pinholeIntrinsics()->cx, 600.5);
 }
 
+// A 4:3 calibration (1600x1200) on a 16:9 stream (1280x720) is not a scaling: refused at the key, naming both sizes
+// and the way out, by check-config as by the camera build.
+TEST(Intrinsics, PinholeOfAnotherAspectIsRefusedWithoutACrop)
+{
+    const auto problems = loadInvalid(kHeader + kIdentityPose +
+                                      "[camera.pinhole]\nfx = 1000\nfy = 1000\ncx = 799.5\ncy = 599.5\n"
+                                      "width = 1600\nheight = 1200\n");
+    EXPECT_TRUE(hasProblem(problems, "camera.pinhole", "1600x1200 (4:3) image but the stream is 1280x720 (16:9)"))
+        << formatProblems(problems);
+    EXPECT_TRUE(hasProblem(problems, "camera.pinhole", "calibration_crop = \"center\"")) << formatProblems(problems);
+}
+
+// calibration_crop = "center": the stream is the largest centred 16:9 region of the 4:3 calibration (1600x900 from
+// row 150), scaled by 0.8. Worked by hand: the calibrated centre (799.5, 599.5) is the stream's (639.5, 359.5);
+// 50 px below it (cy 649.5) is 40 px below (399.5); f 1000 -> 800. The stream's pixels against cv::projectPoints
+// with that K.
+TEST(Intrinsics, PinholeOfAnotherAspectWithACentreCropIsCroppedAndScaled)
+{
+    const Camera camera = buildCamera(kHeader + "[camera]\nrvec = [0, 0, 0]\ntvec = [0, 0, 0]\n"
+                                                "calibration_crop = \"center\"\n"
+                                                "[camera.pinhole]\nfx = 1000\nfy = 1000\ncx = 799.5\ncy = 649.5\n"
+                                                "width = 1600\nheight = 1200\n");
+    ASSERT_TRUE(camera.projection().pinholeIntrinsics().has_value());
+    const PinholeIntrinsics k = *camera.projection().pinholeIntrinsics();
+    EXPECT_DOUBLE_EQ(k.fx, 800.0);
+    EXPECT_DOUBLE_EQ(k.fy, 800.0);
+    EXPECT_DOUBLE_EQ(k.cx, 639.5);
+    EXPECT_DOUBLE_EQ(k.cy, 399.5);
+    const std::vector<cv::Point3d> world{{0.5, -0.25, 3}, {-1, 0.4, 2}};
+    const auto expected =
+        opencvProject(world, cv::Matx33d::eye(), {0, 0, 0}, cv::Matx33d(800, 0, 639.5, 0, 800, 399.5, 0, 0, 1), {});
+    for (size_t i = 0; i < world.size(); ++i)
+        expectPixel(camera, {world[i].x, world[i].y, world[i].z}, expected[i].x, expected[i].y);
+
+    // The other way round: a 16:9 calibration (1920x1080) on a 4:3 stream (640x480) is its centred 1440x1080
+    // region from column 240, scaled by 4/9: the centre (959.5, 539.5) lands on (319.5, 239.5).
+    DaemonConfig config = loadValid(kHeader + "[camera]\nrvec = [0, 0, 0]\ntvec = [0, 0, 0]\n"
+                                              "calibration_crop = \"center\"\n"
+                                              "[camera.pinhole]\nfx = 900\nfy = 900\ncx = 959.5\ncy = 539.5\n"
+                                              "width = 1920\nheight = 1080\n");
+    auto small = config.camera.build(640, 480);
+    ASSERT_TRUE(small.ok()) << small.error().message;
+    EXPECT_NEAR(small->projection().pinholeIntrinsics()->cx, 319.5, 1e-12);
+    EXPECT_NEAR(small->projection().pinholeIntrinsics()->cy, 239.5, 1e-12);
+    EXPECT_NEAR(small->projection().pinholeIntrinsics()->fx, 400.0, 1e-12);
+    const std::string note = config.camera.calibrationScaling(small->viewport());
+    EXPECT_NE(note.find("calibrated at 1920x1080 (16:9) cropped to the centre and scaled to the 640x480 (4:3)"),
+              std::string::npos)
+        << note;
+}
+
+// Within a pixel of the same aspect (1920x1080 -> 1280x720 exactly, 640x360 -> 1280x721 by rounding) is a scaling.
+TEST(Intrinsics, PinholeOfTheSameAspectIsScaledAndSaysSo)
+{
+    DaemonConfig config = loadValid(kHeader + kIdentityPose +
+                                    "[camera.pinhole]\nfx = 900\nfy = 900\ncx = 959.5\ncy = 539.5\n"
+                                    "width = 1920\nheight = 1080\n");
+    auto camera = config.camera.build(1280, 720);
+    ASSERT_TRUE(camera.ok()) << camera.error().message;
+    EXPECT_NEAR(camera->projection().pinholeIntrinsics()->fx, 600.0, 1e-12);
+    EXPECT_NE(config.camera.calibrationScaling(camera->viewport()).find("scaled to the 1280x720"), std::string::npos);
+    EXPECT_TRUE(config.camera.build(1281, 721).ok());
+    EXPECT_FALSE(config.camera.build(1280, 740).ok());
+    auto same = config.camera.build(1920, 1080);
+    ASSERT_TRUE(same.ok());
+    EXPECT_EQ(config.camera.calibrationScaling(same->viewport()), "");
+}
+
 TEST(Intrinsics, Seed000WindowModel)
 {
     const Camera camera = buildCamera(kHeader + kIdentityPose +
@@ -118,6 +186,14 @@ TEST(Intrinsics, DepthRangeAndFarPlane)
     const Camera infinite = buildCamera(base + "far = \"inf\"\n");
     EXPECT_FALSE(infinite.projection().hasFarPlane());
     EXPECT_EQ(infinite.project(glm::dvec3(0, 0, 1e9)).status, PointStatus::Visible);
+
+    // An orthographic box has no infinite far side: the refusal is at far, and says so (not "bounds not finite").
+    const auto problems = loadInvalid(kHeader + kIdentityPose +
+                                      "far = \"inf\"\n[camera.orthographic]\nleft = -2\nright = 2\nbottom = -1\n"
+                                      "top = 1\n");
+    ASSERT_EQ(problems.size(), 1u) << formatProblems(problems);
+    EXPECT_TRUE(hasProblem(problems, "camera.far", "orthographic camera needs a finite far plane"))
+        << formatProblems(problems);
 }
 
 TEST(Intrinsics, PlumbBobDistortionMatchesOpenCv)
