@@ -52,8 +52,10 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     project->add_option("--size", line.size,
                         "WxH: project for this stream size (intrinsics scale as for a camera "
                         "that negotiates it)");
-    project->add_option("coordinates", line.coordinates, "X Y Z [X Y Z ...] in metres (use -- before negatives)")
-        ->required();
+    project->add_option("--points", line.pointsPath,
+                        "a file of X Y Z lines in metres (spaces and/or commas, # comments; - reads stdin), as "
+                        "[[input.path]] reads them; instead of the coordinates");
+    project->add_option("coordinates", line.coordinates, "X Y Z [X Y Z ...] in metres (use -- before negatives)");
 
     CLI::App *unproject = app.add_subcommand("unproject", "print each pixel's world ray and where it meets a plane");
     unproject->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);

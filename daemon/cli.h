@@ -23,7 +23,7 @@ struct CommandLine {
     bool json = false;               // project, list-cameras, list-gpio
     std::vector<double> coordinates; // project: X Y Z ...; unproject: U V ...
     std::vector<double> plane;       // unproject: nx ny nz d (empty: the ground z = 0)
-    std::string pointsPath;          // solve-pose
+    std::string pointsPath;          // solve-pose; project: X Y Z lines ("-": stdin)
     std::string size;                // project: WxH instead of the config's size
 };
 

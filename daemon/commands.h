@@ -26,8 +26,9 @@ int checkConfigCommand(const std::string &path);
 int listCamerasCommand(bool json);
 // `overlayd list-gpio [--json]`: every GPIO chip with its lines' offsets, names and holders.
 int listGpioCommand(bool json);
+// `overlayd project [--size WxH] [--points FILE|-] [-- X Y Z ...]`: where world points land, and why not.
 int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates,
-                   const std::string &size, Logger &logger);
+                   const std::string &pointsPath, const std::string &size, Logger &logger);
 // `overlayd unproject [--plane "nx ny nz d"] -- U V ...`: each pixel's world ray and where it meets the plane.
 int unprojectCommand(const std::string &configPath, bool json, const std::vector<double> &plane,
                      const std::vector<double> &coordinates, Logger &logger);

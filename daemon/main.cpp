@@ -24,7 +24,7 @@ int main(int argc, char **argv)
         case Command::CheckConfig:
             return checkConfigCommand(line.configPath);
         case Command::Project:
-            return projectCommand(line.configPath, line.json, line.coordinates, line.size, logger);
+            return projectCommand(line.configPath, line.json, line.coordinates, line.pointsPath, line.size, logger);
         case Command::ListCameras:
             return listCamerasCommand(line.json);
         case Command::Unproject:
