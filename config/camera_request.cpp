@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
@@ -152,6 +153,26 @@ Result<std::string> liveDropInText(const CameraSpec &camera, bool withIntrinsics
         return makeError(ErrorCode::Unsupported, "save writes fov or pinhole intrinsics; these are another form");
     }
     return text;
+}
+
+Result<std::string> writeLiveDropIn(const std::string &configPath, const CameraSpec &camera, bool withIntrinsics)
+{
+    auto text = liveDropInText(camera, withIntrinsics);
+    if (!text)
+        return text.error();
+    const std::string path = liveDropInPath(configPath), temporary = path + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << *text;
+        out.flush();
+        if (!out)
+            return makeError(ErrorCode::Io, "cannot write " + temporary);
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error)
+        return makeError(ErrorCode::Io, "cannot replace " + path + ": " + error.message());
+    return path;
 }
 
 } // namespace overlayd

@@ -26,5 +26,8 @@ std::string liveDropInPath(const std::string &configPath);
 // The drop-in's text: the pose (position + orientation, exact; yaw/pitch/roll in a comment) and, when
 // withIntrinsics, the fov or pinhole intrinsics (other forms are refused).
 Result<std::string> liveDropInText(const CameraSpec &camera, bool withIntrinsics);
+// Writes that text to liveDropInPath(configPath), whole or not at all (a temporary renamed over it); the path written.
+// An Io error when the file cannot be written.
+Result<std::string> writeLiveDropIn(const std::string &configPath, const CameraSpec &camera, bool withIntrinsics);
 
 } // namespace overlayd

@@ -72,6 +72,9 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     solve->add_option("--points", line.pointsPath, "lines of x y z u v (world metres, pixel)")
         ->required()
         ->check(CLI::ExistingFile);
+    solve->add_flag("--write", line.write,
+                    "also write the pose to NAME.live.toml beside the config (the drop-in the loader reads after it, "
+                    "which the browser page's Save writes too; the config itself is never rewritten)");
 
     CLI::App *render = app.add_subcommand("render", "run N frames unpaced into a file (.y4m, .yuv/.raw, %04d.png)");
     render->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);

@@ -24,6 +24,7 @@ struct CommandLine {
     std::vector<double> coordinates; // project: X Y Z ...; unproject: U V ...
     std::vector<double> plane;       // unproject: nx ny nz d (empty: the ground z = 0)
     std::string pointsPath;          // solve-pose; project: X Y Z lines ("-": stdin)
+    bool write = false;              // solve-pose: write the pose to the config's live drop-in
     std::string size;                // project: WxH instead of the config's size
 };
 

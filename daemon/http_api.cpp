@@ -119,24 +119,6 @@ std::optional<json> parseBody(const std::string &body, std::string &why)
     }
 }
 
-// Writes the whole file or nothing: a temporary beside it, renamed over it.
-Status writeAtomically(const std::string &path, const std::string &text)
-{
-    const std::string temporary = path + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out)
-            return makeError(ErrorCode::Io, "cannot write " + temporary);
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error)
-        return makeError(ErrorCode::Io, "cannot replace " + path + ": " + error.message());
-    return Ok{};
-}
-
 } // namespace
 
 HttpApi::HttpApi(Daemon &daemon, std::function<http::HttpCounters()> counters)
@@ -418,14 +400,10 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
 
 HttpResponse HttpApi::save()
 {
-    const std::string &configPath = daemon_.config().path;
-    auto text = liveDropInText(daemon_.scene().camera(), intrinsicsChanged_);
-    if (!text)
-        return HttpResponse::error(400, text.error().message);
-    const std::string path = liveDropInPath(configPath);
-    if (auto written = writeAtomically(path, *text); !written)
-        return HttpResponse::error(500, written.error().message);
-    return HttpResponse::json(200, json({{"saved", path}}).dump());
+    auto written = writeLiveDropIn(daemon_.config().path, daemon_.scene().camera(), intrinsicsChanged_);
+    if (!written)
+        return HttpResponse::error(written.error().code == ErrorCode::Io ? 500 : 400, written.error().message);
+    return HttpResponse::json(200, json({{"saved", *written}}).dump());
 }
 
 } // namespace overlayd

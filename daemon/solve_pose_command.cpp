@@ -5,6 +5,7 @@
 
 #include "alignment/points_file.h"
 #include "alignment/pose_solver.h"
+#include "config/camera_request.h"
 #include "daemon/commands.h"
 #include "daemon/json_text.h"
 
@@ -19,7 +20,7 @@ std::string vec(const glm::dvec3 &v)
 
 } // namespace
 
-int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, Logger &logger)
+int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, bool write, Logger &logger)
 {
     const auto configured = loadCameraLogged(configPath, logger);
     if (!configured)
@@ -51,7 +52,8 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
         out += "#   point " + std::to_string(i + 1) + ": " + jsonNumber(solution->errorsPx[i]) + " px\n";
     for (const std::string &warning : solution->warnings)
         out += "# warning: " + warning + "\n";
-    out += "# the pose of the camera in its mount frame '" + config->camera.mountFrame + "'; paste under [camera]\n";
+    out += "# the pose of the camera in its mount frame '" + config->camera.mountFrame +
+           "'; paste under [camera] in place of its pose keys (one pose form per camera), or run with --write\n";
     out += "[camera]\nrvec = " + vec(extrinsics.rvec) + "\ntvec = " + vec(extrinsics.tvec) + "\n";
     out += "# the same pose as position + yaw/pitch/roll (degrees):\n# position = " + vec(ypr.position) +
            "\n# yaw = " + jsonNumber(ypr.yawDeg) + "\n# pitch = " + jsonNumber(ypr.pitchDeg) +
@@ -59,6 +61,17 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
     std::fwrite(out.data(), 1, out.size(), stdout);
     for (const std::string &warning : solution->warnings)
         logger.warning(cat("solve-pose: ", warning));
+    if (write) {
+        CameraSpec solved = config->camera;
+        solved.pose = mountPose;
+        auto written = writeLiveDropIn(configPath, solved, false);
+        if (!written) {
+            logger.error(cat("solve-pose: ", written.error().message));
+            return kExitFailure;
+        }
+        logger.notice(cat("solve-pose: the pose is in ", *written, " (read after ", configPath,
+                          "; a running daemon takes it on reload)"));
+    }
     return kExitOk;
 }
 

@@ -82,6 +82,46 @@ TEST(SolvePose, GivesBackTheExtrinsicsOpenCVProjectedThroughTheLens)
     EXPECT_EQ(run.out.find("warning"), std::string::npos) << run.out;
 }
 
+// The alignment workflow end to end: a config whose pose is wrong and in another form (position + yaw/pitch/roll),
+// solve-pose --write puts the solved pose into NAME.live.toml, and `project` through the config (with the drop-in
+// merged) then puts the world points on OpenCV's pixels. The config file itself is left as it was.
+TEST(SolvePose, WritesTheDropInThatProjectThenAgreesWith)
+{
+    const std::string dir = scratchDir("solve-pose-write");
+    const std::vector<uint8_t> calibration =
+        readFile(std::string(OVERLAYD_SOURCE_DIR) + "/config/examples/calibration.yaml");
+    writeFile(dir + "/calibration.yaml", std::string(calibration.begin(), calibration.end()));
+    const std::string config = "[source]\nkind = \"synthetic\"\nwidth = 1280\nheight = 720\n"
+                               "[camera]\ncalibration = \"calibration.yaml\"\n"
+                               "position = [0.0, -3.0, 2.0]\nyaw = 80.0\npitch = 20.0\n"
+                               "near = 0.05\nfar = 100.0\n[camera.pinhole]\nfx = 821.5\n";
+    writeFile(dir + "/cam.toml", config);
+    const auto world = worldPoints();
+    const auto pixels = opencvPixels(world);
+    writeFile(dir + "/points.csv", pointsFile(world, pixels));
+    const RunResult solve = runOverlayd("solve-pose --config cam.toml --points points.csv --write", dir);
+    ASSERT_EQ(solve.exitStatus, 0) << solve.all();
+    EXPECT_NE(solve.err.find("cam.live.toml"), std::string::npos) << solve.err;
+    const std::vector<uint8_t> kept = readFile(dir + "/cam.toml");
+    EXPECT_EQ(std::string(kept.begin(), kept.end()), config);
+
+    std::string args = "project --config cam.toml --json --";
+    for (const cv::Point3d &p : world)
+        args += " " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z);
+    const RunResult project = runOverlayd(args, dir);
+    ASSERT_EQ(project.exitStatus, 0) << project.all();
+    size_t at = 0;
+    for (const cv::Point2d &expected : pixels) {
+        at = project.out.find("\"pixel\":[", at);
+        ASSERT_NE(at, std::string::npos) << project.out;
+        double u = NAN, v = NAN;
+        std::sscanf(project.out.c_str() + at + 9, "%lf,%lf", &u, &v);
+        EXPECT_NEAR(u, expected.x, 1e-5) << project.out;
+        EXPECT_NEAR(v, expected.y, 1e-5) << project.out;
+        ++at;
+    }
+}
+
 TEST(SolvePose, ReportsPixelNoiseInsteadOfHidingIt)
 {
     const std::string dir = scratchDir("solve-pose-noise");
