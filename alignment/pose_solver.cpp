@@ -4,6 +4,9 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
 #include <glm/gtc/matrix_access.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
@@ -21,19 +24,29 @@ std::string pointName(size_t i)
 }
 
 // The spread of the world points along their principal axes (singular values, largest first).
-cv::Vec3d spread(const std::vector<Correspondence> &points)
+// The world points' spread along their principal axes (singular values of the centred points, largest first), their
+// centroid, and the axis of least spread (the normal of their plane when they are coplanar).
+struct Spread {
+    cv::Vec3d values;
+    glm::dvec3 centroid{0.0}, leastAxis{0.0, 0.0, 1.0};
+};
+
+Spread spread(const std::vector<Correspondence> &points)
 {
+    Spread out;
     cv::Mat centred(int(points.size()), 3, CV_64F);
-    glm::dvec3 mean(0.0);
     for (const Correspondence &c : points)
-        mean += c.world / double(points.size());
+        out.centroid += c.world / double(points.size());
     for (size_t i = 0; i < points.size(); ++i)
         for (int k = 0; k < 3; ++k)
-            centred.at<double>(int(i), k) = points[i].world[k] - mean[k];
-    cv::Mat values;
-    cv::SVD::compute(centred, values, cv::SVD::NO_UV);
-    return {values.at<double>(0), values.rows > 1 ? values.at<double>(1) : 0.0,
-            values.rows > 2 ? values.at<double>(2) : 0.0};
+            centred.at<double>(int(i), k) = points[i].world[k] - out.centroid[k];
+    cv::Mat values, u, vt;
+    cv::SVD::compute(centred, values, u, vt);
+    out.values = {values.at<double>(0), values.rows > 1 ? values.at<double>(1) : 0.0,
+                  values.rows > 2 ? values.at<double>(2) : 0.0};
+    if (vt.rows == 3)
+        out.leastAxis = {vt.at<double>(2, 0), vt.at<double>(2, 1), vt.at<double>(2, 2)};
+    return out;
 }
 
 } // namespace
@@ -48,7 +61,8 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
     if (!camera.projection().isPerspective())
         return makeError(ErrorCode::Unsupported, "an orthographic camera has no pose to solve from pixels (its rays "
                                                  "are parallel)");
-    const cv::Vec3d s = spread(points);
+    const Spread shape = spread(points);
+    const cv::Vec3d s = shape.values;
     if (s[1] <= 1e-9 * std::max(1.0, s[0]))
         return makeError(ErrorCode::DegenerateBasis, "the world points are collinear (or all one point): a pose "
                                                      "needs at least three not on one line");
@@ -101,6 +115,16 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
     if (s[2] <= 1e-9 * s[0] && points.size() < 6)
         solution.warnings.push_back("the points are coplanar and few: a mirrored pose fits them too; add points "
                                     "off their plane or spread them wider");
+    // A flat set seen edge-on: its pixels barely change as the pose tilts about the plane, so the tilt is guesswork.
+    if (s[2] <= 1e-3 * s[0]) {
+        const glm::dvec3 toPoints = shape.centroid - solved->position();
+        const double elevation =
+            glm::degrees(std::asin(std::min(1.0, std::abs(glm::dot(glm::normalize(toPoints), shape.leastAxis)))));
+        if (elevation < kMinPlaneElevationDeg)
+            solution.warnings.push_back("the points' plane is seen nearly edge-on (" + std::to_string(elevation) +
+                                        " degrees above it): the camera's tilt is poorly determined; add points "
+                                        "off the plane, or nearer the camera");
+    }
     if (solution.rmsPx > kLargeRmsPx)
         solution.warnings.push_back("the RMS reprojection error is " + std::to_string(solution.rmsPx) +
                                     " px: a point is mismatched, or the intrinsics or lens do not fit the camera");

@@ -18,6 +18,8 @@ namespace overlayd::alignment {
 
 inline constexpr size_t kMinCorrespondences = 4, kMaxCorrespondences = 10000;
 inline constexpr double kLargeRmsPx = 2.0; // above this the result is reported with a warning
+// A coplanar set seen from less than this far above its plane (the angle at its centroid) is warned about.
+inline constexpr double kMinPlaneElevationDeg = 10.0;
 
 struct Correspondence {
     glm::dvec3 world;

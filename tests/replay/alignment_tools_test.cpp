@@ -122,6 +122,51 @@ TEST(SolvePose, WritesTheDropInThatProjectThenAgreesWith)
     }
 }
 
+// Each warning through the real binary, and only where it applies: five ground points (coplanar and few), one pixel
+// 10 px off (a large RMS), and a ground set seen from 0.4 m up at 4-12 m (edge-on, about 3 degrees above it; pixels
+// from `overlayd project` of a camera without distortion).
+TEST(SolvePose, WarnsAboutFewCoplanarPointsALargeErrorAndAPlaneSeenEdgeOn)
+{
+    const std::string dir = scratchDir("solve-pose-warnings");
+    const std::vector<cv::Point3d> ground{{-1.5, 1.5, 0}, {0, 1.5, 0}, {1.5, 1.5, 0}, {-1, 3, 0}, {1, 3, 0}};
+    writeFile(dir + "/ground.csv", pointsFile(ground, opencvPixels(ground)));
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points ground.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("warning: the points are coplanar and few"), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("edge-on"), std::string::npos) << run.out;
+
+    const auto world = worldPoints();
+    auto pixels = opencvPixels(world);
+    pixels[3].x += 10.0;
+    writeFile(dir + "/off.csv", pointsFile(world, pixels));
+    run = runOverlayd("solve-pose --config '" + example() + "' --points off.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("warning: the RMS reprojection error is"), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("coplanar"), std::string::npos) << run.out;
+
+    writeFile(dir + "/low.toml", "[source]\nkind = \"synthetic\"\nwidth = 640\nheight = 480\n"
+                                 "[camera]\nposition = [0.0, 0.0, 0.4]\nyaw = 0.0\npitch = 2.0\nfov = 60.0\n");
+    const std::vector<cv::Point3d> far{{4, -2, 0},  {4, 2, 0},  {8, -2.5, 0}, {8, 2.5, 0},
+                                       {12, -3, 0}, {12, 3, 0}, {6, 0, 0}};
+    std::string args = "project --config low.toml --json --";
+    for (const cv::Point3d &p : far)
+        args += " " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z);
+    const RunResult projected = runOverlayd(args, dir);
+    ASSERT_EQ(projected.exitStatus, 0) << projected.all();
+    std::vector<cv::Point2d> seen;
+    for (size_t at = projected.out.find("\"pixel\":["); at != std::string::npos;
+         at = projected.out.find("\"pixel\":[", at + 1)) {
+        double u = NAN, v = NAN;
+        std::sscanf(projected.out.c_str() + at + 9, "%lf,%lf", &u, &v);
+        seen.emplace_back(u, v);
+    }
+    ASSERT_EQ(seen.size(), far.size()) << projected.out;
+    writeFile(dir + "/far.csv", pointsFile(far, seen));
+    run = runOverlayd("solve-pose --config low.toml --points far.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("warning: the points' plane is seen nearly edge-on (2."), std::string::npos) << run.out;
+}
+
 TEST(SolvePose, ReportsPixelNoiseInsteadOfHidingIt)
 {
     const std::string dir = scratchDir("solve-pose-noise");
@@ -190,6 +235,56 @@ TEST(Unproject, PixelsOpenCVProjectedMeetTheGroundWhereTheirPointsAre)
         EXPECT_NEAR(hit[2], 0.0, 1e-9) << run.out;
         ++at;
     }
+}
+
+// The round trip through the real binary: project ground points through the distorting lens, unproject their pixels
+// onto the ground, project those again: the same points (1e-6 m) and the same pixels (1e-6 px).
+TEST(Unproject, ProjectUnprojectProjectComesBack)
+{
+    const std::string dir = scratchDir("round-trip");
+    const std::vector<cv::Point3d> world{{-1.5, 1.5, 0}, {1.5, 1.5, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}, {2, 4, 0}};
+    const auto pixelsOf = [&](const std::vector<cv::Point3d> &points) {
+        std::string args = "project --config '" + example() + "' --json --";
+        char number[96];
+        for (const cv::Point3d &p : points) {
+            std::snprintf(number, sizeof number, " %.17g %.17g %.17g", p.x, p.y, p.z);
+            args += number;
+        }
+        const RunResult run = runOverlayd(args, dir);
+        EXPECT_EQ(run.exitStatus, 0) << run.all();
+        std::vector<cv::Point2d> out;
+        for (size_t at = run.out.find("\"pixel\":["); at != std::string::npos;
+             at = run.out.find("\"pixel\":[", at + 1)) {
+            double u = NAN, v = NAN;
+            std::sscanf(run.out.c_str() + at + 9, "%lf,%lf", &u, &v);
+            out.emplace_back(u, v);
+        }
+        return out;
+    };
+    const auto pixels = pixelsOf(world);
+    ASSERT_EQ(pixels.size(), world.size());
+    std::string args = "unproject --config '" + example() + "' --json --";
+    char number[64];
+    for (const cv::Point2d &p : pixels) {
+        std::snprintf(number, sizeof number, " %.17g %.17g", p.x, p.y);
+        args += number;
+    }
+    const RunResult unprojected = runOverlayd(args, dir);
+    ASSERT_EQ(unprojected.exitStatus, 0) << unprojected.all();
+    std::vector<cv::Point3d> ground;
+    for (size_t at = unprojected.out.find("\"hit\":["); at != std::string::npos;
+         at = unprojected.out.find("\"hit\":[", at + 1)) {
+        double x = NAN, y = NAN, z = NAN;
+        std::sscanf(unprojected.out.c_str() + at + 7, "%lf,%lf,%lf", &x, &y, &z);
+        ground.emplace_back(x, y, z);
+    }
+    ASSERT_EQ(ground.size(), world.size()) << unprojected.out;
+    for (size_t i = 0; i < world.size(); ++i)
+        EXPECT_LT(cv::norm(ground[i] - world[i]), 1e-6) << i << ": " << unprojected.out;
+    const auto again = pixelsOf(ground);
+    ASSERT_EQ(again.size(), pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i)
+        EXPECT_LT(cv::norm(again[i] - pixels[i]), 1e-6) << i;
 }
 
 TEST(Unproject, ARayThatMissesThePlaneSaysWhy)
