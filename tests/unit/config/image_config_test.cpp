@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <opencv2/imgcodecs.hpp>
 
 #include "config_test_util.h"
@@ -22,7 +24,11 @@ height = 480
 )";
 
 struct ImageFolder {
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "overlayd-image-config-test";
+    // One folder per test and process: CTest runs the tests of this file in parallel.
+    std::filesystem::path dir =
+        std::filesystem::temp_directory_path() /
+        (std::string("overlayd-") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "-" +
+         std::to_string(::getpid()));
     ImageFolder() { std::filesystem::create_directories(dir); }
     ~ImageFolder() { std::filesystem::remove_all(dir); }
     std::string write(const std::string &name, const cv::Mat &image) const

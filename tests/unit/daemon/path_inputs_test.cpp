@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "fakes.h"
@@ -14,7 +16,11 @@ namespace overlayd {
 namespace {
 
 struct PathInputsTest : ::testing::Test {
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "overlayd-path-inputs-test";
+    // One folder per test and process: CTest runs the tests of this file in parallel.
+    std::filesystem::path dir =
+        std::filesystem::temp_directory_path() /
+        (std::string("overlayd-") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "-" +
+         std::to_string(::getpid()));
     std::string file = (dir / "route.txt").string();
     std::vector<std::string> logged;
     Logger logger{[this](std::string_view line) { logged.emplace_back(line); }, true};
