@@ -52,7 +52,7 @@ Spread spread(const std::vector<Correspondence> &points)
 } // namespace
 
 Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortion,
-                               const std::vector<Correspondence> &points)
+                               const std::vector<Correspondence> &points, PnpSolver solver)
 {
     if (points.size() < kMinCorrespondences || points.size() > kMaxCorrespondences)
         return makeError(ErrorCode::InvalidArgument, "solving a pose needs " + std::to_string(kMinCorrespondences) +
@@ -66,6 +66,13 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
     if (s[1] <= 1e-9 * std::max(1.0, s[0]))
         return makeError(ErrorCode::DegenerateBasis, "the world points are collinear (or all one point): a pose "
                                                      "needs at least three not on one line");
+    const bool coplanar = s[2] <= 1e-9 * s[0];
+    if (solver == PnpSolver::Ippe && !coplanar)
+        return makeError(ErrorCode::InvalidArgument, "the ippe solver takes coplanar points only (these are not on "
+                                                     "one plane): use sqpnp or iterative");
+    if (solver == PnpSolver::Iterative && !coplanar && points.size() < 6)
+        return makeError(ErrorCode::InvalidArgument, "the iterative solver needs 6 or more points off a plane (its "
+                                                     "DLT start): use sqpnp, or add points");
 
     // The Camera's rays in its own internal frame, then as optical normalized coordinates (x/z, y/z).
     const glm::dmat3 viewRotation(camera.view());
@@ -85,7 +92,10 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
 
     const cv::Matx33d identity = cv::Matx33d::eye();
     cv::Mat rvec, tvec;
-    if (!cv::solvePnP(world, normalized, identity, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_SQPNP))
+    const int flags = solver == PnpSolver::Iterative ? cv::SOLVEPNP_ITERATIVE
+                      : solver == PnpSolver::Ippe    ? cv::SOLVEPNP_IPPE
+                                                     : cv::SOLVEPNP_SQPNP;
+    if (!cv::solvePnP(world, normalized, identity, cv::noArray(), rvec, tvec, false, flags))
         return makeError(ErrorCode::NoConvergence, "OpenCV's solvePnP found no pose for these points");
     cv::solvePnPRefineLM(world, normalized, identity, cv::noArray(), rvec, tvec);
 
@@ -112,7 +122,7 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
             solution.warnings.push_back(pointName(i) + " is behind the solved camera: the points do not fit one pose");
     }
     solution.rmsPx = std::sqrt(sum / double(points.size()));
-    if (s[2] <= 1e-9 * s[0] && points.size() < 6)
+    if (coplanar && points.size() < 6)
         solution.warnings.push_back("the points are coplanar and few: a mirrored pose fits them too; add points "
                                     "off their plane or spread them wider");
     // A flat set seen edge-on: its pixels barely change as the pose tilts about the plane, so the tilt is guesswork.

@@ -26,6 +26,11 @@ struct Correspondence {
     glm::dvec2 pixel; // memory order (top-left origin), as the Camera counts
 };
 
+// OpenCV's solvers, each refined by solvePnPRefineLM: SQPnP (any 4+ points, globally optimal; the default), the
+// iterative Levenberg-Marquardt from a DLT start (6+ points, or 4+ coplanar ones), IPPE (4+ coplanar points: a
+// marked floor).
+enum class PnpSolver { Sqpnp, Iterative, Ippe };
+
 struct PoseSolution {
     Pose pose;                    // world to camera (the internal OpenGL frame)
     std::vector<double> errorsPx; // per point: distance between its pixel and its reprojection
@@ -36,9 +41,10 @@ struct PoseSolution {
 // `camera` supplies intrinsics, lens and viewport (its pose only expresses the rays it unprojects, then is undone);
 // `distortion` is the lens it was built with, to reproject through the solved pose. Refused: fewer than 4 or more
 // than 10000 points, an orthographic camera, a pixel outside the lens's image circle or behind it, world points
-// that are collinear or all one point.
+// that are collinear or all one point, and a solver given points it cannot take (IPPE off a plane, the iterative
+// solver with fewer than 6 points off a plane).
 Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortion,
-                               const std::vector<Correspondence> &points);
+                               const std::vector<Correspondence> &points, PnpSolver solver = PnpSolver::Sqpnp);
 
 // OpenCV's rvec/tvec (x_optical = R x + t) of a pose, as the config's `rvec`/`tvec` take them (cv::Rodrigues).
 struct OpenCvExtrinsics {

@@ -72,6 +72,11 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
     solve->add_option("--points", line.pointsPath, "lines of x y z u v (world metres, pixel)")
         ->required()
         ->check(CLI::ExistingFile);
+    solve
+        ->add_option("--solver", line.solver,
+                     "sqpnp (default: any 4+ points) | iterative (6+, or 4+ coplanar) | "
+                     "ippe (4+ coplanar: a marked floor); each refined by Levenberg-Marquardt")
+        ->check(CLI::IsMember({"sqpnp", "iterative", "ippe"}));
     solve->add_flag("--write", line.write,
                     "also write the pose to NAME.live.toml beside the config (the drop-in the loader reads after it, "
                     "which the browser page's Save writes too; the config itself is never rewritten)");

@@ -25,6 +25,7 @@ struct CommandLine {
     std::vector<double> plane;       // unproject: nx ny nz d (empty: the ground z = 0)
     std::string pointsPath;          // solve-pose; project: X Y Z lines ("-": stdin)
     bool write = false;              // solve-pose: write the pose to the config's live drop-in
+    std::string solver = "sqpnp";    // solve-pose: sqpnp | iterative | ippe
     std::string size;                // project: WxH instead of the config's size
 };
 

@@ -34,7 +34,9 @@ int unprojectCommand(const std::string &configPath, bool json, const std::vector
                      const std::vector<double> &coordinates, Logger &logger);
 // `overlayd solve-pose --points FILE`: the camera pose from world points and their pixels, as config keys.
 // --write: also into the config's live drop-in (NAME.live.toml), which the loader merges over [camera]'s pose.
-int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, bool write, Logger &logger);
+// solver: "sqpnp", "iterative" or "ippe" (alignment::PnpSolver).
+int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, const std::string &solver,
+                     bool write, Logger &logger);
 // logLevel (from --log-level) overrides the config's daemon.log_level.
 int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,
                   std::optional<LogLevel> logLevel, Logger &logger);

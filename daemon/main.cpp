@@ -30,7 +30,7 @@ int main(int argc, char **argv)
         case Command::Unproject:
             return unprojectCommand(line.configPath, line.json, line.plane, line.coordinates, logger);
         case Command::SolvePose:
-            return solvePoseCommand(line.configPath, line.pointsPath, line.write, logger);
+            return solvePoseCommand(line.configPath, line.pointsPath, line.solver, line.write, logger);
         case Command::ListGpio:
             return listGpioCommand(line.json);
         case Command::Render:

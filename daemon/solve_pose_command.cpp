@@ -20,7 +20,8 @@ std::string vec(const glm::dvec3 &v)
 
 } // namespace
 
-int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, bool write, Logger &logger)
+int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, const std::string &solver,
+                     bool write, Logger &logger)
 {
     const auto configured = loadCameraLogged(configPath, logger);
     if (!configured)
@@ -34,7 +35,10 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
     }
     for (alignment::Correspondence &point : *points)
         point.pixel = camera->viewport().toTopLeft(point.pixel); // the user's origin in, memory order inside
-    auto solution = alignment::solvePose(*camera, config->camera.distortion, *points);
+    const alignment::PnpSolver pnp = solver == "iterative" ? alignment::PnpSolver::Iterative
+                                     : solver == "ippe"    ? alignment::PnpSolver::Ippe
+                                                           : alignment::PnpSolver::Sqpnp;
+    auto solution = alignment::solvePose(*camera, config->camera.distortion, *points, pnp);
     if (!solution) {
         logger.error(cat("solve-pose: ", solution.error().message));
         return kExitFailure;

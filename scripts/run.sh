@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh
+scripts/build.sh overlayd # only the daemon this runs (scripts/test.sh builds the rest)
 build_dir=${BUILD_DIR:-build}
 mkdir -p out
 "$build_dir/daemon/overlayd" run --config config/examples/demo.toml --frames 150

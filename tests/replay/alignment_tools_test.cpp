@@ -82,6 +82,38 @@ TEST(SolvePose, GivesBackTheExtrinsicsOpenCVProjectedThroughTheLens)
     EXPECT_EQ(run.out.find("warning"), std::string::npos) << run.out;
 }
 
+// --solver: the iterative solver on the 8 points and IPPE on 5 floor points give OpenCV's extrinsics back too; IPPE
+// refuses points off a plane, the iterative solver fewer than 6 of them, and an unknown name is a usage error.
+TEST(SolvePose, EverySolverGivesThePoseBackAndRefusesWhatItCannotTake)
+{
+    const std::string dir = scratchDir("solve-pose-solvers");
+    const auto world = worldPoints();
+    writeFile(dir + "/all.csv", pointsFile(world, opencvPixels(world)));
+    const std::vector<cv::Point3d> floor{{-1.5, 1.5, 0}, {0, 1.5, 0}, {1.5, 1.5, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}};
+    writeFile(dir + "/floor.csv", pointsFile(floor, opencvPixels(floor)));
+    const std::vector<cv::Point3d> five(world.begin() + 3, world.end());
+    writeFile(dir + "/five.csv", pointsFile(five, opencvPixels(five)));
+    for (const char *solved : {"--solver iterative --points all.csv", "--solver ippe --points floor.csv",
+                               "--solver iterative --points floor.csv"}) {
+        const RunResult run = runOverlayd("solve-pose --config '" + example() + "' " + solved, dir);
+        ASSERT_EQ(run.exitStatus, 0) << solved << "\n" << run.all();
+        const cv::Vec3d rvec = vectorAfter(run.out, "rvec"), tvec = vectorAfter(run.out, "tvec");
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(rvec[k], kRvec[k], 1e-6) << solved << "\n" << run.out;
+            EXPECT_NEAR(tvec[k], kTvec[k], 1e-6) << solved << "\n" << run.out;
+        }
+    }
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --solver ippe --points all.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("the ippe solver takes coplanar points only"), std::string::npos) << run.err;
+    run = runOverlayd("solve-pose --config '" + example() + "' --solver iterative --points five.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("needs 6 or more points off a plane"), std::string::npos) << run.err;
+    run = runOverlayd("solve-pose --config '" + example() + "' --solver ransac --points all.csv", dir);
+    EXPECT_NE(run.exitStatus, 0);
+    EXPECT_NE(run.err.find("ransac"), std::string::npos) << run.err;
+}
+
 // The alignment workflow end to end: a config whose pose is wrong and in another form (position + yaw/pitch/roll),
 // solve-pose --write puts the solved pose into NAME.live.toml, and `project` through the config (with the drop-in
 // merged) then puts the world points on OpenCV's pixels. The config file itself is left as it was.
