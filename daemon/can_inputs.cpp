@@ -34,7 +34,7 @@ const char *CanInputs::stateName(State state)
 
 void CanInputs::configure(const std::vector<inputs::CanInputOptions> &options)
 {
-    const EventLoop *loop = loop_;
+    EventLoop *loop = loop_;
     attachLoop(nullptr);
     std::vector<Input> next;
     for (const inputs::CanInputOptions &option : options) {
@@ -53,7 +53,7 @@ void CanInputs::configure(const std::vector<inputs::CanInputOptions> &options)
     for (size_t i = 0; i < inputs_.size(); ++i)
         if (!inputs_[i].socket)
             open(i, now);
-    attachLoop(const_cast<EventLoop *>(loop));
+    attachLoop(loop);
     showAll();
 }
 

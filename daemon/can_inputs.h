@@ -42,7 +42,7 @@ public:
     enum class State { NoData, Ok, Stale, OutOfRange };
     struct Reading {
         State state = State::NoData;
-        double value = 0.0;        // the last decoded value (also when out of range)
+        double value = 0.0;         // the last decoded value (also when out of range)
         Clock::time_point updated;  // when the last valid frame came (the timeout counts from it)
         Clock::time_point received; // when `value` came (valid or out of range)
         uint64_t frames = 0, malformed = 0, outOfRange = 0;

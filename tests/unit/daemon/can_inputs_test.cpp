@@ -55,27 +55,16 @@ inputs::CanFrame angleFrame(int16_t raw)
     return frame({uint8_t(uint16_t(raw) >> 8), uint8_t(raw & 0xFF)});
 }
 
-struct CanInputsTest : ::testing::Test {
+struct CanInputsTest : test::RecordingSceneTest {
     std::vector<std::string> logged;
     Logger logger{[this](std::string_view line) { logged.emplace_back(line); }, true};
-    test::RecordingRenderer *renderer = nullptr;
-    SceneControl control{
-        [this](const OverlayScene &, const Camera &, const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
-            auto made = std::make_unique<test::RecordingRenderer>();
-            renderer = made.get();
-            return std::unique_ptr<OverlayRenderer>(std::move(made));
-        }};
-    std::unique_ptr<OverlayRenderer> live;
     CanInputs can{logger, control};
     Clock::time_point t0 = Clock::now();
 
     void SetUp() override
     {
         control.load(reverseScene(), CameraSpec{});
-        auto built = control.build(test::greyFormat());
-        ASSERT_TRUE(built.ok());
-        live = std::move(*built);
-        control.attach(live.get(), test::greyFormat());
+        attachStream();
     }
     const GuideLinesShape &guide() const { return std::get<GuideLinesShape>(control.scene().annotations[0].shape); }
 };

@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "daemon/scene_control.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame_buffer.h"
@@ -126,6 +129,27 @@ public:
     std::vector<glm::dmat4> cameras;
     std::vector<std::pair<std::string, bool>> layers;
     std::vector<std::pair<std::string, std::string>> slots;
+};
+
+// A test with a SceneControl whose renderers record what they are asked (`renderer`: the one built last) and one
+// stream attached (attachStream: build, hand to the "pipeline" `live`, attach), as the daemon does it.
+struct RecordingSceneTest : ::testing::Test {
+    RecordingRenderer *renderer = nullptr;
+    SceneControl control{
+        [this](const OverlayScene &, const Camera &, const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
+            auto made = std::make_unique<RecordingRenderer>();
+            renderer = made.get();
+            return std::unique_ptr<OverlayRenderer>(std::move(made));
+        }};
+    std::unique_ptr<OverlayRenderer> live;
+
+    void attachStream()
+    {
+        auto built = control.build(greyFormat());
+        ASSERT_TRUE(built.ok());
+        live = std::move(*built);
+        control.attach(live.get(), greyFormat());
+    }
 };
 
 class RecordingNotifier : public SystemdNotifier

@@ -15,7 +15,7 @@
 namespace overlayd {
 namespace {
 
-struct PathInputsTest : ::testing::Test {
+struct PathInputsTest : test::RecordingSceneTest {
     // One folder per test and process: CTest runs the tests of this file in parallel.
     std::filesystem::path dir =
         std::filesystem::temp_directory_path() /
@@ -24,14 +24,6 @@ struct PathInputsTest : ::testing::Test {
     std::string file = (dir / "route.txt").string();
     std::vector<std::string> logged;
     Logger logger{[this](std::string_view line) { logged.emplace_back(line); }, true};
-    test::RecordingRenderer *renderer = nullptr;
-    SceneControl control{
-        [this](const OverlayScene &, const Camera &, const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
-            auto made = std::make_unique<test::RecordingRenderer>();
-            renderer = made.get();
-            return std::unique_ptr<OverlayRenderer>(std::move(made));
-        }};
-    std::unique_ptr<OverlayRenderer> live;
     PathInputs paths{logger, control};
 
     void SetUp() override
@@ -40,16 +32,9 @@ struct PathInputsTest : ::testing::Test {
         OverlayScene scene;
         scene.annotations.push_back({"route", "world", {}, PolylineShape{{{0, 0, 0}, {1, 0, 0}}, false}});
         control.load(scene, CameraSpec{});
-        open();
+        attachStream();
     }
     void TearDown() override { std::filesystem::remove_all(dir); }
-    void open()
-    {
-        auto built = control.build(test::greyFormat());
-        ASSERT_TRUE(built.ok());
-        live = std::move(*built);
-        control.attach(live.get(), test::greyFormat());
-    }
     void write(const std::string &text) { std::ofstream(file) << text; }
     const std::vector<glm::dvec3> &shown() const
     {
@@ -68,7 +53,7 @@ TEST_F(PathInputsTest, TheFilesPointsReplaceTheAnnotationsAndSurviveARebuild)
     EXPECT_EQ(renderer->worldPoints[0].second, expected);
     EXPECT_EQ(paths.readings()[0].points, 3u);
     EXPECT_TRUE(paths.readings()[0].error.empty());
-    open(); // a new stream: the renderer is built from the scene, which holds the file's points
+    attachStream(); // a new stream: the renderer is built from the scene, which holds the file's points
     EXPECT_EQ(shown(), expected);
 }
 
