@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages overlayd needs to build and test, only those that are missing.
+# Installs the Debian 12 packages overlayd needs to build and test, only those that are missing. On x86-64 and arm64
+# (a Raspberry Pi OS / Debian 12 board) alike.
 set -euo pipefail
 
 packages=(
@@ -14,9 +15,22 @@ packages=(
     # Independent clients the tests check our output with.
     ffmpeg v4l-utils systemd
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
-    qemu-system-x86 busybox-static cpio kmod xz-utils python3 binutils make ustreamer # tests/vm: the real-driver tier
-    can-utils # tests/vm: cansend and candump, the CAN check's other end of the bus
+    python3
 )
+# tests/vm, the real-driver tier, boots Debian's x86-64 kernel in QEMU: on x86-64 hosts only (on an arm64 board the
+# tier reports itself skipped, and these are not installed).
+vm_packages=(
+    qemu-system-x86 busybox-static cpio kmod xz-utils binutils make ustreamer
+    can-utils # cansend and candump, the CAN check's other end of the bus
+)
+if [ "$(dpkg --print-architecture)" = amd64 ]; then
+    packages+=("${vm_packages[@]}")
+fi
+# --arm64: what scripts/test-arm64.sh needs on the x86-64 host (the cross compiler and qemu-user; its sysroot is
+# unpacked from Debian's arm64 packages into a cache folder, not installed).
+if [ "${1:-}" = "--arm64" ]; then
+    packages+=(crossbuild-essential-arm64 qemu-user)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

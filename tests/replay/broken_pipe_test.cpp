@@ -19,8 +19,8 @@ TEST(BrokenPipe, ReaderGoingAwayDoesNotKillTheDaemon)
                                     "fps = 200.0\n[source.synthetic]\npattern = \"colour-bars\"\n"
                                     "[[sink]]\nkind = \"y4m\"\npath = \"-\"\n");
     // head reads one frame's worth and exits; the daemon then writes into a pipe nobody reads.
-    const std::string command = "cd '" + dir + "' && { '" + binary() +
-                                "' run --config stdout.toml --frames 100 2> overlayd.stderr; echo $? > status; } | "
+    const std::string command = "cd '" + dir + "' && { " + binaryCommand() +
+                                " run --config stdout.toml --frames 100 2> overlayd.stderr; echo $? > status; } | "
                                 "head -c 200000 > /dev/null";
     ASSERT_EQ(std::system(command.c_str()), 0);
     const auto status = readFile(dir + "/status");

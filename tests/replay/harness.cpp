@@ -1,6 +1,7 @@
 // The replay tests' harness: processes, scratch folders and OpenCV's colour conversions.
 #include "harness.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +32,27 @@ std::string binary()
     return OVERLAYD_BINARY;
 }
 
+std::vector<std::string> binaryArgv()
+{
+    std::vector<std::string> words;
+    std::string launcher = OVERLAYD_LAUNCHER;
+    for (size_t start = 0; !launcher.empty() && start <= launcher.size();) {
+        const size_t bar = std::min(launcher.find('|', start), launcher.size());
+        words.push_back(launcher.substr(start, bar - start));
+        start = bar + 1;
+    }
+    words.push_back(binary());
+    return words;
+}
+
+std::string binaryCommand()
+{
+    std::string command;
+    for (const std::string &word : binaryArgv())
+        command += (command.empty() ? "'" : " '") + word + "'";
+    return command;
+}
+
 std::string scratchDir(const std::string &name)
 {
     const fs::path dir = fs::path(::testing::TempDir()) / ("overlayd-replay-" + name);
@@ -53,7 +75,7 @@ void writeFile(const std::string &path, const std::string &text)
 RunResult runOverlayd(const std::string &args, const std::string &dir)
 {
     const std::string command =
-        "cd '" + dir + "' && '" + binary() + "' " + args + " > overlayd.stdout 2> overlayd.stderr";
+        "cd '" + dir + "' && " + binaryCommand() + " " + args + " > overlayd.stdout 2> overlayd.stderr";
     const int status = std::system(command.c_str());
     RunResult result;
     if (WIFEXITED(status))

@@ -19,6 +19,10 @@ struct RunResult {
 std::string dataPath(const std::string &name);
 std::string badConfigPath(const std::string &name);
 std::string binary();
+// What starts the binary: the emulator's words first in a cross build (qemu-aarch64 -L SYSROOT), then binary().
+std::vector<std::string> binaryArgv();
+// The same, single-quoted for a shell command line.
+std::string binaryCommand();
 
 // A fresh, empty folder for one test under the test's temporary directory.
 std::string scratchDir(const std::string &name);

@@ -2,6 +2,7 @@
 #include "process.h"
 
 #include <thread>
+#include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -19,8 +20,13 @@ pid_t startDaemon(const std::string &dir, const std::string &config)
         const int err = open("overlayd.stderr", O_WRONLY | O_CREAT | O_TRUNC, 0644);
         dup2(err, STDERR_FILENO);
         setenv("JOURNAL_STREAM", "8:12345", 1);
-        const std::string bin = binary();
-        execl(bin.c_str(), bin.c_str(), "run", "--config", config.c_str(), static_cast<char *>(nullptr));
+        std::vector<std::string> words = binaryArgv();
+        words.insert(words.end(), {"run", "--config", config});
+        std::vector<char *> argv;
+        for (std::string &word : words)
+            argv.push_back(word.data());
+        argv.push_back(nullptr);
+        execvp(argv[0], argv.data());
         _exit(127);
     }
     return pid;
