@@ -5,6 +5,8 @@
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR aarch64) # the SIMD dispatch keys off it: NEON, no x86 paths
 
+# try_compile's inner projects read this file again: hand them the sysroot chosen here.
+list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES OVERLAYD_ARM64_SYSROOT)
 if(NOT OVERLAYD_ARM64_SYSROOT)
     set(OVERLAYD_ARM64_SYSROOT "${CMAKE_CURRENT_LIST_DIR}/../.cache/arm64/sysroot")
 endif()
