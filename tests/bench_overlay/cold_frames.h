@@ -2,7 +2,9 @@
 // measured against, a cold memcpy of one frame.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -58,8 +60,13 @@ using FrameBench = void (*)(benchmark::State &, const char *format, unsigned wid
 // Registers bench for one case as "<kind>/<case>", timed in milliseconds.
 inline void registerCase(const char *kind, FrameBench bench, const FrameCase &c)
 {
-    benchmark::RegisterBenchmark((std::string(kind) + "/" + c.name()).c_str(), bench, c.format, c.width, c.height)
-        ->Unit(benchmark::kMillisecond);
+    benchmark::internal::Benchmark *b =
+        benchmark::RegisterBenchmark((std::string(kind) + "/" + c.name()).c_str(), bench, c.format, c.width, c.height)
+            ->Unit(benchmark::kMillisecond);
+    // A fixed count instead of a minimum time: instructions/count.sh needs to know how many iterations ran (a timed
+    // run also executes its probing rounds, which are not reported).
+    if (const char *iterations = std::getenv("OVERLAYD_BENCH_ITERATIONS"))
+        b->Iterations(std::max(1LL, std::atoll(iterations)));
 }
 
 // Google Benchmark's main, with a reporter that prints the same-run ratios at the end.

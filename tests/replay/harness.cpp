@@ -10,6 +10,7 @@
 
 #include <opencv2/imgproc.hpp>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -53,11 +54,34 @@ std::string binaryCommand()
     return command;
 }
 
+namespace {
+
+// The folders this process made, removed when it exits (they hold frames of megabytes, and a name per pid would
+// otherwise pile up in /tmp); OVERLAYD_KEEP_SCRATCH=1 keeps them for a look after a failure.
+struct ScratchFolders {
+    std::vector<fs::path> made;
+    ~ScratchFolders()
+    {
+        if (std::getenv("OVERLAYD_KEEP_SCRATCH") != nullptr)
+            return;
+        std::error_code ignored;
+        for (const fs::path &dir : made)
+            fs::remove_all(dir, ignored);
+    }
+};
+ScratchFolders scratchFolders;
+
+} // namespace
+
 std::string scratchDir(const std::string &name)
 {
-    const fs::path dir = fs::path(::testing::TempDir()) / ("overlayd-replay-" + name);
+    // The pid too: other builds' replay tests (a sanitizer build, a cross build under qemu) may run at the same
+    // time on the machine, and a shared folder would be emptied under a running test.
+    const fs::path dir =
+        fs::path(::testing::TempDir()) / ("overlayd-replay-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
+    scratchFolders.made.push_back(dir);
     return dir.string();
 }
 
