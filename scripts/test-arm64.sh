@@ -14,8 +14,7 @@ scripts/install-deps.sh --arm64
 sysroot=$(scripts/arm64/sysroot.sh "${OVERLAYD_ARM64_CACHE:-.cache/arm64}")
 echo "test-arm64: sysroot ready after $((SECONDS - start)) s"
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DOVERLAYD_ARM64_SYSROOT="$sysroot" \
-    -DOVERLAYD_BUILD_BENCHMARKS=OFF >/dev/null
+    -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DOVERLAYD_ARM64_SYSROOT="$sysroot" >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"
 echo "test-arm64: cross build done after $((SECONDS - start)) s"
 file "$build_dir/daemon/overlayd"
