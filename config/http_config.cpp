@@ -15,6 +15,11 @@ void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOpt
     auto table = root.table("http");
     if (!table)
         return;
+    if (!http::httpBuiltIn()) { // refused here, so that check-config refuses what run could not do
+        root.problem("http", "this overlayd was built without the HTTP server (CMake option OVERLAYD_HTTP, "
+                             "libmicrohttpd): [http] is not available");
+        return;
+    }
     out.enabled = true;
     std::optional<http::ListenAddress> address;
     if (auto listen = table->string("listen")) {

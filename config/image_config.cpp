@@ -1,81 +1,92 @@
 // type = "image": the file is decoded here, at load time (check-config decodes it too, so a file run would refuse
-// is refused there), by OpenCV's imgcodecs (libpng, libjpeg-turbo): grey, RGB or RGBA, 8 or 16 bits per channel,
-// into premultiplied RGBA. The file's size is checked before it is read and the decoded size before it is kept.
+// is refused there), by media/codec (libpng, libjpeg-turbo): grey, palette, RGB or RGBA, 1 to 16 bits per channel,
+// into premultiplied RGBA. The file's size is checked before it is read and the header's image size before any pixel
+// is decoded.
 #include "config/config_sections.h"
 
 #include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include "media/codec/image_codec.h"
 
 namespace overlayd::config {
 
 namespace {
 
 constexpr std::uintmax_t kMaxImageFileBytes = 16u << 20;
-constexpr int kMaxImageSide = 4096;
+constexpr unsigned kMaxImageSide = 4096;
 
-std::shared_ptr<const ImagePixels> loadImage(TableReader &table, const std::string &path)
+// The file's bytes, after its size was checked; nullopt (with the problem recorded) when it cannot be read.
+std::optional<std::vector<uint8_t>> readImageFile(TableReader &table, const std::string &path)
 {
     std::error_code error;
     const std::uintmax_t bytes = std::filesystem::file_size(path, error);
     if (error || !std::filesystem::is_regular_file(path, error)) {
         table.problem("path", "cannot read the image " + path + (error ? ": " + error.message() : ""));
-        return nullptr;
+        return std::nullopt;
     }
     if (bytes > kMaxImageFileBytes) {
         table.problem("path", "the image " + path + " has " + std::to_string(bytes) + " bytes; at most " +
                                   std::to_string(kMaxImageFileBytes) + " are read");
+        return std::nullopt;
+    }
+    std::vector<uint8_t> file(bytes);
+    std::ifstream in(path, std::ios::binary);
+    in.read(reinterpret_cast<char *>(file.data()), std::streamsize(file.size()));
+    if (!in.is_open() || in.bad()) {
+        table.problem("path", "cannot read the image " + path);
+        return std::nullopt;
+    }
+    file.resize(size_t(in.gcount())); // a file cut short since its size was read decodes as truncated
+    return file;
+}
+
+// Straight RGBA to premultiplied, each colour times alpha / 255, rounded.
+std::shared_ptr<const ImagePixels> premultiplied(const DecodedImage &decoded)
+{
+    auto image = std::make_shared<ImagePixels>();
+    image->width = decoded.width;
+    image->height = decoded.height;
+    image->rgba.resize(decoded.pixels.size());
+    const uint8_t *in = decoded.pixels.data();
+    uint8_t *out = image->rgba.data();
+    for (size_t i = 0; i < decoded.pixels.size(); i += 4) {
+        const unsigned a = in[i + 3];
+        for (size_t c = 0; c < 3; ++c)
+            out[i + c] = uint8_t((in[i + c] * a + 127) / 255);
+        out[i + 3] = uint8_t(a);
+    }
+    return image;
+}
+
+std::shared_ptr<const ImagePixels> loadImage(TableReader &table, const std::string &path)
+{
+    const auto file = readImageFile(table, path);
+    if (!file)
         return nullptr;
-    }
-    cv::Mat decoded;
-    try {
-        decoded = cv::imread(path, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception &) {
-        decoded.release();
-    }
-    if (decoded.empty()) {
-        table.problem("path", "the image " + path + " is not a PNG or JPEG that can be decoded");
+    const auto undecodable = [&](const Error &error) {
+        table.problem("path",
+                      "the image " + path + " is not a PNG or JPEG that can be decoded (" + error.message + ")");
         return nullptr;
-    }
-    if (decoded.cols > kMaxImageSide || decoded.rows > kMaxImageSide) {
-        table.problem("path", "the image " + path + " is " + std::to_string(decoded.cols) + "x" +
-                                  std::to_string(decoded.rows) + "; at most " + std::to_string(kMaxImageSide) +
+    };
+    // The header first: an image too large is refused before its pixels are allocated.
+    const auto info = readImageInfo(*file);
+    if (!info)
+        return undecodable(info.error());
+    if (info->width > kMaxImageSide || info->height > kMaxImageSide) {
+        table.problem("path", "the image " + path + " is " + std::to_string(info->width) + "x" +
+                                  std::to_string(info->height) + "; at most " + std::to_string(kMaxImageSide) +
                                   " pixels a side");
         return nullptr;
     }
-    if (decoded.depth() == CV_16U)
-        decoded.convertTo(decoded, CV_8U, 1.0 / 257.0);
-    cv::Mat rgba;
-    switch (decoded.channels()) {
-    case 1:
-        cv::cvtColor(decoded, rgba, cv::COLOR_GRAY2RGBA);
-        break;
-    case 3:
-        cv::cvtColor(decoded, rgba, cv::COLOR_BGR2RGBA);
-        break;
-    case 4:
-        cv::cvtColor(decoded, rgba, cv::COLOR_BGRA2RGBA);
-        break;
-    default:
-        table.problem("path", "the image " + path + " has " + std::to_string(decoded.channels()) + " channels");
-        return nullptr;
-    }
-    auto image = std::make_shared<ImagePixels>();
-    image->width = unsigned(rgba.cols);
-    image->height = unsigned(rgba.rows);
-    image->rgba.resize(size_t(rgba.cols) * size_t(rgba.rows) * 4);
-    for (int y = 0; y < rgba.rows; ++y) {
-        const uint8_t *in = rgba.ptr<uint8_t>(y);
-        uint8_t *out = image->rgba.data() + size_t(y) * size_t(rgba.cols) * 4;
-        for (int i = 0; i < rgba.cols * 4; i += 4) {
-            const unsigned a = in[i + 3];
-            for (int c = 0; c < 3; ++c)
-                out[i + c] = uint8_t((in[i + c] * a + 127) / 255);
-            out[i + 3] = uint8_t(a);
-        }
-    }
-    return image;
+    const auto decoded = decodeImage(*file, ImageChannels::Rgba, kMaxImageSide);
+    if (!decoded)
+        return undecodable(decoded.error());
+    return premultiplied(*decoded);
 }
 
 } // namespace

@@ -99,6 +99,8 @@ void readControls(TableReader &libcamera, std::vector<ControlSetting> &out)
                             "at most " + std::to_string(kMaxLibcameraControls) + " controls");
         return;
     }
+    if (!libcameraBuiltIn())
+        return; // no registry to check names against: every control would be "unknown"; the kind says why
     for (const auto &[key, value] : *controls) {
         const std::string name(key.str()), path = libcamera.keyPath("controls") + "." + name;
         const auto kind = libcameraControlKind(name);

@@ -18,6 +18,8 @@ if(NOT OVERLAYD_SYSTEMD STREQUAL "OFF")
         set(overlayd_have_libsystemd 1)
     endif()
 endif()
+include(FeatureSummary)
+add_feature_info(systemd-notify overlayd_have_libsystemd "READY=1, STATUS= and the watchdog (OVERLAYD_SYSTEMD; libsystemd)")
 message(STATUS "overlayd: systemd notify support: ${overlayd_have_libsystemd} (OVERLAYD_SYSTEMD=${OVERLAYD_SYSTEMD})")
 
 add_library(overlayd_systemd_notify STATIC ${CMAKE_CURRENT_LIST_DIR}/systemd_notify.cpp)

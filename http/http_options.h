@@ -33,4 +33,8 @@ struct HttpOptions {
     bool operator==(const HttpOptions &) const = default;
 };
 
+// Whether this overlayd has the server (CMake option OVERLAYD_HTTP, libmicrohttpd): without it the config refuses
+// [http] at load, so check-config says what run could not do. Defined by http_server.cpp or http_server_none.cpp.
+bool httpBuiltIn();
+
 } // namespace overlayd::http

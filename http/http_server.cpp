@@ -108,30 +108,6 @@ struct HttpServer::StreamClient {
     double fps = 0.0;
 };
 
-HttpResponse HttpResponse::json(unsigned status, std::string body)
-{
-    HttpResponse response;
-    response.status = status;
-    response.body = std::move(body);
-    if (response.body.empty() || response.body.back() != '\n')
-        response.body += '\n';
-    return response;
-}
-
-HttpResponse HttpResponse::error(unsigned status, const std::string &message)
-{
-    std::string escaped;
-    for (const char c : message) {
-        if (c == '"' || c == '\\')
-            escaped += '\\';
-        if (static_cast<unsigned char>(c) < 0x20)
-            escaped += ' ';
-        else
-            escaped += c;
-    }
-    return json(status, "{\"error\":\"" + escaped + "\"}");
-}
-
 struct MhdCallbacks {
     static MHD_Result access(void *self, MHD_Connection *connection, const char *url, const char *method, const char *,
                              const char *uploadData, size_t *uploadSize, void **state)
@@ -254,6 +230,11 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
         return makeError(ErrorCode::Io, "http: libmicrohttpd could not start on " + address->describe());
     [[maybe_unused]] const int owned = socket->release(); // libmicrohttpd closes it when it stops
     return server;
+}
+
+bool httpBuiltIn()
+{
+    return true;
 }
 
 HttpServer::~HttpServer()

@@ -9,6 +9,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     libopencv-dev fonts-dejavu-core
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
+    libpng-dev # PNG files (media/codec): images, replay, snapshots
     libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
     libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies
     libgpiod-dev gpiod # GPIO lines (libgpiod 1.6, the v1 API); the tools are the independent client in tests/vm

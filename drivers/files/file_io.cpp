@@ -52,6 +52,26 @@ Result<size_t> readUpTo(std::FILE *file, void *data, size_t size, const std::str
     return got;
 }
 
+Result<std::vector<uint8_t>> readWholeFile(const std::string &path, uintmax_t maxBytes)
+{
+    auto file = openForReading(path);
+    if (!file)
+        return file.error();
+    std::error_code error;
+    const uintmax_t size = std::filesystem::file_size(path, error);
+    if (error)
+        return makeError(ErrorCode::Io, path + ": cannot read its size: " + error.message());
+    if (size > maxBytes)
+        return makeError(ErrorCode::Malformed, path + " has " + std::to_string(size) + " bytes; at most " +
+                                                   std::to_string(maxBytes) + " are read");
+    std::vector<uint8_t> bytes(size);
+    auto got = readUpTo(file->get(), bytes.data(), bytes.size(), path);
+    if (!got)
+        return got.error();
+    bytes.resize(*got);
+    return bytes;
+}
+
 Status writeAll(std::FILE *file, const void *data, size_t size, const std::string &path)
 {
     if (size != 0 && std::fwrite(data, 1, size, file) != size)

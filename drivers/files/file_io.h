@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "base/result.h"
 
@@ -22,6 +23,10 @@ Result<UniqueFile> openForWriting(const std::string &path, bool append);
 // How many of `size` bytes were read before end of file (a short count is a truncated file, not an error);
 // Io when the read itself fails.
 Result<size_t> readUpTo(std::FILE *file, void *data, size_t size, const std::string &path);
+// A whole file (fewer bytes if it shrinks while being read); Malformed, naming both sizes, when it holds more than
+// maxBytes, before anything is allocated.
+Result<std::vector<uint8_t>> readWholeFile(const std::string &path, uintmax_t maxBytes);
+
 Status writeAll(std::FILE *file, const void *data, size_t size, const std::string &path);
 
 // Writes a whole file under a temporary name and renames it over `path`, so a viewer never sees half an image.

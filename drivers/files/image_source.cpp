@@ -1,18 +1,23 @@
-// Image-sequence replay: PNG/JPEG files decoded by OpenCV and converted to the configured pixel format. The first
+// Image-sequence replay: PNG/JPEG files decoded by media/codec and converted to the configured pixel format. The first
 // image sets the frame size; the sequence ends at the first missing number.
 #include "drivers/files/replay_base.h"
 
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
-#include <opencv2/imgcodecs.hpp>
-
+#include "drivers/files/file_io.h"
 #include "drivers/files/path_pattern.h"
+#include "media/codec/image_codec.h"
 #include "media/convert/frame_convert.h"
 
 namespace overlayd {
 
 namespace {
+
+// A PNG or JPEG frame larger than this is refused before it is read (16384 x 16384 RGB is 768 MiB uncompressed;
+// a real frame compresses to a small part of its pixels).
+constexpr uintmax_t kMaxImageFileBytes = 256u << 20;
 
 class ImageSource : public ReplaySource
 {
@@ -45,22 +50,16 @@ Result<RgbImage> ImageSource::decode(uint64_t index) const
     std::error_code error;
     if ((index > 0 && !hasIndexPattern(options_.replay.path)) || !std::filesystem::exists(path, error))
         return makeError(ErrorCode::EndOfStream, path + ": no such image (end of the sequence)");
-    cv::Mat bgr;
-    try {
-        bgr = cv::imread(path, cv::IMREAD_COLOR);
-    } catch (const cv::Exception &exception) {
-        return malformed(index, path + " does not decode: " + exception.what());
-    }
-    if (bgr.empty() || bgr.type() != CV_8UC3)
-        return malformed(index, path + " does not decode as a PNG/JPEG image");
-    RgbImage image = RgbImage::allocate(unsigned(bgr.cols), unsigned(bgr.rows));
-    for (unsigned y = 0; y < image.height; ++y) {
-        const uint8_t *src = bgr.ptr<uint8_t>(int(y));
-        uint8_t *dst = image.row(y);
-        for (unsigned x = 0; x < image.width; ++x, src += 3, dst += 3)
-            dst[0] = src[2], dst[1] = src[1], dst[2] = src[0];
-    }
-    return image;
+    auto file = readWholeFile(path, kMaxImageFileBytes);
+    if (!file && file.error().code == ErrorCode::Malformed)
+        return malformed(index, file.error().message);
+    if (!file)
+        return file.error();
+    // The header's size is checked before the pixels are allocated.
+    auto decoded = decodeImage(*file, ImageChannels::Rgb, kMaxFrameDimension);
+    if (!decoded)
+        return malformed(index, path + " does not decode: " + decoded.error().message);
+    return RgbImage{decoded->width, decoded->height, std::move(decoded->pixels)};
 }
 
 Result<StreamFormat> ImageSource::open()
@@ -70,8 +69,6 @@ Result<StreamFormat> ImageSource::open()
         return makeError(ErrorCode::NotFound, pathOf(0) + ": the image sequence's first file does not exist");
     if (!first)
         return first.error();
-    if (first->width > kMaxFrameDimension || first->height > kMaxFrameDimension)
-        return malformed(0, "image too large");
     return StreamFormat{
         options_.pixelFormat, first->width, first->height, 0, options_.colorimetry.value_or(Colorimetry{}),
         options_.fps};

@@ -6,11 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include "drivers/files/file_io.h"
 #include "drivers/files/path_pattern.h"
+#include "media/codec/image_codec.h"
 #include "media/convert/frame_convert.h"
 
 namespace overlayd {
@@ -45,19 +43,9 @@ Result<std::vector<uint8_t>> SnapshotSink::encode(const FrameView &frame, Colori
     auto rgb = frameToRgb(frame, colorimetry);
     if (!rgb)
         return rgb.error();
-    std::vector<uint8_t> bytes;
-    try {
-        const cv::Mat image(int(rgb->height), int(rgb->width), CV_8UC3, rgb->rgb.data());
-        cv::Mat bgr;
-        cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
-        std::vector<int> parameters;
-        if (extension_ != ".png")
-            parameters = {cv::IMWRITE_JPEG_QUALITY, int(options_.jpegQuality)};
-        if (!cv::imencode(extension_, bgr, bytes, parameters))
-            return makeError(ErrorCode::Io, options_.path + ": image encoding failed");
-    } catch (const cv::Exception &error) {
-        return makeError(ErrorCode::Io, options_.path + ": image encoding failed: " + error.what());
-    }
+    auto bytes = extension_ == ".png" ? encodePng(*rgb) : encodeJpeg(*rgb, int(options_.jpegQuality));
+    if (!bytes)
+        return makeError(ErrorCode::Io, options_.path + ": image encoding failed: " + bytes.error().message);
     return bytes;
 }
 

@@ -17,7 +17,7 @@ plugin=${TMPDIR:-/tmp}/overlayd-count-plugin.so
 run() { # iterations -> "iterations instructions"
     local out
     # shellcheck disable=SC2086 # the emulator's words
-    out=$(OVERLAYD_BENCH_ITERATIONS=$1 $emulator -plugin "$plugin" "$bench" --benchmark_filter="^$case\$" 2>&1 |
+    out=$(OVERLAYD_BENCH_ITERATIONS=$1 $emulator -plugin "$plugin" "$bench" --benchmark_filter="^$case(/iterations:[0-9]+)?\$" 2>&1 |
         sed 's/\x1b\[[0-9;]*m//g')
     local iterations instructions
     iterations=$(awk -v c="$case" '$1 == c || $1 == c "/iterations:" $NF { print $NF }' <<<"$out")

@@ -5,6 +5,7 @@
 
 #include "config/camera_request.h"
 #include "config_test_util.h"
+#include "http/http_options.h"
 #include "http/listen_address.h"
 #include "projection/pose.h"
 
@@ -35,6 +36,9 @@ bool hasProblem(const std::vector<ConfigProblem> &problems, const std::string &k
     return false;
 }
 
+// Without the server (OVERLAYD_HTTP=OFF) [http] is refused whole at its key: the tests of its keys do not apply.
+constexpr const char *kWithoutServer = "built without the HTTP server (OVERLAYD_HTTP)";
+
 std::filesystem::path scratch(const std::string &name)
 {
     const auto dir = std::filesystem::temp_directory_path() / ("overlayd-http-config-" + name);
@@ -47,6 +51,8 @@ std::filesystem::path scratch(const std::string &name)
 
 TEST(HttpConfig, AbsentMeansNoServerAndTheDefaultsAreTheDocumentedOnes)
 {
+    if (!http::httpBuiltIn())
+        GTEST_SKIP() << kWithoutServer;
     EXPECT_FALSE(loadValid(kBase).http.enabled);
     const DaemonConfig config = loadValid(kBase + "[http]\ncontrol = \"off\"\n");
     EXPECT_TRUE(config.http.enabled);
@@ -58,6 +64,8 @@ TEST(HttpConfig, AbsentMeansNoServerAndTheDefaultsAreTheDocumentedOnes)
 
 TEST(HttpConfig, EveryBadValueIsRefusedAtItsKey)
 {
+    if (!http::httpBuiltIn())
+        GTEST_SKIP() << kWithoutServer;
     const auto problems = loadInvalid(kBase + R"([http]
 listen = "0.0.0.0:http"
 max_clients = 0
@@ -77,6 +85,8 @@ streem_fps = 3
 
 TEST(HttpConfig, AnOpenControlApiOnlyListensLocally)
 {
+    if (!http::httpBuiltIn())
+        GTEST_SKIP() << kWithoutServer;
     EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"127.0.0.1:9000\"\ncontrol = \"open\"\n").http.enabled);
     EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"unix:/run/o.sock\"\ncontrol = \"open\"\n").http.enabled);
     EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"[::1]:9000\"\ncontrol = \"open\"\n").http.enabled);
@@ -87,12 +97,24 @@ TEST(HttpConfig, AnOpenControlApiOnlyListensLocally)
 
 TEST(HttpConfig, TheTokenFileIsResolvedBesideTheConfigAndMustBeReadable)
 {
+    if (!http::httpBuiltIn())
+        GTEST_SKIP() << kWithoutServer;
     const auto dir = scratch("token");
     std::ofstream(dir / "front.token") << "abc\n";
     const DaemonConfig config = loadValid(kBase + "[http]\ntoken_file = \"front.token\"\n", dir.string());
     EXPECT_EQ(config.http.tokenFile, (dir / "front.token").string());
     hasProblem(loadInvalid(kBase + "[http]\ntoken_file = \"absent.token\"\n", dir.string()), "http.token_file",
                "cannot read");
+}
+
+TEST(HttpConfig, WithoutTheServerHttpIsRefusedAtItsKey)
+{
+    if (http::httpBuiltIn())
+        GTEST_SKIP() << "built with the HTTP server";
+    const auto problems = loadInvalid(kBase + "[http]\ncontrol = \"off\"\n");
+    ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
+    EXPECT_EQ(problems[0].key, "http");
+    EXPECT_NE(problems[0].message.find("OVERLAYD_HTTP"), std::string::npos) << problems[0].message;
 }
 
 TEST(ListenAddress, ParsesEveryFormAndRefusesTheRest)

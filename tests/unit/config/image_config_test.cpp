@@ -1,8 +1,11 @@
 // type = "image": the file is decoded at load time into premultiplied RGBA (grey, colour, alpha, 16-bit, JPEG), placed
 // on the screen or on a world plane; a file that cannot be used and a placement that is not one of the two are
-// refused at their keys. The test images are written by OpenCV's imwrite and the expected pixels worked out here.
+// refused at their keys; an image too large is refused from its header, before decoding. The test images are written
+// by OpenCV's imwrite and the expected pixels worked out here (media/codec's own tests cover every PNG kind).
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include <unistd.h>
 
@@ -179,4 +182,25 @@ size_px = [0.0, 10.0]
     EXPECT_TRUE(has("annotation[6].axis_v", "not parallel")) << all;
     EXPECT_TRUE(has("annotation[7].size", "size_px")) << all;
     EXPECT_TRUE(has("annotation[7].size_px", "> 0")) << all;
+}
+
+TEST(ImageConfig, AnImageTooLargeIsRefusedFromItsHeaderBeforeItIsDecoded)
+{
+    ImageFolder folder;
+    const std::string wide = folder.write("wide.png", cv::Mat(1, 4097, CV_8UC1, cv::Scalar(0)));
+    // Cut right after the image data's chunk header: decoding this file could only fail as truncated.
+    std::ifstream in(wide, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t idat = bytes.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    std::ofstream(folder.dir / "cut.png", std::ios::binary) << bytes.substr(0, idat + 4);
+    const auto problems = loadInvalid(kScene + R"(
+[[annotation]]
+type = "image"
+path = "cut.png"
+position = [0.0, 0.0]
+)",
+                                      folder.dir.string());
+    EXPECT_TRUE(test::hasProblem(problems, "annotation[0].path", "4097x1; at most 4096"))
+        << test::formatProblems(problems);
 }
