@@ -57,10 +57,10 @@ Status Daemon::setUp()
 {
     if (auto created = createTimers(); !created)
         return created;
-    size_t problems = 0;
+    std::vector<ConfigProblem> problems;
     auto loaded = loadConfig(problems);
     if (!loaded) {
-        configProblemsLogged_ = problems > 0;
+        configProblemsLogged_ = !problems.empty();
         return loaded.error();
     }
     config_ = std::move(*loaded);
@@ -97,13 +97,11 @@ Status Daemon::setUp()
     return Ok{};
 }
 
-Result<DaemonConfig> Daemon::loadConfig(size_t &problemCount)
+Result<DaemonConfig> Daemon::loadConfig(std::vector<ConfigProblem> &problems)
 {
-    std::vector<ConfigProblem> problems;
     auto loaded = loader_(options_.configPath, problems);
     for (const ConfigProblem &problem : problems)
         logger_.error(problem.format());
-    problemCount = problems.size();
     return loaded;
 }
 

@@ -57,7 +57,8 @@ public:
     void onNoSignalTick() { source_->onNoSignalTick(); }
     void onStats();
     void onWatchdog();
-    // Validates the new file completely before switching; false (old config kept) when anything is wrong.
+    // A transaction: the whole new config is built and opened (source, overlay, GPIO lines, inputs, HTTP server,
+    // sinks) before anything is switched; false, with the old config still running as it was, when any part fails.
     bool reload();
     void requestStop(int exitStatus);
 
@@ -79,8 +80,16 @@ public:
 private:
     Status setUp();
     Status createTimers();
-    // Loads the config file; every problem is logged (one line each, at file:line:column) and counted.
-    Result<DaemonConfig> loadConfig(size_t &problemCount);
+    // Loads the config file; every problem is logged (one line each, at file:line:column) and returned.
+    Result<DaemonConfig> loadConfig(std::vector<ConfigProblem> &problems);
+    struct ReopenedParts {
+        bool source = false, sinks = false;
+    };
+    // Everything a reload does once the new file has loaded (reload.cpp); an error: nothing was switched.
+    Result<ReopenedParts> switchConfig(DaemonConfig next);
+    // The switch itself, which cannot fail: between two frames, with every new part already open.
+    void commitConfig(DaemonConfig next, SceneControl scene, std::optional<SourceSupervisor::Staged> stream,
+                      std::unique_ptr<OverlayRenderer> renderer);
     void onFrameDelivered();
     void armStats();
     std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);

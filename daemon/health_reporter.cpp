@@ -17,7 +17,14 @@ void HealthReporter::frameDelivered(const StreamFormat &format)
 
 void HealthReporter::streaming(const StreamFormat &format)
 {
-    notifier_.status(cat("streaming ", format.describe(), ", ", totalDrops_, " drops"));
+    notifier_.status(cat("streaming ", format.describe(), ", ", totalDrops_, " drops",
+                         refusedReload_.empty() ? "" : "; last reload refused: ", refusedReload_));
+}
+
+void HealthReporter::reloadRefused(const std::string &why)
+{
+    refusedReload_ = why;
+    notifier_.status(cat("reload refused, kept the previous config: ", why));
 }
 
 void HealthReporter::onStats(Pipeline &pipeline, bool streaming)

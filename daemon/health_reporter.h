@@ -25,6 +25,10 @@ public:
     void streaming(const StreamFormat &format);
     // STATUS= while the source is down.
     void waiting(const std::string &line) { notifier_.status(line); }
+    // STATUS= after a refused reload says why; while the old config streams on, each "streaming" line repeats it
+    // (`systemctl status` must not hide that the file on disk is not what runs) until a reload is accepted.
+    void reloadRefused(const std::string &why);
+    void reloadAccepted() { refusedReload_.clear(); }
 
     // The periodic stats line (also refreshes STATUS= while streaming).
     void onStats(Pipeline &pipeline, bool streaming);
@@ -39,6 +43,7 @@ private:
     unsigned idleWatchdogTicks_ = 0; // watchdog ticks in a row without a frame while streaming (for STATUS=)
     bool readySent_ = false;
     uint64_t totalDrops_ = 0;
+    std::string refusedReload_; // why the last reload was refused, until one is accepted
 };
 
 } // namespace overlayd

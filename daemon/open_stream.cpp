@@ -5,9 +5,8 @@
 
 namespace overlayd {
 
-Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource, const DaemonConfig &config,
-                                                SceneControl &scene, Pipeline &pipeline, bool sinksMustOpen,
-                                                OpenFailure *failure)
+Result<OpenedStream> startStream(const SourceFactory &makeSource, const DaemonConfig &config, const SceneControl &scene,
+                                 OpenFailure *failure)
 {
     OpenFailure unused;
     OpenFailure &failed = failure ? *failure : unused;
@@ -38,15 +37,32 @@ Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource,
         failed.step = OpenStep::BuildOverlay;
         return renderer.error();
     }
-    if (pipeline.format() != *format)
-        if (auto opened = pipeline.openSinks(*format); !opened && sinksMustOpen) {
-            (*source)->stop();
+    return OpenedStream{std::move(*source), *format, std::move(*renderer)};
+}
+
+std::unique_ptr<FrameSource> runStream(OpenedStream stream, SceneControl &scene, Pipeline &pipeline)
+{
+    pipeline.setRenderer(std::move(stream.renderer));
+    scene.attach(pipeline.renderer(), stream.format);
+    return std::move(stream.source);
+}
+
+Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource, const DaemonConfig &config,
+                                                SceneControl &scene, Pipeline &pipeline, bool sinksMustOpen,
+                                                OpenFailure *failure)
+{
+    OpenFailure unused;
+    OpenFailure &failed = failure ? *failure : unused;
+    auto stream = startStream(makeSource, config, scene, &failed);
+    if (!stream)
+        return stream.error();
+    if (pipeline.format() != stream->format)
+        if (auto opened = pipeline.openSinks(stream->format); !opened && sinksMustOpen) {
+            stream->source->stop();
             failed.step = OpenStep::OpenSinks;
             return opened.error();
         }
-    pipeline.setRenderer(std::move(*renderer));
-    scene.attach(pipeline.renderer(), *format);
-    return std::move(*source);
+    return runStream(std::move(*stream), scene, pipeline);
 }
 
 } // namespace overlayd

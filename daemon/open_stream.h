@@ -1,4 +1,4 @@
-// openStream: the one sequence that opens a stream, for `run` (each start and reconnect) and `render`.
+// openStream: the one sequence that opens a stream, for `run` (each start, reconnect and reload) and `render`.
 #pragma once
 
 #include <memory>
@@ -21,10 +21,25 @@ struct OpenFailure {
     std::string source; // the source's description once it was created
 };
 
-// Creates and starts the source (its format negotiated), builds the overlay for that format through SceneControl,
-// (re)opens the pipeline's sinks when the format changed (a failure there is fatal only if `sinksMustOpen`), and
-// switches the pipeline and SceneControl to the new overlay. On failure nothing is switched and the source is
-// stopped.
+// A stream that is open but does not run yet: the started source, its negotiated format and the overlay built for
+// that format.
+struct OpenedStream {
+    std::unique_ptr<FrameSource> source;
+    StreamFormat format;
+    std::unique_ptr<OverlayRenderer> renderer;
+};
+
+// Creates and starts the source (its format negotiated) and builds the overlay for that format from `scene` (the
+// live SceneControl, or a reload's candidate). Nothing that runs is touched; on failure the source is stopped.
+Result<OpenedStream> startStream(const SourceFactory &makeSource, const DaemonConfig &config, const SceneControl &scene,
+                                 OpenFailure *failure = nullptr);
+
+// The stream becomes the pipeline's: frames are blended with its overlay, and `scene`'s changes go to it. The
+// pipeline's sinks must already be open for its format. Returns the source, for the caller to pull frames from.
+std::unique_ptr<FrameSource> runStream(OpenedStream stream, SceneControl &scene, Pipeline &pipeline);
+
+// startStream, then (re)opens the pipeline's sinks when the format changed (a failure there is fatal only if
+// `sinksMustOpen`), then runStream. On failure nothing is switched and the source is stopped.
 Result<std::unique_ptr<FrameSource>> openStream(const SourceFactory &makeSource, const DaemonConfig &config,
                                                 SceneControl &scene, Pipeline &pipeline, bool sinksMustOpen,
                                                 OpenFailure *failure = nullptr);

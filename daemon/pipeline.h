@@ -54,6 +54,13 @@ public:
     void setSinks(std::vector<std::unique_ptr<SinkWorker>> sinks);
     // (Re)opens every sink for a stream format; returns the first failure, after trying all.
     Status openSinks(const StreamFormat &format);
+    // A reload's sinks take over from the running ones, every one open for `format` (the new stream's or the running
+    // one's), or none of them: on failure the running sinks run on as they were and the error names the sink
+    // (pipeline_reload.cpp says in which order they open).
+    Status replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format);
+    // The running sinks for the stream format a reload's new source negotiated; when one cannot take it, every sink
+    // is opened for the running format again and the error names the sink.
+    Status reopenSinks(const StreamFormat &format);
     void closeSinks();
     const StreamFormat &format() const { return format_; }
     size_t sinkCount() const { return sinks_.size(); }
@@ -71,6 +78,8 @@ public:
     PipelineStats takeStats();
 
 private:
+    // The running sinks open for the running format again, after a reload gave up (failures are logged).
+    void restoreSinks();
     void blend(const FrameView &frame, const FrameMetadata &metadata);
     void countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point blended);

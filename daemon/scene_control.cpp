@@ -58,7 +58,7 @@ void SceneControl::attach(OverlayRenderer *renderer, const StreamFormat &format)
     format_ = format;
 }
 
-Status SceneControl::apply(const SceneChange &change, std::unique_ptr<OverlayRenderer> *replaced)
+Status SceneControl::apply(const SceneChange &change)
 {
     if (const auto *camera = std::get_if<CameraChange>(&change))
         return applyCamera(*camera);
@@ -68,9 +68,7 @@ Status SceneControl::apply(const SceneChange &change, std::unique_ptr<OverlayRen
         return applyText(*text);
     if (const auto *steering = std::get_if<SteeringChange>(&change))
         return applySteering(*steering);
-    if (const auto *points = std::get_if<PointsChange>(&change))
-        return applyPoints(*points);
-    return applyScene(std::get<SceneReplacement>(change), replaced);
+    return applyPoints(std::get<PointsChange>(change));
 }
 
 Status SceneControl::applyCamera(const CameraChange &change)
@@ -116,25 +114,12 @@ Status SceneControl::applyLayer(const LayerChange &change)
     return Ok{};
 }
 
-Status SceneControl::applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced)
+SceneControl SceneControl::withScene(const OverlayScene &scene, const CameraSpec &camera) const
 {
-    if (format_.format) {
-        auto camera = change.camera.build(format_.width, format_.height);
-        if (!camera)
-            return makeError(camera.error().code, "overlay: camera: " + camera.error().message);
-        auto renderer = buildFor(change.scene, *camera, format_);
-        if (!renderer)
-            return renderer.error();
-        if (replaced)
-            *replaced = std::move(*renderer);
-        built_ = std::move(*camera);
-        builtWidth_ = format_.width, builtHeight_ = format_.height;
-    } else {
-        built_.reset();
-    }
-    scene_ = change.scene;
-    camera_ = change.camera;
-    return Ok{};
+    SceneControl candidate = *this;
+    candidate.load(scene, camera);
+    candidate.detach();
+    return candidate;
 }
 
 Status SceneControl::applyText(const TextChange &change)

@@ -53,13 +53,7 @@ struct PointsChange {
     std::vector<glm::dvec3> points;
 };
 
-// A whole new scene and camera (a reload that keeps the source): built completely before it replaces the old one.
-struct SceneReplacement {
-    OverlayScene scene;
-    CameraSpec camera;
-};
-
-using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SteeringChange, PointsChange, SceneReplacement>;
+using SceneChange = std::variant<CameraChange, LayerChange, TextChange, SteeringChange, PointsChange>;
 
 // Builds a stream's overlay from a scene and the camera resolved for the stream's frame size; null: nothing to draw.
 using RendererFactory = std::function<Result<std::unique_ptr<OverlayRenderer>>(
@@ -80,8 +74,12 @@ public:
     void detach() { attach(nullptr, StreamFormat{}); }
 
     // Validates and applies a change. Refused (nothing changes) with the reason, as a config error would give it.
-    // A SceneReplacement's new renderer is returned through `replaced` for the pipeline to take.
-    Status apply(const SceneChange &change, std::unique_ptr<OverlayRenderer> *replaced = nullptr);
+    Status apply(const SceneChange &change);
+    // A reload's whole new scene and camera: a candidate control with them, the live layer choices and slot texts,
+    // and no stream. The reload builds the new stream's overlay from it (build, cameraFor) and, once every other
+    // part of the reload is ready too, assigns it over the live one and attaches the new overlay; a refused reload
+    // drops it, and the live scene never saw it.
+    SceneControl withScene(const OverlayScene &scene, const CameraSpec &camera) const;
 
     const CameraSpec &camera() const { return camera_; }
     // The live camera for a frame size, built once per size and camera change (the source that draws through it
@@ -100,7 +98,6 @@ private:
     Status applyText(const TextChange &change);
     Status applySteering(const SteeringChange &change);
     Status applyPoints(const PointsChange &change);
-    Status applyScene(const SceneReplacement &change, std::unique_ptr<OverlayRenderer> *replaced);
     Result<std::unique_ptr<OverlayRenderer>> buildFor(const OverlayScene &scene, const Camera &camera,
                                                       const StreamFormat &format) const;
 

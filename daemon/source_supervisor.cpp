@@ -3,8 +3,6 @@
 
 #include <cmath>
 
-#include "daemon/open_stream.h"
-
 namespace overlayd {
 
 SourceSupervisor::SourceSupervisor(Logger &logger, const DaemonConfig &config, SourceFactory makeSource,
@@ -19,7 +17,13 @@ Status SourceSupervisor::open()
     auto source = openStream(makeSource_, config_, scene_, pipeline_, /*sinksMustOpen=*/state_ == State::Idle);
     if (!source)
         return source.error();
-    source_ = std::move(*source);
+    startStreaming(std::move(*source));
+    return Ok{};
+}
+
+void SourceSupervisor::startStreaming(std::unique_ptr<FrameSource> source)
+{
+    source_ = std::move(source);
     logger_.notice(cat("streaming from ", source_->describe(), ": ", pipeline_.format().describe()));
     if (auto viewport = scene_.camera().buildViewport(pipeline_.format().width, pipeline_.format().height))
         if (const std::string scaling = scene_.camera().calibrationScaling(*viewport); !scaling.empty())
@@ -33,7 +37,6 @@ Status SourceSupervisor::open()
     state_ = State::Streaming;
     armStallTimer();
     health_.streaming(pipeline_.format());
-    return Ok{};
 }
 
 std::optional<std::chrono::nanoseconds> SourceSupervisor::stallTimeout() const
@@ -82,13 +85,6 @@ void SourceSupervisor::close()
     if (source_)
         source_->stop();
     source_.reset();
-}
-
-void SourceSupervisor::reopen()
-{
-    close();
-    if (auto opened = open(); !opened)
-        enterWaiting(opened.error());
 }
 
 void SourceSupervisor::onFrameReady()

@@ -1,6 +1,7 @@
 // SourceSupervisor: the source's life under `overlayd run`. It opens the stream (openStream), pulls frames while it
 // streams (paced by a timer, or woken by the device's fd), and while the source is down feeds the sinks NO SIGNAL
-// frames and retries with back-off. A camera that vanishes is waited for, never a reason to exit.
+// frames and retries with back-off. A camera that vanishes is waited for, never a reason to exit. A reload that
+// changes the source opens the new one first (stage) and switches only when the whole reload is ready (adopt).
 #pragma once
 
 #include <chrono>
@@ -16,6 +17,7 @@
 #include "daemon/event_loop.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
+#include "daemon/open_stream.h"
 #include "daemon/pipeline.h"
 #include "daemon/scene_control.h"
 #include "daemon/stages.h"
@@ -44,8 +46,21 @@ public:
     // (retryable) is then waited for with enterWaiting().
     Status open();
     void close();
-    // Closes and opens again (a reload changed what the source is built from); a failure waits for it.
-    void reopen();
+    // A reload's new stream, open but not yet running.
+    struct Staged {
+        OpenedStream stream;
+        bool closedRunning = false; // the running source was closed to make way for it (the same device)
+    };
+    // Reload, first half: opens the new config's source with the candidate scene's overlay. A different device is
+    // opened while the running one streams on; one that may be the same device (mayShareDevice) is opened after the
+    // running one is closed, and when it fails the running one is opened again as it was. On failure the running
+    // stream is as it was (or, if its device will not open again either, waited for as if it had been lost).
+    Result<Staged> stage(const DaemonConfig &next, const SceneControl &nextScene);
+    // Reload, second half, once the daemon switched its config and scene: the staged stream replaces the running one.
+    // The pipeline's sinks are already open for its format.
+    void adopt(Staged staged);
+    // The reload was refused after stage(): the new stream is closed, the running one re-opened if it was closed.
+    void discard(Staged staged);
     bool isRetryable(const Error &error) const;
     void enterWaiting(const Error &error);
     // The loop is running: the source's fd (if any) is watched in it.
@@ -64,6 +79,9 @@ public:
     std::string describe() const { return source_ ? source_->describe() : "the source"; }
 
 private:
+    void startStreaming(std::unique_ptr<FrameSource> source);
+    // The running source again, after a staged one that took its device was given up.
+    Status reopenRunning();
     void watchSource();
     void scheduleRetry();
     void handleSourceError(const Error &error);

@@ -1,6 +1,8 @@
 // StageFactories: the production wiring, and what a reload must re-open.
 #include "daemon/stages.h"
 
+#include <filesystem>
+
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
 
@@ -62,6 +64,22 @@ Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b)
 {
     return drawsThroughCamera(b.source) && a.camera != b.camera;
+}
+
+bool mayShareDevice(const SourceOptions &running, const SourceOptions &next)
+{
+    if (running.kind != next.kind)
+        return false;
+    if (running.kind == SourceKind::Libcamera)
+        return true;
+    if (running.kind != SourceKind::V4l2)
+        return false;
+    std::error_code error;
+    const auto a = std::filesystem::canonical(running.v4l2.device, error);
+    if (error)
+        return true;
+    const auto b = std::filesystem::canonical(next.v4l2.device, error);
+    return error || a == b;
 }
 
 StageFactories defaultStageFactories()

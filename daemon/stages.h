@@ -44,5 +44,10 @@ Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &
 // Whether the source draws through [camera] (the synthetic checkerboard scene) and that camera changed, so that a
 // reload must re-open the source although its own options are the same (whole CameraSpecs compared).
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b);
+// Whether two sources may be the same device, which cannot be opened twice: a reload then closes the running one
+// before it opens the new one. V4L2 devices are the same unless both names resolve to different device files (a
+// card name or a by-id link may name the running device); libcamera cameras always may be (an index and an id can
+// name one camera); synthetic and replay sources never are.
+bool mayShareDevice(const SourceOptions &running, const SourceOptions &next);
 
 } // namespace overlayd

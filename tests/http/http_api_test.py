@@ -264,7 +264,7 @@ def run(overlayd, workdir):
                                      .replace("127.0.0.1:", "127.0.0.1:x"))
         daemon.process.send_signal(signal.SIGHUP)
         time.sleep(1.0)
-        check("reload failed" in daemon.log_text() and daemon.state()["source"]["state"] == "streaming",
+        check("reload refused" in daemon.log_text() and daemon.state()["source"]["state"] == "streaming",
               "a bad [http] reload was not refused, or the server stopped serving")
     except Exception:
         print(daemon.log_text()[-4000:], file=sys.stderr)

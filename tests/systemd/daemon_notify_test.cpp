@@ -181,6 +181,28 @@ TEST_F(DaemonNotifyTest, ReloadKeepsReadinessWithGoodAndBadConfig)
     stopCleanly();
 }
 
+// A reload that cannot be carried out whole (its replay file is missing, its sink is under a file) is refused:
+// STATUS= says so and why, and the watchdog keeps being petted (frames flow from the old config).
+TEST_F(DaemonNotifyTest, RefusedReloadSaysWhyInStatusWhileTheOldConfigStreams)
+{
+    start(syntheticConfig(320, 0));
+    ASSERT_TRUE(waitFor("READY", 20s));
+    writeConfig("[source]\nkind = \"replay\"\n[source.replay]\npath = \"" + (dir_.path() / "missing.y4m").string() +
+                "\"\n[[sink]]\nkind = \"y4m\"\npath = \"" + (dir_.path() / "camera.toml" / "out.y4m").string() +
+                "\"\n");
+    daemon_->signal(SIGHUP);
+    auto refused = waitFor("STATUS", 10s);
+    while (refused && refused->fields()["STATUS"].find("reload refused") == std::string::npos)
+        refused = waitFor("STATUS", 10s);
+    ASSERT_TRUE(refused) << "no STATUS= saying the reload was refused";
+    EXPECT_NE(refused->fields()["STATUS"].find("missing.y4m"), std::string::npos) << refused->text;
+    EXPECT_TRUE(waitFor("READY", 10s)) << "no READY=1 after the refused reload";
+    auto flowing = collect(1s);
+    EXPECT_GE(count(flowing, "WATCHDOG"), 2u) << "frames should still flow from the old config";
+    EXPECT_TRUE(daemon_->running());
+    stopCleanly();
+}
+
 TEST_F(DaemonNotifyTest, WatchdogStopsWhenThePipelineStalls)
 {
     start(syntheticConfig(320, 30)); // about one second of frames, then a wedged source

@@ -110,7 +110,7 @@ int main(int argc, char **argv)
             if (next.valid)
                 config = next;
             else if (!bug("silent-reject"))
-                notifier->status("reload failed, kept the previous config");
+                notifier->status("reload refused, kept the previous config");
             notifier->ready();
         }
     }

@@ -1,93 +1,15 @@
-// Daemon: start-up, READY after the first frame, reloads (bad ones keep the old config and lose no frames; good
-// ones switch between two frames), DeviceLost -> NO SIGNAL frames and back-off, the watchdog rule, the end of
-// the source. The loop's handlers are called directly; the stages are fakes.
+// Daemon: start-up, READY after the first frame, DeviceLost -> NO SIGNAL frames and back-off, the watchdog rule, the
+// end of the source (reloads: reload_test.cpp). The loop's handlers are called directly; the stages are fakes.
 #include "daemon/daemon.h"
-
-#include <map>
 
 #include <gtest/gtest.h>
 
-#include "fakes.h"
+#include "daemon_fixture.h"
 
 namespace overlayd {
 namespace {
 
-using test::FakeSource;
-using test::RecordingSink;
-
-struct DaemonTest : ::testing::Test {
-    std::vector<std::string> logLines;
-    Logger logger{[this](std::string_view line) { logLines.emplace_back(line); }, true};
-    test::RecordingNotifier notifier;
-    std::shared_ptr<FakeSource::Shared> source = std::make_shared<FakeSource::Shared>();
-    std::map<std::string, std::shared_ptr<RecordingSink::Shared>> sinks;
-    bool rendererFails = false;
-    // What the config file says now: a config, or problems.
-    std::optional<DaemonConfig> file = makeConfig(1, "a");
-    std::vector<ConfigProblem> fileProblems;
-
-    // `mark` is the number of annotations: MarkingRenderer writes it into each frame it blends.
-    static DaemonConfig makeConfig(size_t mark, const std::string &sinkPath)
-    {
-        DaemonConfig config;
-        config.path = "test.toml";
-        config.source.kind = SourceKind::Synthetic;
-        config.source.synthetic.pattern = SyntheticPattern::ColourBars;
-        config.source.pixelFormat = pixelFormatFromName("GREY");
-        config.source.width = 64;
-        config.source.height = 48;
-        config.scene.annotations.resize(mark, Annotation{"a", "world", {}, AxesShape{}});
-        SinkOptions sink;
-        sink.kind = SinkKind::Null;
-        sink.path = sinkPath;
-        config.sinks.push_back(sink);
-        config.daemon.statsIntervalSec = 0;
-        return config;
-    }
-
-    StageFactories factories()
-    {
-        StageFactories f;
-        f.source = [this](const SourceOptions &, const Camera *) -> Result<std::unique_ptr<FrameSource>> {
-            return std::unique_ptr<FrameSource>(std::make_unique<FakeSource>(source, test::greyFormat()));
-        };
-        f.sink = [this](const SinkOptions &options) -> Result<std::unique_ptr<FrameSink>> {
-            auto &shared = sinks[options.path];
-            if (!shared)
-                shared = std::make_shared<RecordingSink::Shared>();
-            return std::unique_ptr<FrameSink>(std::make_unique<RecordingSink>(shared, options.path));
-        };
-        f.renderer = [this](const OverlayScene &scene, const Camera &,
-                            const StreamFormat &) -> Result<std::unique_ptr<OverlayRenderer>> {
-            if (rendererFails)
-                return makeError(ErrorCode::InvalidArgument, "annotation 'a': unknown frame 'base'");
-            return std::unique_ptr<OverlayRenderer>(
-                std::make_unique<test::MarkingRenderer>(uint8_t(scene.annotations.size())));
-        };
-        return f;
-    }
-
-    std::unique_ptr<Daemon> makeDaemon(uint64_t maxFrames = 0)
-    {
-        ConfigLoader loader = [this](const std::string &,
-                                     std::vector<ConfigProblem> &problems) -> Result<DaemonConfig> {
-            if (file)
-                return *file;
-            problems = fileProblems;
-            return makeError(ErrorCode::ConfigError, "invalid");
-        };
-        return std::make_unique<Daemon>(logger, notifier, factories(), loader,
-                                        DaemonOptions{"test.toml", std::nullopt, maxFrames});
-    }
-
-    bool logged(const std::string &text) const
-    {
-        for (const std::string &line : logLines)
-            if (line.find(text) != std::string::npos)
-                return true;
-        return false;
-    }
-};
+using test::DaemonTest;
 
 TEST_F(DaemonTest, ReadyOnlyAfterTheFirstFrame)
 {
@@ -112,66 +34,6 @@ TEST_F(DaemonTest, FramesAreBlendedAndReachTheSink)
     EXPECT_EQ(sinks["a"]->firstBytes, (std::vector<uint8_t>{0, 1, 2}));
     EXPECT_EQ(sinks["a"]->lastBytes, (std::vector<uint8_t>{1, 1, 1}));
     EXPECT_EQ(sinks["a"]->closes, 1);
-}
-
-TEST_F(DaemonTest, BadReloadKeepsTheOldConfigAndLosesNoFrames)
-{
-    auto daemon = makeDaemon();
-    ASSERT_TRUE(daemon->start().ok());
-    daemon->onFrameReady();
-    file.reset();
-    fileProblems = {ConfigProblem{"test.toml", 7, 3, "source.fps", "must be > 0 (got 0)"},
-                    ConfigProblem{"test.toml", 9, 1, "sink[0].kidn", "unknown key; did you mean 'kind'?"}};
-    EXPECT_FALSE(daemon->reload());
-    EXPECT_TRUE(logged("test.toml:7:3: source.fps: must be > 0 (got 0)"));
-    EXPECT_TRUE(logged("test.toml:9:1: sink[0].kidn: unknown key; did you mean 'kind'?"));
-    EXPECT_EQ(daemon->state(), Daemon::State::Streaming);
-    daemon->onFrameReady();
-    daemon.reset();
-    EXPECT_EQ(source->starts, 1); // the source was not touched
-    EXPECT_EQ(sinks["a"]->opens, 1);
-    EXPECT_EQ(sinks["a"]->sequences, (std::vector<uint64_t>{0, 1}));
-    EXPECT_EQ(sinks["a"]->lastBytes, (std::vector<uint8_t>{1, 1}));
-    // systemd hears RELOADING, a STATUS saying the old config was kept, then READY again.
-    const auto reloading = std::find(notifier.events.begin(), notifier.events.end(), "RELOADING");
-    ASSERT_NE(reloading, notifier.events.end());
-    EXPECT_NE(
-        std::find_if(reloading, notifier.events.end(),
-                     [](const std::string &e) { return e.find("kept the previous config") != std::string::npos; }),
-        notifier.events.end());
-    EXPECT_EQ(notifier.events.back(), "READY");
-}
-
-TEST_F(DaemonTest, ReloadWhoseOverlayCannotBeBuiltKeepsTheOldOne)
-{
-    auto daemon = makeDaemon();
-    ASSERT_TRUE(daemon->start().ok());
-    file = makeConfig(2, "a");
-    rendererFails = true;
-    EXPECT_FALSE(daemon->reload());
-    EXPECT_TRUE(logged("unknown frame 'base'"));
-    daemon->onFrameReady();
-    daemon.reset();
-    EXPECT_EQ(sinks["a"]->lastBytes, (std::vector<uint8_t>{1})); // still the old overlay
-}
-
-TEST_F(DaemonTest, GoodReloadSwitchesOverlayAndSinksBetweenTwoFrames)
-{
-    auto daemon = makeDaemon();
-    ASSERT_TRUE(daemon->start().ok());
-    daemon->onFrameReady();
-    daemon->onFrameReady();
-    file = makeConfig(2, "b");
-    EXPECT_TRUE(daemon->reload());
-    daemon->onFrameReady();
-    daemon->onFrameReady();
-    daemon.reset();
-    EXPECT_EQ(source->starts, 1); // same source options: not re-opened
-    EXPECT_EQ(sinks["a"]->sequences, (std::vector<uint64_t>{0, 1}));
-    EXPECT_EQ(sinks["a"]->lastBytes, (std::vector<uint8_t>{1, 1}));
-    EXPECT_EQ(sinks["a"]->closes, 1);
-    EXPECT_EQ(sinks["b"]->sequences, (std::vector<uint64_t>{2, 3}));
-    EXPECT_EQ(sinks["b"]->lastBytes, (std::vector<uint8_t>{2, 2}));
 }
 
 TEST_F(DaemonTest, DeviceLostFeedsNoSignalFramesAndRetriesWithBackoff)

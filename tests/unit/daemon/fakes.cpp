@@ -31,7 +31,17 @@ Result<StreamFormat> FakeSource::start()
     if (!buffer)
         return buffer.error();
     buffer_.emplace(std::move(*buffer));
+    started_ = true;
+    shared_->mostRunning = std::max(shared_->mostRunning, ++shared_->running);
     return format_;
+}
+
+void FakeSource::stop()
+{
+    ++shared_->stops;
+    if (started_)
+        --shared_->running;
+    started_ = false;
 }
 
 Result<FrameLease> FakeSource::nextFrame()
@@ -72,6 +82,10 @@ Status RecordingSink::open(const StreamFormat &)
 {
     std::lock_guard lock(shared_->mutex);
     ++shared_->opens;
+    if (shared_->failOpens > 0) {
+        --shared_->failOpens;
+        return makeError(ErrorCode::NotFound, name_ + ": No such file or directory");
+    }
     return Ok{};
 }
 

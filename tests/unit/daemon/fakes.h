@@ -30,11 +30,12 @@ public:
     struct Shared {
         std::deque<Error> script; // consumed one per nextFrame(); empty: a frame
         int starts = 0, stops = 0;
-        std::deque<Error> startErrors; // consumed one per start()
+        std::deque<Error> startErrors;    // consumed one per start()
+        int running = 0, mostRunning = 0; // sources started and not yet stopped: now, and at most at once
     };
     FakeSource(std::shared_ptr<Shared> shared, StreamFormat format);
     Result<StreamFormat> start() override;
-    void stop() override { ++shared_->stops; }
+    void stop() override;
     int eventFd() const override { return -1; }
     Result<FrameLease> nextFrame() override;
     std::string describe() const override { return "fake source"; }
@@ -44,6 +45,7 @@ private:
     StreamFormat format_;
     std::optional<FrameBuffer> buffer_;
     uint64_t sequence_ = 0;
+    bool started_ = false;
 };
 
 // Records the first byte and sequence of each written frame; while `gate` is closed, write() blocks (a slow sink).
@@ -59,7 +61,8 @@ public:
         std::vector<uint8_t> maxima;    // the brightest byte of plane 0
         std::vector<uint64_t> sequences;
         int opens = 0, closes = 0;
-        int entered = 0; // write() calls begun (a blocked one included)
+        int failOpens = 0; // this many open() calls fail, from the next one on
+        int entered = 0;   // write() calls begun (a blocked one included)
         void waitEntered(int count);
         void setGate(bool open);
         size_t written();

@@ -112,22 +112,38 @@ TEST_F(SceneControlTest, SlotTextIsCheckedReachesTheRendererAndSurvivesARebuild)
     EXPECT_EQ(last->slots[0], std::pair(std::string("gear"), std::string("R")));
 }
 
-TEST_F(SceneControlTest, SceneThatCannotBeBuiltChangesNothing)
+TEST_F(SceneControlTest, ReloadCandidateLeavesTheLiveSceneAloneUntilAssigned)
 {
+    ASSERT_TRUE(control.apply(LayerChange{"grid", false}).ok());
+    ASSERT_TRUE(control.apply(TextChange{"gear", "R"}).ok());
+    test::RecordingRenderer *running = last;
     OverlayScene next = twoLayers();
     next.annotations.pop_back();
+    SceneControl candidate = control.withScene(next, CameraSpec{});
+
     factoryFails = true;
-    std::unique_ptr<OverlayRenderer> replaced;
-    const Status refused = control.apply(SceneReplacement{next, CameraSpec{}}, &replaced);
+    const auto refused = candidate.build(test::greyFormat());
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.error().message, "overlay: annotation 'x': unknown frame 'base'");
-    EXPECT_EQ(replaced, nullptr);
-    EXPECT_EQ(control.scene().annotations.size(), 4u);
+    EXPECT_EQ(control.scene().annotations.size(), 4u); // a refused reload drops the candidate: nothing changed
 
     factoryFails = false;
-    ASSERT_TRUE(control.apply(SceneReplacement{next, CameraSpec{}}, &replaced).ok());
-    EXPECT_NE(replaced, nullptr);
+    auto built = candidate.build(test::greyFormat());
+    ASSERT_TRUE(built.ok());
+    EXPECT_NE(last, running);
+    // The live layer choices and slot texts carry over into the new overlay.
+    EXPECT_EQ(last->layers, (std::vector<std::pair<std::string, bool>>{{"grid", false}}));
+    EXPECT_EQ(last->slots, (std::vector<std::pair<std::string, std::string>>{{"gear", "R"}}));
+    EXPECT_EQ(control.scene().annotations.size(), 4u);
+
+    // The switch: the candidate becomes the live control, and changes go to the new overlay.
+    control = std::move(candidate);
+    live = std::move(*built);
+    control.attach(live.get(), test::greyFormat());
     EXPECT_EQ(control.scene().annotations.size(), 3u);
+    ASSERT_TRUE(control.apply(LayerChange{"labels", false}).ok());
+    EXPECT_EQ(last->layers.back(), std::pair(std::string("labels"), false));
+    EXPECT_EQ(running->layers.size(), 1u);
 }
 
 TEST_F(SceneControlTest, CameraChangeWithoutAStreamIsRefused)
