@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "gpio/line_provider.h"
+
 namespace overlayd::config {
 
 namespace {
@@ -113,6 +115,11 @@ void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpi
     auto gpio = root.table("gpio");
     if (!gpio)
         return;
+    if (!gpio::haveLibgpiod()) { // refused here, so that check-config refuses what run could not do
+        root.problem("gpio", "this overlayd was built without GPIO lines (CMake option OVERLAYD_GPIOD, libgpiod): "
+                             "[gpio] is not available");
+        return;
+    }
     std::vector<std::string> layers;
     for (const Annotation &annotation : annotations)
         if (std::find(layers.begin(), layers.end(), annotation.style.layer) == layers.end())

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "config_test_util.h"
+#include "gpio/line_provider.h"
 
 namespace overlayd::test {
 namespace {
@@ -17,7 +18,28 @@ type = "axes"
 style = { layer = "logo" }
 )";
 
-TEST(GpioConfig, EveryKeyIsRead)
+// The shape checks run where [gpio] is available: a build without libgpiod refuses the table whole (below).
+class GpioConfig : public ::testing::Test
+{
+protected:
+    void SetUp() override
+    {
+        if (!gpio::haveLibgpiod())
+            GTEST_SKIP() << "built without libgpiod (OVERLAYD_GPIOD=OFF): [gpio] is refused whole";
+    }
+};
+
+TEST(GpioConfigWithoutLibgpiod, GpioIsRefusedAtItsKey)
+{
+    if (gpio::haveLibgpiod())
+        GTEST_SKIP() << "built with libgpiod";
+    const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"gpiochip0\"\nline = 3\nshow = [\"guides\"]\n");
+    ASSERT_EQ(problems.size(), 1u) << formatProblems(problems);
+    EXPECT_EQ(problems[0].key, "gpio");
+    EXPECT_NE(problems[0].message.find("OVERLAYD_GPIOD"), std::string::npos) << problems[0].message;
+}
+
+TEST_F(GpioConfig, EveryKeyIsRead)
 {
     const DaemonConfig config = loadValid(kScene + R"(
 [[gpio.input]]
@@ -53,7 +75,7 @@ active_low = true
     EXPECT_TRUE(out.activeLow);
 }
 
-TEST(GpioConfig, DefaultsAreTheDocumentedOnes)
+TEST_F(GpioConfig, DefaultsAreTheDocumentedOnes)
 {
     const DaemonConfig config =
         loadValid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guides\"]\n"
@@ -66,7 +88,7 @@ TEST(GpioConfig, DefaultsAreTheDocumentedOnes)
     EXPECT_EQ(config.gpio.outputs.at(0).signal, gpio::OutputSignal::Streaming);
 }
 
-TEST(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
+TEST_F(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
 {
     const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guide\"]\n");
     ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
@@ -76,7 +98,7 @@ TEST(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
     EXPECT_NE(problems[0].message.find("did you mean 'guides'?"), std::string::npos);
 }
 
-TEST(GpioConfig, TwoUsesOfOneLineAreRefusedWhereTheSecondIsWritten)
+TEST_F(GpioConfig, TwoUsesOfOneLineAreRefusedWhereTheSecondIsWritten)
 {
     const auto problems = loadInvalid(kScene + R"(
 [[gpio.input]]
@@ -96,7 +118,7 @@ line = "REV"
         << problems[0].message;
 }
 
-TEST(GpioConfig, BadShapesAreEachNamed)
+TEST_F(GpioConfig, BadShapesAreEachNamed)
 {
     const auto problems = loadInvalid(kScene + R"(
 [[gpio.input]]
@@ -118,14 +140,14 @@ colour = "red"
         EXPECT_NE(all.find(expected), std::string::npos) << expected << " in\n" << all;
 }
 
-TEST(GpioConfig, AnInputThatSwitchesNothingIsRefused)
+TEST_F(GpioConfig, AnInputThatSwitchesNothingIsRefused)
 {
     const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\n");
     ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
     EXPECT_NE(problems[0].message.find("needs show_layers or hide_layers"), std::string::npos);
 }
 
-TEST(GpioConfig, InputsAreLimited)
+TEST_F(GpioConfig, InputsAreLimited)
 {
     std::string text = kScene;
     for (size_t i = 0; i <= gpio::kMaxInputs; ++i)
