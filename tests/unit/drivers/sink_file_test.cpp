@@ -1,0 +1,50 @@
+// SinkFile: a FIFO without a reader never blocks the open (it starts at the first frame after a reader came, header
+// first), and a file another writer holds is refused naming the process.
+#include <filesystem>
+#include <string>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "drivers/files/sink_file.h"
+
+namespace overlayd {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string scratch(const std::string &name)
+{
+    const fs::path dir = fs::path(::testing::TempDir()) / ("overlayd-sink-file-" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+TEST(SinkFile, AFifoWithoutAReaderOpensOnceOneComes)
+{
+    const std::string path = scratch("fifo") + "/out.y4m";
+    ASSERT_EQ(mkfifo(path.c_str(), 0644), 0);
+    SinkFile file(path);
+    ASSERT_TRUE(file.open(false, "HEADER\n")); // returns at once: nobody reads yet
+    const auto early = file.get();
+    ASSERT_FALSE(early);
+    EXPECT_NE(early.error().message.find("no reader"), std::string::npos) << early.error().message;
+
+    const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0);
+    const auto late = file.get();
+    ASSERT_TRUE(late) << late.error().message;
+    ASSERT_EQ(std::fflush(*late), 0);
+    char text[8] = {};
+    EXPECT_EQ(::read(reader, text, 7), 7);
+    EXPECT_STREQ(text, "HEADER\n");
+    EXPECT_TRUE(file.close());
+    ::close(reader);
+}
+
+} // namespace
+} // namespace overlayd
