@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "base/unique_fd.h"
+#include "drivers/files/file_lock.h"
 
 namespace overlayd {
 
@@ -43,6 +44,8 @@ Status SinkFile::open(bool append, std::string prologue)
 Status SinkFile::tryOpen()
 {
     makeParentFolders(path_);
+    // No O_TRUNC: the file is emptied only once the lock says it is ours (a second daemon must not wipe the first's
+    // output on its way to being refused).
     UniqueFd fd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_CLOEXEC | (append_ ? O_APPEND : 0), 0666));
     if (!fd.isValid())
         return errno == ENXIO ? makeError(ErrorCode::TryAgain, path_ + ": a FIFO that nobody reads yet")
@@ -50,8 +53,12 @@ Status SinkFile::tryOpen()
     struct stat info {};
     if (::fstat(fd.get(), &info) != 0)
         return openError(path_, "cannot stat");
-    if (S_ISREG(info.st_mode) && !append_ && ::ftruncate(fd.get(), 0) != 0)
-        return openError(path_, "cannot truncate");
+    if (S_ISREG(info.st_mode)) {
+        if (auto locked = lockExclusive(fd.get(), path_); !locked)
+            return locked;
+        if (!append_ && ::ftruncate(fd.get(), 0) != 0)
+            return openError(path_, "cannot truncate");
+    }
     // From here writes may block like any file's: the sink's own thread waits, and its queue drops for it.
     if (::fcntl(fd.get(), F_SETFL, ::fcntl(fd.get(), F_GETFL) & ~O_NONBLOCK) != 0)
         return openError(path_, "fcntl");

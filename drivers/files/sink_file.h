@@ -1,5 +1,6 @@
 // SinkFile: the file a Y4M or raw sink writes. It never blocks the daemon to open: a FIFO that nobody reads yet is
-// opened on a later frame, once a reader is there (until then each frame fails as "no reader").
+// opened on a later frame, once a reader is there (until then each frame fails as "no reader"); a regular file is
+// locked against a second writer before anything in it changes.
 #pragma once
 
 #include <cstdio>
@@ -16,7 +17,7 @@ public:
     explicit SinkFile(std::string path) : path_(std::move(path)) {}
 
     // append keeps what the file holds (a re-open for the same stream); prologue is written first thing after the
-    // file is really open (a Y4M header).
+    // file is really open (a Y4M header). Io for a file another process holds, naming it.
     Status open(bool append, std::string prologue = {});
     // The open file; a FIFO still without a reader is tried once more and is Io ("no reader") when it still has none.
     Result<std::FILE *> get();

@@ -1,11 +1,13 @@
 // Exclusive outputs (issue 19, class 5): `check-config` and `run` refuse two sinks on one file or on stdout at the
-// second's file:line:key.
+// second's file:line:key, and a second daemon on the first's output file is refused at start naming its pid.
+#include <csignal>
 #include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "harness.h"
+#include "process.h"
 
 namespace overlayd::replay {
 namespace {
@@ -34,6 +36,38 @@ TEST(ExclusiveOutputs, CheckConfigAndRunRefuseTwoSinksOnOneOutput)
         }
     }
     EXPECT_FALSE(std::filesystem::exists(dir + "/out.y4m")) << "run wrote before refusing";
+}
+
+TEST(ExclusiveOutputs, ASecondDaemonOnTheSameFileIsRefusedNamingTheFirst)
+{
+    const std::string dir = scratchDir("two-daemons-one-file");
+    writeFile(dir + "/overlayd.toml", config("[[sink]]\nkind = \"y4m\"\npath = \"out.y4m\"\n"));
+    const pid_t first = startDaemon(dir, "overlayd.toml");
+    ASSERT_GT(first, 0);
+    const auto size = [&] {
+        std::error_code error;
+        const auto bytes = std::filesystem::file_size(dir + "/out.y4m", error);
+        return error ? 0 : bytes;
+    };
+    ASSERT_TRUE(waitFor([&] { return size() > 0; })) << fileText(dir + "/overlayd.stderr");
+
+    const RunResult second = runOverlayd("run --frames 5 --config overlayd.toml", dir);
+    EXPECT_FALSE(second.crashed) << second.all();
+    EXPECT_EQ(second.exitStatus, 1) << second.all();
+    EXPECT_NE(second.all().find("out.y4m: locked by process " + std::to_string(first) + " (overlayd)"),
+              std::string::npos)
+        << second.all();
+    const auto sizeAfter = size();
+    EXPECT_TRUE(waitFor([&] { return size() > sizeAfter; })) << "the first daemon's output stopped growing";
+
+    kill(first, SIGTERM);
+    const auto ending = waitForExit(first, std::chrono::seconds(5));
+    ASSERT_TRUE(ending);
+    EXPECT_EQ(ending->exitStatus, 0);
+    // The file is still the first's own: one header, then whole frames (160x120 YUYV: 38400 bytes + "FRAME\n").
+    const std::string y4m = fileText(dir + "/out.y4m");
+    ASSERT_EQ(y4m.rfind("YUV4MPEG2", 0), 0u);
+    EXPECT_EQ((y4m.size() - (y4m.find('\n') + 1)) % (38400 + 6), 0u);
 }
 
 } // namespace

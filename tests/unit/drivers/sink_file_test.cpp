@@ -46,5 +46,25 @@ TEST(SinkFile, AFifoWithoutAReaderOpensOnceOneComes)
     ::close(reader);
 }
 
+// Two writers on one file (here in one process; another daemon alike): the second is refused naming the holder,
+// and finds the first's bytes untouched (nothing is truncated before the lock is ours).
+TEST(SinkFile, ALockedFileIsRefusedNamingItsHolder)
+{
+    const std::string path = scratch("lock") + "/out.raw";
+    SinkFile first(path);
+    ASSERT_TRUE(first.open(false, "FIRST"));
+    ASSERT_EQ(std::fflush(*first.get()), 0);
+    SinkFile second(path);
+    const Status refused = second.open(false, "SECOND");
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("locked by process " + std::to_string(getpid())), std::string::npos)
+        << refused.error().message;
+    EXPECT_EQ(fs::file_size(path), 5u);
+    EXPECT_TRUE(first.close());
+    EXPECT_TRUE(second.open(false, "SECOND")) << "the lock goes with the close";
+    EXPECT_TRUE(second.close());
+    EXPECT_EQ(fs::file_size(path), 6u);
+}
+
 } // namespace
 } // namespace overlayd
