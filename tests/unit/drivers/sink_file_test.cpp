@@ -16,17 +16,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string scratch(const std::string &name)
-{
-    const fs::path dir = fs::path(::testing::TempDir()) / ("overlayd-sink-file-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
+// A fresh folder, removed at the end of the test. The pid in its name: another build's tests may run at the same
+// time on the machine.
+struct Scratch {
+    explicit Scratch(const std::string &name)
+        : dir(fs::path(::testing::TempDir()) / ("overlayd-sink-file-" + name + "-" + std::to_string(::getpid())))
+    {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ~Scratch() { fs::remove_all(dir); }
+    std::string operator/(const std::string &file) const { return (dir / file).string(); }
+    fs::path dir;
+};
 
 TEST(SinkFile, AFifoWithoutAReaderOpensOnceOneComes)
 {
-    const std::string path = scratch("fifo") + "/out.y4m";
+    const Scratch scratch("fifo");
+    const std::string path = scratch / "out.y4m";
     ASSERT_EQ(mkfifo(path.c_str(), 0644), 0);
     SinkFile file(path);
     ASSERT_TRUE(file.open(false, "HEADER\n")); // returns at once: nobody reads yet
@@ -50,7 +57,8 @@ TEST(SinkFile, AFifoWithoutAReaderOpensOnceOneComes)
 // and finds the first's bytes untouched (nothing is truncated before the lock is ours).
 TEST(SinkFile, ALockedFileIsRefusedNamingItsHolder)
 {
-    const std::string path = scratch("lock") + "/out.raw";
+    const Scratch scratch("lock");
+    const std::string path = scratch / "out.raw";
     SinkFile first(path);
     ASSERT_TRUE(first.open(false, "FIRST"));
     ASSERT_EQ(std::fflush(*first.get()), 0);
