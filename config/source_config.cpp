@@ -2,6 +2,7 @@
 #include "config/config_sections.h"
 
 #include <filesystem>
+#include <map>
 
 #include "media/frame.h"
 #include "media/pixel_format.h"
@@ -226,10 +227,28 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
     source->finish();
 }
 
+namespace {
+
+// What two sinks must not share: "-" (stdout), or the file a path names, however it is spelled ("out/../a.y4m",
+// "./a.y4m", a symlinked folder). Relative paths count from the working directory, as the sinks open them.
+std::string outputIdentity(const std::string &path)
+{
+    if (path == "-")
+        return path;
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+    const std::filesystem::path resolved = error ? absolute : std::filesystem::weakly_canonical(absolute, error);
+    return error ? std::filesystem::path(path).lexically_normal().string() : resolved.string();
+}
+
+} // namespace
+
 // Output paths stay as written (relative to the daemon's working directory, where a user looks for them); only
-// inputs (replay files, calibrations) resolve against the config file's folder.
+// inputs (replay files, calibrations) resolve against the config file's folder. Two sinks on one file (or both on
+// stdout) would interleave their frames into a file nothing reads: the second is refused at its path.
 void readSinks(TableReader &root, std::vector<SinkOptions> &out)
 {
+    std::map<std::string, std::string> writers; // output identity -> the first sink's key, "sink[0].path"
     for (TableReader &sink : root.tables("sink")) {
         SinkOptions options;
         if (auto kind = sink.choice<SinkKind>("kind", {{"y4m", SinkKind::Y4m},
@@ -240,9 +259,15 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out)
             options.kind = *kind;
         else if (!sink.has("kind"))
             sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2");
-        if (auto path = sink.string("path"))
+        if (auto path = sink.string("path")) {
             options.path = *path;
-        else if (!sink.has("path") && options.kind != SinkKind::Null && sink.has("kind"))
+            const bool writes = options.kind != SinkKind::Null && !path->empty();
+            const auto [first, added] =
+                writes ? writers.emplace(outputIdentity(*path), sink.keyPath("path")) : std::pair(writers.end(), true);
+            if (!added)
+                sink.problem("path", (*path == "-" ? "stdout" : "'" + *path + "'") + " is written by " + first->second +
+                                         " already: two sinks cannot share an output");
+        } else if (!sink.has("path") && options.kind != SinkKind::Null && sink.has("kind"))
             sink.problem("path", "missing: this sink writes to a path");
         if (auto every = sink.integer("every", 1, 1000000))
             options.every = unsigned(*every);

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "daemon/startup_guard.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame.h"
 
@@ -66,9 +67,18 @@ int checkConfigCommand(const std::string &path)
 
 int runCommand(const DaemonOptions &options, Logger &logger)
 {
+    // First of all: from here a stop signal ends start-up at once, whatever start-up is blocked in; once the loop
+    // runs, its own signalfd takes over (the signals stay blocked throughout: daemon/early_signals.cpp).
+    auto guard = StartupGuard::start(logger, kExitOk);
+    if (!guard) {
+        logger.error(guard.error().message);
+        return kExitFailure;
+    }
     const std::unique_ptr<SystemdNotifier> notifier = SystemdNotifier::fromEnvironment();
     Daemon daemon(logger, *notifier, defaultStageFactories(), loadConfigFile, options);
-    if (auto started = daemon.start(); !started) { // start() has logged why
+    const Status started = daemon.start();
+    guard->reset(); // a stop signal from now on is the loop's, or waits for the failed start-up's exit status
+    if (!started) { // start() has logged why
         notifier->stopping();
         return started.error().code == ErrorCode::ConfigError ? kExitConfigError : kExitFailure;
     }

@@ -6,6 +6,7 @@
 #include "base/logger.h"
 #include "daemon/cli.h"
 #include "daemon/commands.h"
+#include "daemon/early_signals.h"
 
 int main(int argc, char **argv)
 {
@@ -15,6 +16,8 @@ int main(int argc, char **argv)
     std::signal(SIGPIPE, SIG_IGN);
     try {
         const CommandLine line = parseCommandLine(argc, argv);
+        if (line.command != Command::Run)
+            restoreInheritedSignalMask(); // the tools stop on a signal as any tool does; only `run` reads them
         if (line.command == Command::Exit)
             return line.exitStatus;
         Logger logger = Logger::forStderr();

@@ -15,15 +15,15 @@ Error ioError(const std::string &what, const std::string &path, int error)
                      path + ": " + what + ": " + std::strerror(error));
 }
 
+} // namespace
+
 void makeParentFolders(const std::string &path)
 {
     const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    std::error_code ignored; // fopen reports what matters
+    std::error_code ignored; // opening the file reports what matters
     if (!parent.empty())
         std::filesystem::create_directories(parent, ignored);
 }
-
-} // namespace
 
 Result<UniqueFile> openForReading(const std::string &path)
 {

@@ -17,6 +17,8 @@ using UniqueFile = std::unique_ptr<std::FILE, FileCloser>;
 
 // NotFound when the file does not exist, Io for any other failure (errno's text in the message).
 Result<UniqueFile> openForReading(const std::string &path);
+// Creates the folders a path to be written needs (failures are left to the open that follows).
+void makeParentFolders(const std::string &path);
 // Creates missing parent folders; append keeps what the file holds.
 Result<UniqueFile> openForWriting(const std::string &path, bool append);
 

@@ -2,6 +2,7 @@
 #include "drivers/files/file_sinks.h"
 
 #include "drivers/files/file_io.h"
+#include "drivers/files/sink_file.h"
 
 namespace overlayd {
 
@@ -10,23 +11,22 @@ namespace {
 class RawSink : public FrameSink
 {
 public:
-    explicit RawSink(const SinkOptions &options) : path_(options.path) {}
+    explicit RawSink(const SinkOptions &options) : path_(options.path), file_(options.path) {}
 
     Status open(const StreamFormat &) override
     {
         // The first open truncates; a re-open (format change) keeps appending to the same file.
-        auto file = openForWriting(path_, opened_);
-        if (!file)
-            return file.error();
-        file_ = std::move(*file);
+        if (auto opened = file_.open(opened_); !opened)
+            return opened;
         opened_ = true;
         return Ok{};
     }
 
     Status write(const FrameView &frame, const FrameMetadata &) override
     {
-        if (!file_)
-            return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
+        auto out = file_.get();
+        if (!out)
+            return out.error();
         if (auto checked = checkFrame(frame); !checked)
             return checked;
         const PixelFormatInfo &format = *frame.format;
@@ -34,25 +34,20 @@ public:
             const size_t rowBytes = format.minStride(p, frame.width);
             for (unsigned y = 0; y < format.planeHeight(p, frame.height); ++y) {
                 const uint8_t *row = frame.planes[p].data + size_t(y) * frame.planes[p].stride;
-                if (auto status = writeAll(file_.get(), row, rowBytes, path_); !status)
+                if (auto status = writeAll(*out, row, rowBytes, path_); !status)
                     return status;
             }
         }
         return Ok{};
     }
 
-    Status close() override
-    {
-        if (file_ && std::fclose(file_.release()) != 0)
-            return makeError(ErrorCode::Io, path_ + ": write failed on close");
-        return Ok{};
-    }
+    Status close() override { return file_.close(); }
 
     std::string describe() const override { return "raw " + path_; }
 
 private:
     std::string path_;
-    UniqueFile file_;
+    SinkFile file_;
     bool opened_ = false;
 };
 

@@ -3,6 +3,7 @@
 #include "drivers/files/file_sinks.h"
 
 #include "drivers/files/file_io.h"
+#include "drivers/files/sink_file.h"
 #include "drivers/files/y4m_header.h"
 #include "media/convert/frame_convert.h"
 
@@ -15,7 +16,7 @@ constexpr std::string_view kFrameLine = "FRAME\n";
 class Y4mSink : public FrameSink
 {
 public:
-    explicit Y4mSink(const SinkOptions &options) : path_(options.path) {}
+    explicit Y4mSink(const SinkOptions &options) : path_(options.path), file_(options.path) {}
 
     Status open(const StreamFormat &format) override;
     Status write(const FrameView &frame, const FrameMetadata &metadata) override;
@@ -24,10 +25,11 @@ public:
 
 private:
     bool toStdout() const { return path_ == "-"; }
-    std::FILE *file() const { return toStdout() ? stdout : file_.get(); }
+    // The file a FIFO's reader may have just opened: get() opens it and writes its header.
+    Result<std::FILE *> file() { return toStdout() ? Result<std::FILE *>(stdout) : file_.get(); }
 
     std::string path_;
-    UniqueFile file_;
+    SinkFile file_;
     bool open_ = false;
     std::string header_; // the header written, if any: a re-open with the same stream appends
     Colorimetry colorimetry_{};
@@ -50,30 +52,34 @@ Status Y4mSink::open(const StreamFormat &format)
         return makeError(ErrorCode::Unsupported, "a Y4M stream on stdout cannot change format (" +
                                                      header_.substr(0, header_.size() - 1) + " -> " +
                                                      format.describe() + ")");
-    if (!toStdout()) {
-        auto file = openForWriting(path_, append);
-        if (!file)
-            return file.error();
-        file_ = std::move(*file);
-    }
     colorimetry_ = format.colorimetry;
+    if (toStdout()) {
+        open_ = true;
+        if (append)
+            return Ok{};
+        header_ = line;
+        return writeAll(stdout, line.data(), line.size(), path_);
+    }
+    if (auto opened = file_.open(append, append ? std::string() : line); !opened)
+        return opened;
     open_ = true;
-    if (append)
-        return Ok{};
     header_ = line;
-    return writeAll(file(), line.data(), line.size(), path_);
+    return Ok{};
 }
 
 Status Y4mSink::write(const FrameView &frame, const FrameMetadata &)
 {
     if (!open_)
         return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
+    auto out = file();
+    if (!out)
+        return out.error();
     if (auto converted = frameToYcbcr(frame, colorimetry_, samples_, rgbScratch_); !converted)
         return converted;
-    if (auto status = writeAll(file(), kFrameLine.data(), kFrameLine.size(), path_); !status)
+    if (auto status = writeAll(*out, kFrameLine.data(), kFrameLine.size(), path_); !status)
         return status;
     for (const std::vector<uint8_t> *plane : {&samples_.y, &samples_.cb, &samples_.cr}) {
-        if (auto status = writeAll(file(), plane->data(), plane->size(), path_); !status)
+        if (auto status = writeAll(*out, plane->data(), plane->size(), path_); !status)
             return status;
     }
     return Ok{};
@@ -86,9 +92,7 @@ Status Y4mSink::close()
     open_ = false;
     if (toStdout())
         return std::fflush(stdout) == 0 ? Status(Ok{}) : makeError(ErrorCode::Io, "stdout: flush failed");
-    if (std::fclose(file_.release()) != 0)
-        return makeError(ErrorCode::Io, path_ + ": write failed on close");
-    return Ok{};
+    return file_.close();
 }
 
 } // namespace

@@ -1,0 +1,95 @@
+// SinkFile: O_NONBLOCK opens (a FIFO without a reader answers ENXIO at once), the lock, then a blocking FILE.
+#include "drivers/files/sink_file.h"
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/unique_fd.h"
+#include "drivers/files/file_lock.h"
+
+namespace overlayd {
+
+namespace {
+
+Error openError(const std::string &path, const char *what)
+{
+    return makeError(errno == ENOENT ? ErrorCode::NotFound : ErrorCode::Io,
+                     path + ": " + what + ": " + std::strerror(errno));
+}
+
+} // namespace
+
+Status SinkFile::open(bool append, std::string prologue)
+{
+    (void)close();
+    wanted_ = true;
+    append_ = append;
+    // A FIFO still waiting for its reader has not written the last prologue yet: it comes first.
+    if (!append)
+        prologue_.clear();
+    prologue_ += prologue;
+    const Status opened = tryOpen();
+    if (!opened && opened.error().code == ErrorCode::TryAgain)
+        return Ok{}; // a FIFO without a reader yet: get() tries again with each frame
+    if (!opened)
+        wanted_ = false;
+    return opened;
+}
+
+Status SinkFile::tryOpen()
+{
+    makeParentFolders(path_);
+    // No O_TRUNC: the file is emptied only once the lock says it is ours (a second daemon must not wipe the first's
+    // output on its way to being refused).
+    UniqueFd fd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_CLOEXEC | (append_ ? O_APPEND : 0), 0666));
+    if (!fd.isValid())
+        return errno == ENXIO ? makeError(ErrorCode::TryAgain, path_ + ": a FIFO that nobody reads yet")
+                              : openError(path_, "cannot create");
+    struct stat info {};
+    if (::fstat(fd.get(), &info) != 0)
+        return openError(path_, "cannot stat");
+    if (S_ISREG(info.st_mode)) {
+        if (auto locked = lockExclusive(fd.get(), path_); !locked)
+            return locked;
+        if (!append_ && ::ftruncate(fd.get(), 0) != 0)
+            return openError(path_, "cannot truncate");
+    }
+    // From here writes may block like any file's: the sink's own thread waits, and its queue drops for it.
+    if (::fcntl(fd.get(), F_SETFL, ::fcntl(fd.get(), F_GETFL) & ~O_NONBLOCK) != 0)
+        return openError(path_, "fcntl");
+    UniqueFile file(::fdopen(fd.get(), append_ ? "ab" : "wb"));
+    if (!file)
+        return openError(path_, "fdopen");
+    (void)fd.release(); // the FILE owns it now
+    file_ = std::move(file);
+    const std::string prologue = std::exchange(prologue_, {});
+    return writeAll(file_.get(), prologue.data(), prologue.size(), path_);
+}
+
+Result<std::FILE *> SinkFile::get()
+{
+    if (!wanted_)
+        return makeError(ErrorCode::InvalidArgument, path_ + " is not open");
+    if (!file_) {
+        if (auto opened = tryOpen(); !opened)
+            return opened.error().code == ErrorCode::TryAgain
+                       ? makeError(ErrorCode::Io, path_ + ": no reader on the FIFO yet: frame not written")
+                       : opened.error();
+    }
+    return file_.get();
+}
+
+Status SinkFile::close()
+{
+    wanted_ = false;
+    if (file_ && std::fclose(file_.release()) != 0)
+        return makeError(ErrorCode::Io, path_ + ": write failed on close");
+    return Ok{};
+}
+
+} // namespace overlayd

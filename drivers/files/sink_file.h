@@ -1,0 +1,37 @@
+// SinkFile: the file a Y4M or raw sink writes. It never blocks the daemon to open: a FIFO that nobody reads yet is
+// opened on a later frame, once a reader is there (until then each frame fails as "no reader"); a regular file is
+// locked against a second writer before anything in it changes.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "base/result.h"
+#include "drivers/files/file_io.h"
+
+namespace overlayd {
+
+class SinkFile
+{
+public:
+    explicit SinkFile(std::string path) : path_(std::move(path)) {}
+
+    // append keeps what the file holds (a re-open for the same stream); prologue is written first thing after the
+    // file is really open (a Y4M header). Io for a file another process holds, naming it.
+    Status open(bool append, std::string prologue = {});
+    // The open file; a FIFO still without a reader is tried once more and is Io ("no reader") when it still has none.
+    Result<std::FILE *> get();
+    // Flushes and closes (and so unlocks); a FIFO that never had a reader has nothing to close.
+    Status close();
+
+private:
+    Status tryOpen();
+
+    std::string path_;
+    UniqueFile file_;
+    bool wanted_ = false; // between open() and close()
+    bool append_ = false;
+    std::string prologue_;
+};
+
+} // namespace overlayd
