@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""What overlayd costs to start and to keep running, measured on the real binary (README "Footprint").
+
+  tests/footprint/measure.py --overlayd build/daemon/overlayd [--runs 10] [--seconds 10]
+
+- first frame: time from exec to the first frame on stdout (`overlayd run` with the demo scene, its source made
+  synthetic 1280x720 YUYV, one Y4M sink on stdout: the moment the first FRAME header and its bytes are read), the
+  median of --runs starts;
+- shared libraries: how many the running process has mapped (/proc/PID/maps), not what ldd lists;
+- memory at 1080p YUYV 30 fps with the demo scene and a null sink, after --seconds: VmRSS and, from
+  /proc/PID/smaps, the part of it that is shared-library mappings, the heap and anonymous mappings.
+"""
+import argparse
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEMO = os.path.join(HERE, '..', '..', 'config', 'examples', 'demo.toml')
+
+
+def demo_config(width, height, sink):
+    """The demo scene with its [source] set to WIDTHxHEIGHT YUYV at 30 fps and its sinks replaced by SINK."""
+    with open(DEMO) as f:
+        text = f.read()
+    text = re.sub(r'(?ms)^\[\[sink\]\].*?(?=^\[|\Z)', '', text)
+    text = re.sub(r'(?m)^width = \d+', 'width = %d' % width, text, count=1)
+    text = re.sub(r'(?m)^height = \d+', 'height = %d' % height, text, count=1)
+    text = re.sub(r'(?m)^format = "\w+"', 'format = "YUYV"', text, count=1)
+    return text + '\n' + sink
+
+
+def first_frame_seconds(overlayd, config, frame_bytes):
+    start = time.monotonic()
+    proc = subprocess.Popen([overlayd, 'run', '--config', config], stdout=subprocess.PIPE,
+                            stderr=subprocess.DEVNULL)
+    seen = b''
+    try:
+        while True:
+            chunk = proc.stdout.read1(1 << 20)
+            if not chunk:
+                raise RuntimeError('overlayd ended before its first frame')
+            seen += chunk
+            at = seen.find(b'FRAME\n')
+            if at >= 0 and len(seen) >= at + 6 + frame_bytes:
+                return time.monotonic() - start
+    finally:
+        proc.stdout.close()  # first: a sink blocked writing to a full pipe would hold up the stop
+        proc.terminate()
+        proc.wait()
+
+
+def memory(pid):
+    libraries = set()
+    with open('/proc/%d/maps' % pid) as f:
+        for line in f:
+            fields = line.split()
+            if len(fields) >= 6 and '.so' in fields[5]:
+                libraries.add(fields[5])
+    kinds = {'libraries': 0, 'heap': 0, 'anonymous': 0, 'other': 0}
+    current = 'other'
+    with open('/proc/%d/smaps' % pid) as f:
+        for line in f:
+            if re.match(r'^[0-9a-f]+-[0-9a-f]+ ', line):
+                fields = line.split()
+                name = fields[5] if len(fields) >= 6 else ''
+                current = ('libraries' if '.so' in name else 'heap' if name == '[heap]'
+                           else 'anonymous' if name == '' else 'other')
+            elif line.startswith('Rss:'):
+                kinds[current] += int(line.split()[1])
+    with open('/proc/%d/status' % pid) as f:
+        rss = int(re.search(r'VmRSS:\s+(\d+)', f.read()).group(1))
+    return len(libraries), rss, kinds
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument('--overlayd', required=True)
+    parser.add_argument('--runs', type=int, default=10)
+    parser.add_argument('--seconds', type=float, default=10.0)
+    args = parser.parse_args()
+    work = tempfile.mkdtemp(prefix='overlayd-footprint-')
+    startup = os.path.join(work, 'startup.toml')
+    with open(startup, 'w') as f:
+        f.write(demo_config(1280, 720, '[[sink]]\nkind = "y4m"\npath = "-"\n'))
+    times = [first_frame_seconds(args.overlayd, startup, 1280 * 720 * 2) for _ in range(args.runs)]
+    print('first frame: median %.1f ms, min %.1f, max %.1f over %d starts (720p YUYV, Y4M on stdout)'
+          % (1e3 * statistics.median(times), 1e3 * min(times), 1e3 * max(times), args.runs))
+
+    steady = os.path.join(work, 'steady.toml')
+    with open(steady, 'w') as f:
+        f.write(demo_config(1920, 1080, '[[sink]]\nkind = "null"\n'))
+    proc = subprocess.Popen([args.overlayd, 'run', '--config', steady], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE)
+    try:
+        time.sleep(args.seconds)
+        if proc.poll() is not None:
+            sys.exit('overlayd ended: ' + proc.stderr.read().decode())
+        count, rss, kinds = memory(proc.pid)
+    finally:
+        proc.terminate()
+        proc.wait()
+    print('1080p YUYV 30 fps, demo scene, null sink, after %.0f s: %d shared libraries mapped, VmRSS %.1f MiB '
+          '(libraries %.1f, heap %.1f, anonymous %.1f, other %.1f)'
+          % (args.seconds, count, rss / 1024, kinds['libraries'] / 1024, kinds['heap'] / 1024,
+             kinds['anonymous'] / 1024, kinds['other'] / 1024))
+
+
+if __name__ == '__main__':
+    main()
