@@ -2,6 +2,8 @@
 // renderer being rebuilt for a new stream.
 #include "daemon/scene_control.h"
 
+#include <utility>
+
 #include <gtest/gtest.h>
 
 #include "fakes.h"
@@ -138,7 +140,8 @@ TEST_F(SceneControlTest, ReloadCandidateLeavesTheLiveSceneAloneUntilAssigned)
 
     // The switch: the candidate becomes the live control, and changes go to the new overlay.
     control = std::move(candidate);
-    live = std::move(*built);
+    // The old overlay is kept (not destroyed) so that `running` can still be asked what reached it.
+    const std::unique_ptr<OverlayRenderer> retired = std::exchange(live, std::move(*built));
     control.attach(live.get(), test::greyFormat());
     EXPECT_EQ(control.scene().annotations.size(), 3u);
     ASSERT_TRUE(control.apply(LayerChange{"labels", false}).ok());
