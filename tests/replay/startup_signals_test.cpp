@@ -85,6 +85,11 @@ TEST_P(StopAfter, ExecUnderABlockedMask)
 // Started as systemd starts it (nothing blocked), timed from overlayd's own first instruction.
 TEST_P(StopAfter, ItsFirstInstruction)
 {
+    // "Its own first instruction" is read from /proc/PID/status, which under qemu-user (the arm64 tier) shows the
+    // emulator's signal mask, not overlayd's: a TERM can then arrive before the guest has blocked it. The variant
+    // timed from exec (signals blocked across it) runs there.
+    if (binaryArgv().size() > 1)
+        GTEST_SKIP() << "run through an emulator: its /proc status is not overlayd's";
     const std::string dir = scratchDir("stop-first-" + std::to_string(GetParam()));
     writeFile(dir + "/overlayd.toml", config("out.y4m"));
     const pid_t pid = startDaemon(dir, "overlayd.toml");
