@@ -32,7 +32,8 @@ TEST(Sighup, BadConfigIsRefusedAndGoodConfigSwitchesSinks)
 
     fs::copy_file(dataPath("sighup_bad.toml"), config, fs::copy_options::overwrite_existing);
     kill(pid, SIGHUP);
-    EXPECT_TRUE(waitFor([&] { return fileText(dir + "/overlayd.stderr").find("reload refused") != std::string::npos; }));
+    EXPECT_TRUE(
+        waitFor([&] { return fileText(dir + "/overlayd.stderr").find("reload refused") != std::string::npos; }));
     const std::string afterBad = fileText(dir + "/overlayd.stderr");
     EXPECT_NE(afterBad.find("<3>overlayd.toml:16:1: sink[0].knd: unknown key"), std::string::npos) << afterBad;
     const auto sizeAfterBad = size("a.y4m");
