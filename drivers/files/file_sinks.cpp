@@ -24,8 +24,7 @@ public:
 
     Status write(const FrameView &frame, const FrameMetadata &) override
     {
-        auto out = file_.get();
-        if (!out)
+        if (auto out = file_.get(); !out)
             return out.error();
         if (auto checked = checkFrame(frame); !checked)
             return checked;
@@ -34,7 +33,7 @@ public:
             const size_t rowBytes = format.minStride(p, frame.width);
             for (unsigned y = 0; y < format.planeHeight(p, frame.height); ++y) {
                 const uint8_t *row = frame.planes[p].data + size_t(y) * frame.planes[p].stride;
-                if (auto status = writeAll(*out, row, rowBytes, path_); !status)
+                if (auto status = file_.write(row, rowBytes); !status)
                     return status;
             }
         }

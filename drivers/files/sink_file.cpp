@@ -30,8 +30,10 @@ Status SinkFile::open(bool append, std::string prologue)
     wanted_ = true;
     append_ = append;
     // A FIFO still waiting for its reader has not written the last prologue yet: it comes first.
-    if (!append)
+    if (!append) {
         prologue_.clear();
+        readerPrologue_ = prologue;
+    }
     prologue_ += prologue;
     const Status opened = tryOpen();
     if (!opened && opened.error().code == ErrorCode::TryAgain)
@@ -53,6 +55,7 @@ Status SinkFile::tryOpen()
     struct stat info {};
     if (::fstat(fd.get(), &info) != 0)
         return openError(path_, "cannot stat");
+    fifo_ = S_ISFIFO(info.st_mode);
     if (S_ISREG(info.st_mode)) {
         if (auto locked = lockExclusive(fd.get(), path_); !locked)
             return locked;
@@ -82,6 +85,23 @@ Result<std::FILE *> SinkFile::get()
                        : opened.error();
     }
     return file_.get();
+}
+
+Status SinkFile::write(const void *data, size_t size)
+{
+    auto out = get();
+    if (!out)
+        return out.error();
+    if (size == 0 || std::fwrite(data, 1, size, *out) == size)
+        return Ok{};
+    const int error = errno;
+    if (!fifo_ || error != EPIPE)
+        return makeError(ErrorCode::Io, path_ + ": write failed: " + std::strerror(error));
+    // Writing on would hand the next reader a stream cut mid-frame and without its header: start it afresh.
+    file_.reset();
+    prologue_ = readerPrologue_;
+    return makeError(ErrorCode::Io, path_ + ": the FIFO's reader went away: frame not written (a new reader gets the "
+                                            "stream from its header)");
 }
 
 Status SinkFile::close()

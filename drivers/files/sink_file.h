@@ -1,6 +1,7 @@
 // SinkFile: the file a Y4M or raw sink writes. It never blocks the daemon to open: a FIFO that nobody reads yet is
 // opened on a later frame, once a reader is there (until then each frame fails as "no reader"); a regular file is
-// locked against a second writer before anything in it changes.
+// locked against a second writer before anything in it changes. A FIFO's reader that goes away closes it, and the
+// next reader gets the prologue (the Y4M header) first, as the first one did.
 #pragma once
 
 #include <cstdio>
@@ -21,6 +22,8 @@ public:
     Status open(bool append, std::string prologue = {});
     // The open file; a FIFO still without a reader is tried once more and is Io ("no reader") when it still has none.
     Result<std::FILE *> get();
+    // Writes to the open file (get()'s). A FIFO whose reader went away (EPIPE) is closed and waits for the next one.
+    Status write(const void *data, size_t size);
     // Flushes and closes (and so unlocks); a FIFO that never had a reader has nothing to close.
     Status close();
 
@@ -31,7 +34,9 @@ private:
     UniqueFile file_;
     bool wanted_ = false; // between open() and close()
     bool append_ = false;
-    std::string prologue_;
+    std::string prologue_;       // written first thing once the file is open
+    std::string readerPrologue_; // what each new reader of a FIFO needs first (the whole stream header)
+    bool fifo_ = false;
 };
 
 } // namespace overlayd

@@ -25,8 +25,11 @@ public:
 
 private:
     bool toStdout() const { return path_ == "-"; }
-    // The file a FIFO's reader may have just opened: get() opens it and writes its header.
-    Result<std::FILE *> file() { return toStdout() ? Result<std::FILE *>(stdout) : file_.get(); }
+    // To stdout, or to the file (a FIFO's reader may have just opened it: SinkFile writes its header first).
+    Status put(const void *data, size_t size)
+    {
+        return toStdout() ? writeAll(stdout, data, size, path_) : file_.write(data, size);
+    }
 
     std::string path_;
     SinkFile file_;
@@ -71,15 +74,16 @@ Status Y4mSink::write(const FrameView &frame, const FrameMetadata &)
 {
     if (!open_)
         return makeError(ErrorCode::InvalidArgument, describe() + " is not open");
-    auto out = file();
-    if (!out)
-        return out.error();
+    if (!toStdout()) { // a FIFO without a reader: no conversion for a frame nobody takes
+        if (auto out = file_.get(); !out)
+            return out.error();
+    }
     if (auto converted = frameToYcbcr(frame, colorimetry_, samples_, rgbScratch_); !converted)
         return converted;
-    if (auto status = writeAll(*out, kFrameLine.data(), kFrameLine.size(), path_); !status)
+    if (auto status = put(kFrameLine.data(), kFrameLine.size()); !status)
         return status;
     for (const std::vector<uint8_t> *plane : {&samples_.y, &samples_.cb, &samples_.cr}) {
-        if (auto status = writeAll(*out, plane->data(), plane->size(), path_); !status)
+        if (auto status = put(plane->data(), plane->size()); !status)
             return status;
     }
     return Ok{};

@@ -1,7 +1,10 @@
 // SinkFile: a FIFO without a reader never blocks the open (it starts at the first frame after a reader came, header
-// first), and a file another writer holds is refused naming the process.
+// first), a reader that goes away is followed by the next one from the header on, and a file another writer holds is
+// refused naming the process.
+#include <csignal>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -51,6 +54,45 @@ TEST(SinkFile, AFifoWithoutAReaderOpensOnceOneComes)
     EXPECT_STREQ(text, "HEADER\n");
     EXPECT_TRUE(file.close());
     ::close(reader);
+}
+
+// A FIFO's reader leaves mid-stream (ffplay closed) and another comes: the second must get a stream it can read,
+// the header first, not the rest of the first reader's stream. (Found by the soak test: readers after the first got
+// frames without a Y4M header.)
+TEST(SinkFile, TheNextReaderOfAFifoGetsTheHeaderFirst)
+{
+    const Scratch scratch("fifo-readers");
+    const std::string path = scratch / "out.y4m";
+    ASSERT_EQ(mkfifo(path.c_str(), 0644), 0);
+    const auto previous = std::signal(SIGPIPE, SIG_IGN); // as the daemon does: a gone reader is EPIPE, not a signal
+    // Larger than stdio's buffer (each write reaches the pipe at once), smaller than the pipe (it never blocks).
+    const std::vector<char> frame(16384, 'F');
+    SinkFile file(path);
+    ASSERT_TRUE(file.open(false, "HEADER\n"));
+
+    const int first = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(first, 0);
+    ASSERT_TRUE(file.write(frame.data(), frame.size()));
+    ASSERT_EQ(std::fflush(*file.get()), 0); // stdio may hold the last few bytes
+    std::vector<char> seen(frame.size() + 7);
+    EXPECT_EQ(::read(first, seen.data(), seen.size()), ssize_t(seen.size()));
+    ::close(first);
+
+    const Status gone = file.write(frame.data(), frame.size());
+    ASSERT_FALSE(gone);
+    EXPECT_NE(gone.error().message.find("reader went away"), std::string::npos) << gone.error().message;
+
+    const int second = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(second, 0);
+    ASSERT_TRUE(file.write(frame.data(), frame.size()));
+    ASSERT_EQ(std::fflush(*file.get()), 0);
+    std::fill(seen.begin(), seen.end(), 0);
+    EXPECT_EQ(::read(second, seen.data(), seen.size()), ssize_t(seen.size()));
+    EXPECT_EQ(std::string(seen.data(), 7), "HEADER\n");
+    EXPECT_EQ(seen.back(), 'F');
+    EXPECT_TRUE(file.close());
+    ::close(second);
+    std::signal(SIGPIPE, previous);
 }
 
 // Two writers on one file (here in one process; another daemon alike): the second is refused naming the holder,
