@@ -26,7 +26,11 @@ Error openError(const std::string &path, const char *what)
 
 Status SinkFile::open(bool append, std::string prologue)
 {
-    (void)close();
+    if (append && fifo_ && file_) { // the parked FIFO: its reader reads on
+        wanted_ = true;
+        return Ok{};
+    }
+    (void)closeFile();
     wanted_ = true;
     append_ = append;
     // A FIFO still waiting for its reader has not written the last prologue yet: it comes first.
@@ -98,15 +102,31 @@ Status SinkFile::write(const void *data, size_t size)
     if (!fifo_ || error != EPIPE)
         return makeError(ErrorCode::Io, path_ + ": write failed: " + std::strerror(error));
     // Writing on would hand the next reader a stream cut mid-frame and without its header: start it afresh.
-    file_.reset();
-    prologue_ = readerPrologue_;
+    readerGone();
     return makeError(ErrorCode::Io, path_ + ": the FIFO's reader went away: frame not written (a new reader gets the "
                                             "stream from its header)");
+}
+
+void SinkFile::readerGone()
+{
+    file_.reset();
+    prologue_ = readerPrologue_;
 }
 
 Status SinkFile::close()
 {
     wanted_ = false;
+    if (!fifo_ || !file_)
+        return closeFile();
+    if (std::fflush(file_.get()) == 0)
+        return Ok{};
+    if (errno == EPIPE)
+        readerGone();
+    return Ok{}; // a FIFO's reader that left is no failure of the stream
+}
+
+Status SinkFile::closeFile()
+{
     if (file_ && std::fclose(file_.release()) != 0)
         return makeError(ErrorCode::Io, path_ + ": write failed on close");
     return Ok{};

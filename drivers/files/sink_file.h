@@ -24,11 +24,17 @@ public:
     Result<std::FILE *> get();
     // Writes to the open file (get()'s). A FIFO whose reader went away (EPIPE) is closed and waits for the next one.
     Status write(const void *data, size_t size);
-    // Flushes and closes (and so unlocks); a FIFO that never had a reader has nothing to close.
+    // Flushes and closes (and so unlocks); a FIFO that never had a reader has nothing to close. A FIFO with a reader
+    // is only flushed and kept, parked: closing it would end its reader's stream (ffplay quits at end of file) when
+    // the sink is only being re-opened for the same stream (a reload, a camera re-opened); open(append) resumes it,
+    // any other open or the destructor closes it.
     Status close();
 
 private:
     Status tryOpen();
+    Status closeFile();
+    // A FIFO whose reader is gone: closed, and the next reader gets readerPrologue_ first.
+    void readerGone();
 
     std::string path_;
     UniqueFile file_;

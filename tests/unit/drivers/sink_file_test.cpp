@@ -1,6 +1,8 @@
 // SinkFile: a FIFO without a reader never blocks the open (it starts at the first frame after a reader came, header
 // first), a reader that goes away is followed by the next one from the header on, and a file another writer holds is
 // refused naming the process.
+#include <algorithm>
+#include <cerrno>
 #include <csignal>
 #include <filesystem>
 #include <string>
@@ -93,6 +95,35 @@ TEST(SinkFile, TheNextReaderOfAFifoGetsTheHeaderFirst)
     EXPECT_TRUE(file.close());
     ::close(second);
     std::signal(SIGPIPE, previous);
+}
+
+// A sink re-opened for the same stream (a reload, the camera re-opened) keeps its FIFO: closing it would give the
+// reader end of file (ffplay quits), and re-opening would give a reader that came meanwhile no header.
+TEST(SinkFile, AReopenForTheSameStreamKeepsTheFifosReader)
+{
+    const Scratch scratch("fifo-reopen");
+    const std::string path = scratch / "out.y4m";
+    ASSERT_EQ(mkfifo(path.c_str(), 0644), 0);
+    SinkFile file(path);
+    ASSERT_TRUE(file.open(false, "HEADER\n"));
+    const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0);
+    ASSERT_TRUE(file.write("one\n", 4));
+    ASSERT_TRUE(file.close());
+    char text[16] = {};
+    EXPECT_EQ(::read(reader, text, sizeof text), 11);
+    EXPECT_STREQ(text, "HEADER\none\n");
+    errno = 0;
+    EXPECT_EQ(::read(reader, text, sizeof text), -1) << "end of file: the writer went away";
+    EXPECT_EQ(errno, EAGAIN);
+
+    ASSERT_TRUE(file.open(true));
+    ASSERT_TRUE(file.write("two\n", 4));
+    ASSERT_EQ(std::fflush(*file.get()), 0);
+    std::fill(std::begin(text), std::end(text), 0);
+    EXPECT_EQ(::read(reader, text, sizeof text), 4);
+    EXPECT_STREQ(text, "two\n");
+    ::close(reader);
 }
 
 // Two writers on one file (here in one process; another daemon alike): the second is refused naming the holder,
