@@ -111,5 +111,26 @@ TEST_P(Accepted, CheckConfigRenderAndRunAllAccept)
 INSTANTIATE_TEST_SUITE_P(Corpus, Accepted, ::testing::ValuesIn(rows("accepted")),
                          [](const auto &param) { return fs::path(param.param.path).stem().string(); });
 
+// "did you mean" and the problem list cost bounded work: an unknown key of 100 KB and 10000 unknown keys each get
+// an answer from check-config and run (no timing: that they return), in a bounded number of bounded lines.
+TEST(BoundedSuggestions, HugeAndManyUnknownKeysGetAShortAnswer)
+{
+    const std::string dir = scratchDir("bounded-suggestions");
+    std::string many = "[daemon]\n";
+    for (int i = 0; i < 10000; ++i)
+        many += "unknown_" + std::to_string(i) + " = 1\n";
+    writeFile(dir + "/huge_key.toml", "[daemon]\n" + std::string(100000, 'k') + " = 1\n");
+    writeFile(dir + "/many_keys.toml", many);
+    for (const std::string &name : {"huge_key.toml", "many_keys.toml"})
+        for (const std::string &args : {"check-config " + name, "run --config " + name + " --frames 1"}) {
+            SCOPED_TRACE(args);
+            const RunResult result = runOverlayd(args, dir);
+            EXPECT_FALSE(result.crashed);
+            EXPECT_EQ(result.exitStatus, 2) << result.all().substr(0, 2000);
+            EXPECT_LT(result.all().size(), 40000u) << result.all().substr(0, 2000); // 100 lines of < 300 bytes
+            EXPECT_NE(result.all().find(name + ":2:1: daemon."), std::string::npos) << result.all().substr(0, 2000);
+        }
+}
+
 } // namespace
 } // namespace overlayd::replay
