@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include "config/camera_request.h"
 #include "config/config_sections.h"
+#include "config/limits.h"
 
 namespace overlayd {
 
@@ -36,15 +38,38 @@ void checkFrameName(TableReader &table, std::string_view key, const std::string 
     table.problem(key, std::move(message));
 }
 
+// Each frame's scale and translation are in range, but a chain of them multiplies: 20 frames scaled by 1000 reach
+// 1e60, and a few more inf. The composed transform of each frame must stay within kMaxComposedMagnitude.
+void checkComposed(std::vector<TableReader> &tables, const std::vector<FrameSpec> &frames, const SceneGraph &graph)
+{
+    for (size_t i = 0; i < tables.size() && i < frames.size(); ++i) {
+        const auto world = graph.worldMatrix(frames[i].name);
+        if (!world)
+            continue;
+        double largest = 0.0;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                largest = std::isfinite((*world)[c][r]) ? std::max(largest, std::abs((*world)[c][r])) : INFINITY;
+        if (largest > kMaxComposedMagnitude) {
+            std::ostringstream got;
+            got << largest << "; at most " << kMaxComposedMagnitude << " is allowed";
+            tables[i].problemAtTable("its transform from the world (the product of its parents' scales and "
+                                     "translations and its own) reaches " +
+                                     got.str());
+            return; // its children would only repeat it
+        }
+    }
+}
+
 // Parents and annotation frames must name frames; the scene graph itself catches duplicates and cycles.
 std::optional<SceneGraph> checkFrames(TableReader &root, DaemonConfig &config)
 {
     const std::vector<std::string> names = frameNames(config.scene.frames);
-    std::vector<TableReader> frames = root.tables("frame");
+    std::vector<TableReader> frames = root.tables("frame", kMaxFrames, false); // readFrames reported the count
     for (size_t i = 0; i < frames.size() && i < config.scene.frames.size(); ++i)
         if (frames[i].has("parent"))
             checkFrameName(frames[i], "parent", config.scene.frames[i].parent, names);
-    std::vector<TableReader> annotations = root.tables("annotation");
+    std::vector<TableReader> annotations = root.tables("annotation", kMaxAnnotations, false);
     for (size_t i = 0; i < annotations.size() && i < config.scene.annotations.size(); ++i)
         if (annotations[i].has("frame"))
             checkFrameName(annotations[i], "frame", config.scene.annotations[i].frame, names);
@@ -54,6 +79,7 @@ std::optional<SceneGraph> checkFrames(TableReader &root, DaemonConfig &config)
         return std::nullopt;
     }
     config.scene.graph = *graph;
+    checkComposed(frames, config.scene.frames, *graph);
     return graph.value();
 }
 

@@ -125,15 +125,11 @@ void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpi
         if (std::find(layers.begin(), layers.end(), annotation.style.layer) == layers.end())
             layers.push_back(annotation.style.layer);
     std::vector<Claim> claims;
-    std::vector<TableReader> inputs = gpio->tables("input");
-    std::vector<TableReader> outputs = gpio->tables("output");
-    if (inputs.size() > gpio::kMaxInputs)
-        gpio->problem("input", "at most " + std::to_string(gpio::kMaxInputs) + " inputs");
-    if (outputs.size() > gpio::kMaxOutputs)
-        gpio->problem("output", "at most " + std::to_string(gpio::kMaxOutputs) + " outputs");
-    for (size_t i = 0; i < inputs.size() && i < gpio::kMaxInputs; ++i)
+    std::vector<TableReader> inputs = gpio->tables("input", gpio::kMaxInputs);
+    std::vector<TableReader> outputs = gpio->tables("output", gpio::kMaxOutputs);
+    for (size_t i = 0; i < inputs.size(); ++i)
         readInput(inputs[i], i, layers, claims, out.inputs.emplace_back());
-    for (size_t i = 0; i < outputs.size() && i < gpio::kMaxOutputs; ++i)
+    for (size_t i = 0; i < outputs.size(); ++i)
         readOutput(outputs[i], i, claims, out.outputs.emplace_back());
     gpio->finish();
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "config/limits.h"
 #include "overlay/shapes/scene_checks.h"
 
 namespace overlayd::config {
@@ -150,20 +151,20 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
     layout.bigEndian =
         table.choice<bool>("byte_order", {Order{"little-endian", false}, Order{"big-endian", true}}).value_or(false);
     layout.isSigned = table.boolean("signed").value_or(false);
-    layout.scale = table.number("scale").value_or(1.0);
+    layout.scale = table.number("scale", -kMaxCanValue, kMaxCanValue).value_or(1.0);
     if (layout.scale == 0.0)
         table.problem("scale", "a scale of 0 makes every value the offset");
-    layout.offset = table.number("offset").value_or(0.0);
+    layout.offset = table.number("offset", -kMaxCanValue, kMaxCanValue).value_or(0.0);
     if (haveStart)
         if (const std::string problem = inputs::canLayoutProblem(layout); !problem.empty())
             table.problem("start_bit", problem);
     out.unit = table.string("unit").value_or("");
-    out.min = table.number("min").value_or(out.min);
-    out.max = table.number("max").value_or(out.max);
+    out.min = table.number("min", -kMaxCanValue, kMaxCanValue).value_or(out.min);
+    out.max = table.number("max", -kMaxCanValue, kMaxCanValue).value_or(out.max);
     if (out.min >= out.max)
         table.problem("max", "max must be greater than min");
     out.timeoutMs = int(table.integer("timeout_ms", 1, inputs::kMaxCanTimeoutMs).value_or(out.timeoutMs));
-    out.step = table.number("step", 0.0).value_or(out.step);
+    out.step = table.number("step", 0.0, kMaxCanValue).value_or(out.step);
     out.decimals = int(table.integer("decimals", 0, 9).value_or(out.decimals));
     out.staleText = table.string("stale_text").value_or(out.staleText);
     if (out.staleText.size() > inputs::kMaxTextBytes)
@@ -184,24 +185,18 @@ void readInputs(TableReader &root, const std::string &baseDirectory, const Overl
         return;
     const std::vector<std::string> slots = textSlotNames(scene);
     std::vector<std::string> fed;
-    std::vector<TableReader> texts = input->tables("text");
-    if (texts.size() > inputs::kMaxTextInputs)
-        input->problem("text", "at most " + std::to_string(inputs::kMaxTextInputs) + " text inputs");
-    for (size_t i = 0; i < texts.size() && i < inputs::kMaxTextInputs; ++i)
+    std::vector<TableReader> texts = input->tables("text", inputs::kMaxTextInputs);
+    for (size_t i = 0; i < texts.size(); ++i)
         readTextInput(texts[i], baseDirectory, slots, fed, out.text.emplace_back());
-    std::vector<TableReader> paths = input->tables("path");
-    if (paths.size() > inputs::kMaxPathInputs)
-        input->problem("path", "at most " + std::to_string(inputs::kMaxPathInputs) + " path inputs");
+    std::vector<TableReader> paths = input->tables("path", inputs::kMaxPathInputs);
     std::vector<std::string> fedPaths;
-    for (size_t i = 0; i < paths.size() && i < inputs::kMaxPathInputs; ++i)
+    for (size_t i = 0; i < paths.size(); ++i)
         readPathInput(paths[i], baseDirectory, scene, fedPaths, out.paths.emplace_back());
     std::vector<std::string> fedByCan;
     for (const std::string &slot : fed)
         fedByCan.push_back("slot:" + slot);
-    std::vector<TableReader> cans = input->tables("can");
-    if (cans.size() > inputs::kMaxCanInputs)
-        input->problem("can", "at most " + std::to_string(inputs::kMaxCanInputs) + " CAN inputs");
-    for (size_t i = 0; i < cans.size() && i < inputs::kMaxCanInputs; ++i)
+    std::vector<TableReader> cans = input->tables("can", inputs::kMaxCanInputs);
+    for (size_t i = 0; i < cans.size(); ++i)
         readCanInput(cans[i], scene, slots, fedByCan, out.can.emplace_back());
     input->finish();
 }

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "config/calibration.h"
+#include "config/limits.h"
 
 namespace overlayd::config {
 
@@ -131,7 +132,7 @@ std::optional<double> readFar(TableReader &camera)
         camera.problem("far", "expected a distance in metres or \"inf\", got '" + text->get() + "'");
         return std::nullopt;
     }
-    return camera.positive("far");
+    return camera.positive("far", kMaxFar);
 }
 
 void readDistortion(TableReader &camera, Distortion &out, CameraKeys &keys)
@@ -148,7 +149,7 @@ void readDistortion(TableReader &camera, Distortion &out, CameraKeys &keys)
             table->problem("coefficients", "missing: a distortion model needs its coefficients");
         out = Distortion{*model, {}};
     }
-    if (auto coefficients = table->numbers("coefficients")) {
+    if (auto coefficients = table->numbers("coefficients", kMaxCoefficients)) {
         const size_t count = size_t(coefficientCount(out.model));
         if (coefficients->size() > count || (count == 0 && !coefficients->empty()))
             table->problem("coefficients", "model takes " + std::to_string(count) + " coefficients, got " +
@@ -215,11 +216,12 @@ void readViewport(TableReader &viewport, ViewportSpec &out)
     if (auto aspect = viewport.positive("pixel_aspect", 100.0))
         out.pixelAspect = *aspect;
     for (std::string_view key : {"window", "scissor"}) {
-        const auto rect = viewport.numbers(key);
+        // Each entry within +-kMaxViewportCoordinate: x + width and y + height stay far inside int.
+        const auto rect = viewport.numbers(key, 4, Range{-kMaxViewportCoordinate, kMaxViewportCoordinate});
         if (!rect)
             continue;
-        if (rect->size() != 4 || (*rect)[2] <= 0 || (*rect)[3] <= 0 || (*rect)[2] > 65536 || (*rect)[3] > 65536) {
-            viewport.problem(key, "expected [x, y, width, height] in pixels with a positive size");
+        if (rect->size() != 4 || (*rect)[2] < 1 || (*rect)[3] < 1) {
+            viewport.problem(key, "expected [x, y, width, height] in pixels with a size of at least 1");
             continue;
         }
         const PixelRect r{int((*rect)[0]), int((*rect)[1]), int((*rect)[2]), int((*rect)[3])};

@@ -17,6 +17,10 @@ namespace config {
 
 void Problems::add(unsigned line, unsigned column, std::string key, std::string message, std::string file)
 {
+    if (list_.size() >= kMaxListedProblems) {
+        ++unlisted_;
+        return;
+    }
     list_.push_back(
         ConfigProblem{file.empty() ? file_ : std::move(file), line, column, std::move(key), std::move(message)});
 }
@@ -27,7 +31,16 @@ std::vector<ConfigProblem> Problems::sorted() const
     std::stable_sort(out.begin(), out.end(), [](const ConfigProblem &a, const ConfigProblem &b) {
         return a.line != b.line ? a.line < b.line : a.column < b.column;
     });
+    if (unlisted_ > 0)
+        out.push_back(ConfigProblem{file_, 0, 0, "", std::to_string(unlisted_) + " more problem(s) not listed"});
     return out;
+}
+
+std::string shown(std::string_view name)
+{
+    if (name.size() <= kMaxShownBytes)
+        return std::string(name);
+    return std::string(name.substr(0, kMaxShownBytes)) + "...(" + std::to_string(name.size()) + " bytes)";
 }
 
 // Optimal string alignment distance: Levenshtein plus adjacent transpositions ("widht" is one edit from
@@ -52,17 +65,23 @@ size_t editDistance(std::string_view a, std::string_view b)
 
 std::string closestMatch(std::string_view word, const std::vector<std::string> &candidates)
 {
+    if (word.size() > kMaxSuggestedBytes)
+        return {};
+    // About a third of the word's letters (1 to 3 edits) may be wrong; beyond that a suggestion misleads.
+    const size_t allowed = std::clamp<size_t>((word.size() + 1) / 3, 1, 3);
     std::string best;
     size_t bestDistance = SIZE_MAX;
-    for (const std::string &candidate : candidates) {
+    for (size_t i = 0; i < candidates.size() && i < kMaxSuggestionCandidates; ++i) {
+        const std::string &candidate = candidates[i];
+        // Lengths further apart than `allowed` are that many edits apart at least: not worth comparing.
+        if (candidate.size() > word.size() + allowed || word.size() > candidate.size() + allowed)
+            continue;
         const size_t distance = editDistance(word, candidate);
         if (distance < bestDistance) {
             bestDistance = distance;
             best = candidate;
         }
     }
-    // About a third of the word's letters (1 to 3 edits) may be wrong; beyond that a suggestion misleads.
-    const size_t allowed = std::clamp<size_t>((word.size() + 1) / 3, 1, 3);
     return bestDistance <= allowed ? best : std::string();
 }
 

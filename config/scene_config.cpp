@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "config/limits.h"
+#include "overlay/shapes/scene_checks.h"
+
 namespace overlayd::config {
 
 namespace {
@@ -18,8 +21,8 @@ std::optional<glm::dvec3> readScale(TableReader &frame)
         scale = frame.vec3("scale");
     else if (auto uniform = frame.number("scale"))
         scale = glm::dvec3(*uniform);
-    if (scale && (scale->x == 0.0 || scale->y == 0.0 || scale->z == 0.0)) {
-        frame.problem("scale", "a frame's scale must not be zero on any axis");
+    if (scale && (std::abs(scale->x) < kMinScale || std::abs(scale->y) < kMinScale || std::abs(scale->z) < kMinScale)) {
+        frame.problem("scale", "a frame's scale must not be zero on any axis (at least 1e-06 in size)");
         return std::nullopt;
     }
     return scale;
@@ -47,13 +50,13 @@ std::optional<glm::dquat> readRotation(TableReader &table, std::string_view quat
 
 void readFrames(TableReader &root, std::vector<FrameSpec> &out)
 {
-    for (TableReader &frame : root.tables("frame")) {
+    for (TableReader &frame : root.tables("frame", kMaxFrames)) {
         FrameSpec spec;
-        if (auto name = frame.string("name"))
+        if (auto name = frame.string("name", kMaxNameBytes))
             spec.name = *name;
         else if (!frame.has("name"))
             frame.problem("name", "missing: every frame needs a name");
-        spec.parent = frame.string("parent").value_or(SceneGraph::kWorld);
+        spec.parent = frame.string("parent", kMaxNameBytes).value_or(SceneGraph::kWorld);
         if (auto translation = frame.vec3("translation"))
             spec.transform.translation = *translation;
         if (auto rotation = readRotation(frame, "rotation"))
@@ -73,20 +76,11 @@ std::optional<Style> readStyle(TableReader &style, const Style &base)
         out.colour = *colour;
     if (auto width = style.positive("width", 1000.0))
         out.width = *width;
-    if (auto dash = style.numbers("dash")) {
-        double total = 0.0, shortest = 0.0;
-        for (double length : *dash) {
-            total += length;
-            shortest = std::min(shortest, length);
-        }
-        if (!dash->empty() && (shortest < 0.0 || total <= 0.0))
-            style.problem("dash", "dash lengths must be >= 0 pixels and not all zero (use [] for solid)");
-        else
-            out.dash = *dash;
-    }
+    if (auto dash = style.numbers("dash", kMaxDashEntries, Range{0.0, 1e5})) // its period: checkAnnotation
+        out.dash = *dash;
     if (auto antialias = style.boolean("antialias"))
         out.antialias = *antialias;
-    if (auto layer = style.string("layer"))
+    if (auto layer = style.string("layer", kMaxNameBytes))
         out.layer = *layer;
     style.finish();
     return style.problems().size() == before ? std::optional(out) : std::nullopt;
@@ -95,10 +89,11 @@ std::optional<Style> readStyle(TableReader &style, const Style &base)
 void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out)
 {
     size_t index = 0;
-    for (TableReader &table : root.tables("annotation")) {
+    for (TableReader &table : root.tables("annotation", kMaxAnnotations)) {
+        const size_t before = table.problems().size();
         Annotation annotation;
-        annotation.name = table.string("name").value_or("annotation " + std::to_string(index++));
-        if (auto frame = table.string("frame"))
+        annotation.name = table.string("name", kMaxNameBytes).value_or("annotation " + std::to_string(index++));
+        if (auto frame = table.string("frame", kMaxNameBytes))
             annotation.frame = *frame;
         if (auto style = table.table("style"))
             annotation.style = readStyle(*style, Style{}).value_or(Style{});
@@ -109,6 +104,11 @@ void readAnnotations(TableReader &root, const std::string &baseDirectory, std::v
             table.problem("type", "missing: axes | grid | polyline | markers | box | arc | label | horizon | "
                                   "guide-lines | frustum | text | crosshair | rect");
         table.finish();
+        // The renderer's own rules, run here so that check-config refuses what run would, at the key; only for an
+        // annotation read without problems (a refused value was left at its default, and one report is enough).
+        if (table.problems().size() == before)
+            if (const auto problem = checkAnnotation(annotation))
+                table.problemAtPath(problem->key, problem->message);
         out.push_back(std::move(annotation));
     }
 }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 
+#include "config/limits.h"
+
 namespace overlayd::config {
 
 namespace {
@@ -47,8 +49,6 @@ Shape readGrid(TableReader &t)
         s.extentU = s.extentV = *extent;
     s.extentU = t.positive("extent_u", 1e6).value_or(s.extentU);
     s.extentV = t.positive("extent_v", 1e6).value_or(s.extentV);
-    if (s.extentU / s.spacing > 10000 || s.extentV / s.spacing > 10000)
-        t.problem("spacing", "more than 10000 grid lines per side: spacing too small for the extent");
     s.majorEvery = unsigned(t.integer("major_every", 0, 10000).value_or(0));
     if (auto major = t.table("major_style"))
         s.majorStyle = readStyle(*major, Style{});
@@ -58,7 +58,7 @@ Shape readGrid(TableReader &t)
 Shape readPolyline(TableReader &t)
 {
     PolylineShape s;
-    s.points = t.points("points").value_or(s.points);
+    s.points = t.points("points", kMaxWorldPoints).value_or(s.points);
     if (t.has("points") && s.points.size() < 2)
         t.problem("points", "a polyline needs at least 2 points");
     s.closed = t.boolean("closed").value_or(s.closed);
@@ -68,7 +68,7 @@ Shape readPolyline(TableReader &t)
 Shape readMarkers(TableReader &t)
 {
     MarkersShape s;
-    s.points = t.points("points").value_or(s.points);
+    s.points = t.points("points", kMaxWorldPoints).value_or(s.points);
     s.kind = t.choice<MarkerKind>("marker", {{"cross", MarkerKind::Cross},
                                              {"plus", MarkerKind::Plus},
                                              {"circle", MarkerKind::Circle},
@@ -104,7 +104,7 @@ Shape readLabel(TableReader &t)
 {
     LabelShape s;
     s.anchor = t.vec3("anchor").value_or(s.anchor);
-    s.text = t.string("text").value_or("");
+    s.text = t.string("text", kMaxTextBytes).value_or("");
     s.offsetPx = t.vec2("offset_px").value_or(s.offsetPx);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
@@ -127,7 +127,7 @@ Shape readGuideLines(TableReader &t)
     s.trackWidth = t.positive("track_width", 100).value_or(s.trackWidth);
     s.steeringDeg = t.number("steering_deg", -80, 80).value_or(s.steeringDeg);
     s.length = t.positive("length", 1000).value_or(s.length);
-    s.distanceMarks = t.numbers("distance_marks").value_or(s.distanceMarks);
+    s.distanceMarks = t.numbers("distance_marks", kMaxDistanceMarks, Range{0.0, 1000.0}).value_or(s.distanceMarks);
     s.markColours = t.colours("mark_colours").value_or(s.markColours);
     s.steeringRatio = t.positive("steering_ratio", 100).value_or(s.steeringRatio);
     s.staleColour = t.colour("stale_colour").value_or(s.staleColour);
@@ -137,7 +137,7 @@ Shape readGuideLines(TableReader &t)
 Shape readScreenText(TableReader &t)
 {
     ScreenTextShape s;
-    s.text = t.string("text").value_or("");
+    s.text = t.string("text", kMaxTextBytes).value_or("");
     s.position = t.vec2("position").value_or(s.position);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 
+#include "config/limits.h"
 #include "media/frame.h"
 #include "media/pixel_format.h"
 
@@ -195,8 +196,12 @@ void readDaemon(TableReader &root, DaemonSettings &out)
                                                             {"warning", LogLevel::Warning},
                                                             {"error", LogLevel::Error}}))
         out.logLevel = *level;
-    if (auto interval = daemon->number("stats_interval", 0.0, 86400.0))
-        out.statsIntervalSec = *interval;
+    if (auto interval = daemon->number("stats_interval", 0.0, 86400.0)) {
+        if (*interval != 0.0 && *interval < kMinStatsIntervalSec)
+            daemon->problem("stats_interval", "out of range: must be 0 (off) or in [0.1, 86400] s");
+        else
+            out.statsIntervalSec = *interval;
+    }
     daemon->finish();
 }
 
@@ -249,7 +254,9 @@ std::string outputIdentity(const std::string &path)
 void readSinks(TableReader &root, std::vector<SinkOptions> &out)
 {
     std::map<std::string, std::string> writers; // output identity -> the first sink's key, "sink[0].path"
-    for (TableReader &sink : root.tables("sink")) {
+    std::string holder;                         // the sink with zero_copy = "on", "sink[0].zero_copy"
+    for (TableReader &sink : root.tables("sink", kMaxSinks)) {
+        const size_t before = sink.problems().size();
         SinkOptions options;
         if (auto kind = sink.choice<SinkKind>("kind", {{"y4m", SinkKind::Y4m},
                                                        {"raw", SinkKind::Raw},
@@ -285,8 +292,17 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out)
             options.zeroCopy = *zeroCopy;
             if (options.kind != SinkKind::V4l2Output)
                 sink.problem("zero_copy", "only a kind = \"v4l2\" sink can take the capture buffers themselves");
+            else if (options.zeroCopy == ZeroCopy::On && !holder.empty())
+                sink.problem("zero_copy",
+                             "only one sink can hold the camera's buffers, and " + holder + " = \"on\" already does");
+            else if (options.zeroCopy == ZeroCopy::On)
+                holder = sink.keyPath("zero_copy");
         }
         sink.finish();
+        // What building the sink would refuse (run does it before the first frame), at the key.
+        if (sink.problems().size() == before)
+            if (const auto problem = checkSinkOptions(options))
+                sink.problem(problem->key, problem->message);
         out.push_back(std::move(options));
     }
 }

@@ -3,20 +3,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace overlayd::config {
 
 namespace {
 
-std::string show(double value)
+// Limits print short (1e+06); a value given prints with every digit a user may have typed (2147483000).
+std::string show(double value, int precision = 6)
 {
     std::ostringstream out;
-    out << value;
+    out << std::setprecision(precision) << value;
     return out.str();
 }
 
 } // namespace
+
+std::string Range::describe() const
+{
+    return (minOpen ? "(" : "[") + show(min) + ", " + show(max) + "]";
+}
 
 const char *typeName(const toml::node &node)
 {
@@ -81,7 +88,22 @@ void TableReader::problemAtTable(std::string message)
     problemAt(*table_, path_, std::move(message));
 }
 
-std::optional<double> TableReader::numberFrom(const toml::node &n, const std::string &path)
+void TableReader::problemAtPath(std::string_view dottedKey, std::string message)
+{
+    const toml::node *at = table_;
+    for (size_t begin = 0; at && begin <= dottedKey.size();) {
+        const size_t end = std::min(dottedKey.find('.', begin), dottedKey.size());
+        const toml::table *table = at->as_table();
+        const toml::node *next = table ? table->get(dottedKey.substr(begin, end - begin)) : nullptr;
+        if (!next)
+            break;
+        at = next;
+        begin = end + 1;
+    }
+    problemAt(*at, keyPath(dottedKey), std::move(message));
+}
+
+std::optional<double> TableReader::numberFrom(const toml::node &n, const std::string &path, Range range)
 {
     std::optional<double> value;
     if (const auto *i = n.as_integer())
@@ -92,8 +114,9 @@ std::optional<double> TableReader::numberFrom(const toml::node &n, const std::st
         problemAt(n, path, std::string("expected a number, got ") + typeName(n));
         return std::nullopt;
     }
-    if (!std::isfinite(*value)) {
-        problemAt(n, path, "must be a finite number (got " + show(*value) + ")");
+    // A large finite value is out of range like inf is: the message gives the range either way.
+    if (!range.contains(*value)) {
+        problemAt(n, path, "out of range: must be in " + range.describe() + " (got " + show(*value, 15) + ")");
         return std::nullopt;
     }
     return value;
@@ -102,28 +125,13 @@ std::optional<double> TableReader::numberFrom(const toml::node &n, const std::st
 std::optional<double> TableReader::number(std::string_view key, double min, double max)
 {
     const toml::node *n = node(key);
-    if (!n)
-        return std::nullopt;
-    const auto value = numberFrom(*n, keyPath(key));
-    if (value && (*value < min || *value > max)) {
-        problemAt(*n, keyPath(key),
-                  "out of range: must be in [" + show(min) + ", " + show(max) + "] (got " + show(*value) + ")");
-        return std::nullopt;
-    }
-    return value;
+    return n ? numberFrom(*n, keyPath(key), Range{min, max}) : std::nullopt;
 }
 
 std::optional<double> TableReader::positive(std::string_view key, double max)
 {
     const toml::node *n = node(key);
-    if (!n)
-        return std::nullopt;
-    const auto value = numberFrom(*n, keyPath(key));
-    if (value && (*value <= 0.0 || *value > max)) {
-        problemAt(*n, keyPath(key), "out of range: must be > 0 and <= " + show(max) + " (got " + show(*value) + ")");
-        return std::nullopt;
-    }
-    return value;
+    return n ? numberFrom(*n, keyPath(key), Range{0.0, max, true}) : std::nullopt;
 }
 
 std::optional<int64_t> TableReader::integer(std::string_view key, int64_t min, int64_t max)
@@ -156,13 +164,19 @@ std::optional<bool> TableReader::boolean(std::string_view key)
     return std::nullopt;
 }
 
-std::optional<std::string> TableReader::string(std::string_view key)
+std::optional<std::string> TableReader::string(std::string_view key, size_t maxBytes)
 {
     const toml::node *n = node(key);
     if (!n)
         return std::nullopt;
-    if (const auto *s = n->as_string())
-        return s->get();
+    if (const auto *s = n->as_string()) {
+        if (s->get().size() <= maxBytes)
+            return s->get();
+        problemAt(*n, keyPath(key),
+                  "too long: at most " + std::to_string(maxBytes) + " bytes (got " + std::to_string(s->get().size()) +
+                      ")");
+        return std::nullopt;
+    }
     problemAt(*n, keyPath(key), std::string("expected a string, got ") + typeName(*n));
     return std::nullopt;
 }
@@ -173,7 +187,7 @@ std::optional<std::string> TableReader::unmatchedChoice(std::string_view key, co
     for (const std::string &name : names)
         list += (list.empty() ? "" : " | ") + name;
     const std::string got = table_->get(key)->as_string()->get();
-    std::string message = "unknown value '" + got + "' (expected " + list + ")";
+    std::string message = "unknown value '" + shown(got) + "' (expected " + list + ")";
     if (const std::string guess = closestMatch(got, names); !guess.empty())
         message += "; did you mean '" + guess + "'?";
     problem(key, std::move(message));
@@ -191,11 +205,11 @@ void TableReader::finish()
     for (const auto &[key, value] : *table_) {
         if (std::find(known_.begin(), known_.end(), key.str()) != known_.end())
             continue;
-        std::string message = "unknown key '" + std::string(key.str()) + "'";
+        std::string message = "unknown key '" + shown(key.str()) + "'";
         if (const std::string guess = closestMatch(key.str(), known_); !guess.empty())
             message += "; did you mean '" + guess + "'?";
         const auto &begin = key.source().begin;
-        problems_->add(begin.line, begin.column, keyPath(key.str()), std::move(message));
+        problems_->add(begin.line, begin.column, keyPath(shown(key.str())), std::move(message));
     }
 }
 

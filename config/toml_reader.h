@@ -20,6 +20,23 @@
 
 namespace overlayd::config {
 
+// Every number a config gives must lie in a range; without a narrower one, this (metres of a position or a size,
+// pixels, coefficients): 1000 km. Beyond it a value is a typing mistake, and products of such values (a frame
+// chain, a projection) lose every digit or overflow to inf.
+inline constexpr double kMaxMagnitude = 1e6;
+
+// [min, max], or (min, max] when minOpen (sizes, fps, focal lengths: > 0).
+struct Range {
+    double min = -kMaxMagnitude;
+    double max = kMaxMagnitude;
+    bool minOpen = false;
+    bool contains(double value) const { return (minOpen ? value > min : value >= min) && value <= max; }
+    std::string describe() const;
+};
+inline constexpr Range kAnyMagnitude{};
+// The longest string without a narrower limit (paths: Linux's PATH_MAX).
+inline constexpr size_t kMaxStringBytes = 4096;
+
 class TableReader
 {
 public:
@@ -35,32 +52,40 @@ public:
     // A problem at the key (its value's position), or at the table when the key is absent.
     void problem(std::string_view key, std::string message);
     void problemAtTable(std::string message);
+    // At a dotted key path below this table ("style.dash"), or at the deepest table of it that exists.
+    void problemAtPath(std::string_view dottedKey, std::string message);
     void problemAt(const toml::node &at, const std::string &keyPath, std::string message);
 
     // Each returns nullopt when the key is absent, or (after recording a problem) when it is invalid.
-    // Numbers accept integers and floats and must be finite and within [min, max].
-    std::optional<double> number(std::string_view key, double min = -1e300, double max = 1e300);
-    // As number(), but > min (an open lower bound: sizes, fps, focal lengths).
-    std::optional<double> positive(std::string_view key, double max = 1e300);
+    // Numbers accept integers and floats and must lie within their range (which also keeps out inf and nan);
+    // vectors, lists and points check each entry against it.
+    std::optional<double> number(std::string_view key, double min = -kMaxMagnitude, double max = kMaxMagnitude);
+    // As number(), but > 0 (an open lower bound: sizes, fps, focal lengths).
+    std::optional<double> positive(std::string_view key, double max = kMaxMagnitude);
     std::optional<int64_t> integer(std::string_view key, int64_t min, int64_t max);
     std::optional<bool> boolean(std::string_view key);
-    std::optional<std::string> string(std::string_view key);
+    // At most maxBytes long.
+    std::optional<std::string> string(std::string_view key, size_t maxBytes = kMaxStringBytes);
     template<typename E>
     std::optional<E> choice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> names);
-    std::optional<glm::dvec2> vec2(std::string_view key) { return vector<glm::dvec2, 2>(key); }
-    std::optional<glm::dvec3> vec3(std::string_view key) { return vector<glm::dvec3, 3>(key); }
+    std::optional<glm::dvec2> vec2(std::string_view key, Range range = {}) { return vector<glm::dvec2, 2>(key, range); }
+    std::optional<glm::dvec3> vec3(std::string_view key, Range range = {}) { return vector<glm::dvec3, 3>(key, range); }
     // [w, x, y, z], normalized; a zero quaternion is refused.
     std::optional<glm::dquat> quaternion(std::string_view key);
-    std::optional<std::vector<double>> numbers(std::string_view key);
-    std::optional<std::vector<glm::dvec3>> points(std::string_view key);
+    // At most maxCount numbers (or points); the first one over is refused at its own position.
+    std::optional<std::vector<double>> numbers(std::string_view key, size_t maxCount, Range range = {});
+    std::optional<std::vector<glm::dvec3>> points(std::string_view key, size_t maxCount, Range range = {});
     // An array of at most maxCount strings.
     std::optional<std::vector<std::string>> strings(std::string_view key, size_t maxCount);
     // "#rrggbb", "#rrggbbaa", a colour name, or [r, g, b] / [r, g, b, a] with 0..255 entries.
     std::optional<Rgba> colour(std::string_view key);
     std::optional<std::vector<Rgba>> colours(std::string_view key);
     std::optional<TableReader> table(std::string_view key);
-    // [[key]] arrays of tables.
-    std::vector<TableReader> tables(std::string_view key);
+    // [[key]] arrays of tables: the first maxCount; one more is refused at its own [[key]] (when `report`: a
+    // section read twice reports once).
+    std::vector<TableReader> tables(std::string_view key, size_t maxCount, bool report = true);
+    // An array's entries beyond maxCount are refused at the first one over: false then.
+    bool withinCount(const toml::array &array, const std::string &path, size_t maxCount, const char *what);
 
     // Reports every key of the table that no reader asked about, suggesting the nearest known key.
     void finish();
@@ -69,8 +94,8 @@ public:
 
 private:
     template<typename V, int N>
-    std::optional<V> vector(std::string_view key);
-    std::optional<double> numberFrom(const toml::node &node, const std::string &path);
+    std::optional<V> vector(std::string_view key, Range range);
+    std::optional<double> numberFrom(const toml::node &node, const std::string &path, Range range);
     std::optional<Rgba> colourFrom(const toml::node &node, const std::string &path);
     std::optional<std::string> unmatchedChoice(std::string_view key, const std::vector<std::string> &names);
 
@@ -83,7 +108,7 @@ private:
 const char *typeName(const toml::node &node);
 
 template<typename V, int N>
-std::optional<V> TableReader::vector(std::string_view key)
+std::optional<V> TableReader::vector(std::string_view key, Range range)
 {
     const toml::node *n = node(key);
     if (!n)
@@ -95,7 +120,7 @@ std::optional<V> TableReader::vector(std::string_view key)
     }
     V out(0.0);
     for (int i = 0; i < N; ++i) {
-        const auto value = numberFrom(*array->get(size_t(i)), keyPath(key) + "[" + std::to_string(i) + "]");
+        const auto value = numberFrom(*array->get(size_t(i)), keyPath(key) + "[" + std::to_string(i) + "]", range);
         if (!value)
             return std::nullopt;
         out[i] = *value;

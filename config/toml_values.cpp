@@ -1,6 +1,8 @@
 // TableReader's compound values: quaternions, number lists, points, colours and nested tables.
 #include "config/toml_reader.h"
 
+#include "config/limits.h"
+
 #include <cctype>
 #include <string>
 
@@ -36,7 +38,7 @@ std::optional<Rgba> parseHexColour(std::string_view text)
 
 std::optional<glm::dquat> TableReader::quaternion(std::string_view key)
 {
-    const auto wxyz = vector<glm::dvec4, 4>(key);
+    const auto wxyz = vector<glm::dvec4, 4>(key, kAnyMagnitude);
     if (!wxyz)
         return std::nullopt;
     const glm::dquat q(wxyz->x, wxyz->y, wxyz->z, wxyz->w);
@@ -48,7 +50,17 @@ std::optional<glm::dquat> TableReader::quaternion(std::string_view key)
     return q / norm;
 }
 
-std::optional<std::vector<double>> TableReader::numbers(std::string_view key)
+bool TableReader::withinCount(const toml::array &array, const std::string &path, size_t maxCount, const char *what)
+{
+    if (array.size() <= maxCount)
+        return true;
+    problemAt(*array.get(maxCount), path + "[" + std::to_string(maxCount) + "]",
+              "too many " + std::string(what) + ": at most " + std::to_string(maxCount) + " (got " +
+                  std::to_string(array.size()) + ")");
+    return false;
+}
+
+std::optional<std::vector<double>> TableReader::numbers(std::string_view key, size_t maxCount, Range range)
 {
     const toml::node *n = node(key);
     if (!n)
@@ -58,9 +70,11 @@ std::optional<std::vector<double>> TableReader::numbers(std::string_view key)
         problemAt(*n, keyPath(key), std::string("expected an array of numbers, got ") + typeName(*n));
         return std::nullopt;
     }
+    if (!withinCount(*array, keyPath(key), maxCount, "numbers"))
+        return std::nullopt;
     std::vector<double> out;
     for (size_t i = 0; i < array->size(); ++i) {
-        const auto value = numberFrom(*array->get(i), keyPath(key) + "[" + std::to_string(i) + "]");
+        const auto value = numberFrom(*array->get(i), keyPath(key) + "[" + std::to_string(i) + "]", range);
         if (!value)
             return std::nullopt;
         out.push_back(*value);
@@ -96,7 +110,7 @@ std::optional<std::vector<std::string>> TableReader::strings(std::string_view ke
     return out;
 }
 
-std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key)
+std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key, size_t maxCount, Range range)
 {
     const toml::node *n = node(key);
     if (!n)
@@ -106,6 +120,8 @@ std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key)
         problemAt(*n, keyPath(key), std::string("expected an array of [x, y, z] points, got ") + typeName(*n));
         return std::nullopt;
     }
+    if (!withinCount(*array, keyPath(key), maxCount, "points"))
+        return std::nullopt;
     std::vector<glm::dvec3> out;
     for (size_t i = 0; i < array->size(); ++i) {
         const toml::node &element = *array->get(i);
@@ -117,7 +133,7 @@ std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key)
         }
         glm::dvec3 point(0.0);
         for (int c = 0; c < 3; ++c) {
-            const auto value = numberFrom(*xyz->get(size_t(c)), path + "[" + std::to_string(c) + "]");
+            const auto value = numberFrom(*xyz->get(size_t(c)), path + "[" + std::to_string(c) + "]", range);
             if (!value)
                 return std::nullopt;
             point[c] = *value;
@@ -171,6 +187,8 @@ std::optional<std::vector<Rgba>> TableReader::colours(std::string_view key)
         problemAt(*n, keyPath(key), std::string("expected an array of colours, got ") + typeName(*n));
         return std::nullopt;
     }
+    if (!withinCount(*array, keyPath(key), kMaxColours, "colours"))
+        return std::nullopt;
     std::vector<Rgba> out;
     for (size_t i = 0; i < array->size(); ++i) {
         const auto c = colourFrom(*array->get(i), keyPath(key) + "[" + std::to_string(i) + "]");
@@ -192,7 +210,7 @@ std::optional<TableReader> TableReader::table(std::string_view key)
     return std::nullopt;
 }
 
-std::vector<TableReader> TableReader::tables(std::string_view key)
+std::vector<TableReader> TableReader::tables(std::string_view key, size_t maxCount, bool report)
 {
     std::vector<TableReader> out;
     const toml::node *n = node(key);
@@ -203,7 +221,9 @@ std::vector<TableReader> TableReader::tables(std::string_view key)
         problemAt(*n, keyPath(key), std::string("expected [[") + std::string(key) + "]] tables, got " + typeName(*n));
         return out;
     }
-    for (size_t i = 0; i < array->size(); ++i) {
+    if (report)
+        withinCount(*array, keyPath(key), maxCount, ("[[" + keyPath(key) + "]] tables").c_str());
+    for (size_t i = 0; i < array->size() && i < maxCount; ++i) {
         const std::string path = keyPath(key) + "[" + std::to_string(i) + "]";
         if (const toml::table *t = array->get(i)->as_table())
             out.emplace_back(*t, path, *problems_);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "base/result.h"
@@ -37,6 +38,16 @@ struct SinkOptions {
     // Every field: a reload re-opens the sinks when any differs.
     bool operator==(const SinkOptions &) const = default;
 };
+
+// What is wrong with a sink's options, found without opening anything: `key` is the [[sink]] key it is about. The
+// config loader reports it at that key and makeSink() refuses the same, so check-config and run agree. Paths: a file
+// sink writes a file, a FIFO or a character device (/dev/null); an existing directory, block device or socket is
+// refused, and so is a path whose folder is not a folder.
+struct SinkProblem {
+    std::string key;
+    std::string message;
+};
+std::optional<SinkProblem> checkSinkOptions(const SinkOptions &options);
 
 Result<std::unique_ptr<FrameSink>> makeSink(const SinkOptions &options);
 

@@ -15,8 +15,10 @@ struct DashState {
     void next()
     {
         index = (index + 1) % pattern.size();
-        remaining = pattern[index];
+        remaining = lengthOf(index);
     }
+    // A negative or nan entry would walk backwards or stall: it counts as 0.
+    double lengthOf(size_t i) const { return pattern[i] > 0 ? pattern[i] : 0.0; }
 };
 
 void dashPolyline(std::span<const glm::dvec2> line, DashState state, Polylines &out)
@@ -48,8 +50,8 @@ void applyDash(const Polylines &in, std::span<const double> pattern, Polylines &
 {
     double total = 0;
     for (double length : pattern)
-        total += length > 0 ? length : 0;
-    const bool solid = pattern.empty() || total <= 0;
+        total += length > 0 ? length : 0;                               // a negative or nan entry adds nothing
+    const bool solid = pattern.empty() || !(total >= kMinDashPeriodPx); // nan too
     for (size_t i = 0; i < in.size(); ++i) {
         const auto line = in[i];
         if (line.empty())
@@ -60,7 +62,9 @@ void applyDash(const Polylines &in, std::span<const double> pattern, Polylines &
                 out.extend(line[j]);
             continue;
         }
-        dashPolyline(line, DashState{pattern, 0, pattern[0]}, out);
+        DashState state{pattern, 0, 0.0};
+        state.remaining = state.lengthOf(0);
+        dashPolyline(line, state, out);
     }
 }
 

@@ -54,32 +54,6 @@ INSTANTIATE_TEST_SUITE_P(
         return name.substr(0, name.find('.'));
     });
 
-// A refusal found while starting (not by the config loader) is still said before the exit: two sinks that both
-// insist on holding the camera's buffers.
-TEST(StartRefusal, IsLoggedBeforeExitingWithTheConfigStatus)
-{
-    const std::string dir = scratchDir("start-refusal");
-    writeFile(dir + "/two_zero_copy.toml", R"(
-[source]
-kind = "synthetic"
-format = "YUYV"
-width = 64
-height = 48
-[[sink]]
-kind = "v4l2"
-path = "/dev/video-a"
-zero_copy = "on"
-[[sink]]
-kind = "v4l2"
-path = "/dev/video-b"
-zero_copy = "on"
-)");
-    const RunResult run = runOverlayd("run --config two_zero_copy.toml --frames 2", dir);
-    EXPECT_FALSE(run.crashed) << run.all();
-    EXPECT_EQ(run.exitStatus, 2) << run.all();
-    EXPECT_NE(run.all().find("both have zero_copy = \"on\""), std::string::npos) << run.all();
-}
-
 TEST(TruncatedY4m, RenderStopsWithAnErrorNamingFileAndFrame)
 {
     const RunResult run =

@@ -65,8 +65,8 @@ TEST(BadConfig, OutOfRange)
 {
     const auto problems = loadBad("out_of_range.toml");
     EXPECT_PROBLEM(problems, 3, "source.width", "out of range");
-    EXPECT_PROBLEM(problems, 4, "source.fps", "must be > 0");
-    EXPECT_PROBLEM(problems, 7, "camera.position[1]", "finite");
+    EXPECT_PROBLEM(problems, 4, "source.fps", "must be in (0, 1000] (got 0)");
+    EXPECT_PROBLEM(problems, 7, "camera.position[1]", "must be in [-1e+06, 1e+06] (got nan)");
     EXPECT_PROBLEM(problems, 13, "sink[0].buffers", "out of range");
     EXPECT_EQ(problems.size(), 4u) << dump(problems);
 }

@@ -153,7 +153,9 @@ TEST_F(GpioConfig, InputsAreLimited)
     for (size_t i = 0; i <= gpio::kMaxInputs; ++i)
         text += "[[gpio.input]]\nchip = \"c\"\nline = " + std::to_string(i) + "\nshow_layers = [\"guides\"]\n";
     const auto problems = loadInvalid(text);
-    EXPECT_NE(test::formatProblems(problems).find("at most 32 inputs"), std::string::npos)
+    EXPECT_NE(
+        test::formatProblems(problems).find("gpio.input[32]: too many [[gpio.input]] tables: at most 32 (got 33)"),
+        std::string::npos)
         << test::formatProblems(problems);
 }
 

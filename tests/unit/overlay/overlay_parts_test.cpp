@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -65,6 +66,33 @@ TEST(Dash, PiecesFollowArcLength)
     EXPECT_EQ(out[4].back(), glm::dvec2(30, 40));
     // The dash that turns the corner (25-40 is off then on: 30-40 starts exactly at the corner).
     EXPECT_EQ(out[1].back(), glm::dvec2(25, 0));
+}
+
+// A pattern finer than kMinDashPeriodPx (a 1e-9 px dash along 1000 px would be 10^12 steps) is drawn solid, and
+// negative or nan entries (which would walk backwards or stall) count as 0: each returns, with a bounded output.
+TEST(Dash, PatternsThatWouldNeverEndAreBounded)
+{
+    Polylines line;
+    line.start({0, 0});
+    line.extend({1000, 0});
+    for (const std::vector<double> &pattern :
+         std::vector<std::vector<double>>{{1e-9, 1e-9}, {0.3, 0.3}, {-5, 2}, {std::nan(""), 1}, {0, 0}}) {
+        Polylines out;
+        applyDash(line, pattern, out);
+        EXPECT_LE(out.points.size(), 2100u) << pattern[0] << ", " << pattern[1];
+    }
+    Polylines solid;
+    const double fine[] = {1e-9, 1e-9};
+    applyDash(line, fine, solid);
+    ASSERT_EQ(solid.size(), 1u);
+    EXPECT_EQ(solid[0].front(), glm::dvec2(0, 0));
+    EXPECT_EQ(solid[0].back(), glm::dvec2(1000, 0));
+    // A negative "on" counts as 0: off 2 px, on 0 px, ... (a dot every 2 px, 500 of them along 1000 px).
+    Polylines dots;
+    const double negative[] = {-5, 2};
+    applyDash(line, negative, dots);
+    EXPECT_GE(dots.size(), 499u);
+    EXPECT_LE(dots.size(), 502u);
 }
 
 // With steering, each rear wheel runs on a circle about the turning centre (0, R), R = wheelbase / tan(steering);

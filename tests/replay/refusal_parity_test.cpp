@@ -1,0 +1,136 @@
+// check-config promises what run does: every config of tests/data/config/refusals/ is refused by check-config,
+// render and run alike, through the real binary, with the same "file:line:column: key: reason" line and exit
+// status 2; every config of tests/data/config/accepted/ is accepted by all three. A row is a file: its first line
+// says where it must be refused ("# refused at: LINE:COLUMN: KEY: REASON WORDS"), or nothing for an accepted one.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+
+#include <gtest/gtest.h>
+
+#include "harness.h"
+
+namespace overlayd::replay {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Row {
+    std::string path;    // the config, absolute
+    std::string refusal; // "LINE:COLUMN: KEY: WORDS" from its first line; empty: it must be accepted
+};
+
+void PrintTo(const Row &row, std::ostream *out)
+{
+    *out << fs::path(row.path).filename().string();
+}
+
+std::vector<Row> rows(const std::string &folder)
+{
+    std::vector<Row> out;
+    for (const auto &entry : fs::directory_iterator(std::string(OVERLAYD_SOURCE_DIR) + "/tests/data/config/" + folder))
+        if (entry.path().extension() == ".toml") {
+            std::ifstream in(entry.path());
+            std::string first;
+            std::getline(in, first);
+            const std::string marker = "# refused at: ";
+            out.push_back(Row{entry.path().string(), first.rfind(marker, 0) == 0 ? first.substr(marker.size()) : ""});
+        }
+    std::sort(out.begin(), out.end(), [](const Row &a, const Row &b) { return a.path < b.path; });
+    return out;
+}
+
+// The whole line of `text` that holds `part`, or empty.
+std::string lineWith(const std::string &text, const std::string &part)
+{
+    const size_t at = text.find(part);
+    if (at == std::string::npos)
+        return {};
+    const size_t begin = text.rfind('\n', at) == std::string::npos ? 0 : text.rfind('\n', at) + 1;
+    const size_t end = std::min(text.find('\n', at), text.size());
+    return text.substr(begin, end - begin);
+}
+
+// The problem line as check-config prints it ("PATH:LINE:COLUMN: KEY: reason"), from its position on.
+std::string problemFrom(const std::string &line, const std::string &path)
+{
+    const size_t at = line.find(path);
+    return at == std::string::npos ? line : line.substr(at);
+}
+
+struct Verdicts {
+    RunResult check, render, run;
+};
+
+Verdicts runAll(const Row &row)
+{
+    const std::string dir = scratchDir("parity-" + fs::path(row.path).stem().string());
+    return Verdicts{runOverlayd("check-config '" + row.path + "'", dir),
+                    runOverlayd("render --config '" + row.path + "' --frames 1 --output out.y4m", dir),
+                    runOverlayd("run --config '" + row.path + "' --frames 1", dir)};
+}
+
+class Refusals : public ::testing::TestWithParam<Row>
+{};
+
+TEST_P(Refusals, CheckConfigRenderAndRunRefuseWithTheSameLocatedProblem)
+{
+    const Row row = GetParam();
+    ASSERT_FALSE(row.refusal.empty()) << row.path << ": the first line must be '# refused at: LINE:COLUMN: KEY: ...'";
+    const Verdicts v = runAll(row);
+    const std::string expected = fs::path(row.path).filename().string() + ":" + row.refusal;
+    const std::string line = lineWith(v.check.out, expected);
+    ASSERT_FALSE(line.empty()) << "check-config does not say '" << expected << "':\n" << v.check.all();
+    const std::string problem = problemFrom(line, row.path);
+    for (const RunResult *result : {&v.check, &v.render, &v.run}) {
+        EXPECT_FALSE(result->crashed) << result->all();
+        EXPECT_EQ(result->exitStatus, 2) << result->all();
+        EXPECT_NE(result->all().find(problem), std::string::npos)
+            << "not the same problem as check-config's '" << problem << "':\n"
+            << result->all();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Refusals, ::testing::ValuesIn(rows("refusals")),
+                         [](const auto &param) { return fs::path(param.param.path).stem().string(); });
+
+// The sweep: what check-config accepts, run and render accept too (exit 0 after one frame).
+class Accepted : public ::testing::TestWithParam<Row>
+{};
+
+TEST_P(Accepted, CheckConfigRenderAndRunAllAccept)
+{
+    const Verdicts v = runAll(GetParam());
+    for (const RunResult *result : {&v.check, &v.render, &v.run}) {
+        EXPECT_FALSE(result->crashed) << result->all();
+        EXPECT_EQ(result->exitStatus, 0) << result->all();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Accepted, ::testing::ValuesIn(rows("accepted")),
+                         [](const auto &param) { return fs::path(param.param.path).stem().string(); });
+
+// "did you mean" and the problem list cost bounded work: an unknown key of 100 KB and 10000 unknown keys each get
+// an answer from check-config and run (no timing: that they return), in a bounded number of bounded lines.
+TEST(BoundedSuggestions, HugeAndManyUnknownKeysGetAShortAnswer)
+{
+    const std::string dir = scratchDir("bounded-suggestions");
+    std::string many = "[daemon]\n";
+    for (int i = 0; i < 10000; ++i)
+        many += "unknown_" + std::to_string(i) + " = 1\n";
+    writeFile(dir + "/huge_key.toml", "[daemon]\n" + std::string(100000, 'k') + " = 1\n");
+    writeFile(dir + "/many_keys.toml", many);
+    for (const std::string &name : {"huge_key.toml", "many_keys.toml"})
+        for (const std::string &args : {"check-config " + name, "run --config " + name + " --frames 1"}) {
+            SCOPED_TRACE(args);
+            const RunResult result = runOverlayd(args, dir);
+            EXPECT_FALSE(result.crashed);
+            EXPECT_EQ(result.exitStatus, 2) << result.all().substr(0, 2000);
+            EXPECT_LT(result.all().size(), 40000u) << result.all().substr(0, 2000); // 100 lines of < 300 bytes
+            EXPECT_NE(result.all().find(name + ":2:1: daemon."), std::string::npos) << result.all().substr(0, 2000);
+        }
+}
+
+} // namespace
+} // namespace overlayd::replay
