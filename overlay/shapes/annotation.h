@@ -24,6 +24,11 @@ namespace overlayd {
 
 inline constexpr Rgba kRed{255, 0, 0, 255}, kGreen{0, 255, 0, 255}, kBlue{0, 0, 255, 255}, kWhite{255, 255, 255, 255};
 
+// The shortest dash period (on + off + ...) in pixels: a finer pattern cannot be seen, and walking it would cost one
+// step per interval (a 1e-9 px dash along a 1000 px line is 10^12 steps). The config refuses a shorter one; the
+// renderer draws one it is given anyway as solid, so no scene can make it loop without end.
+inline constexpr double kMinDashPeriodPx = 1.0;
+
 struct Style {
     Rgba colour = kWhite;
     double width = 2.0;         // pixels, fractional allowed

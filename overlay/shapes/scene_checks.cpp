@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "overlay/raster/dash.h"
 #include "overlay/shapes/shape_builder.h"
 #include "overlay/shapes/text_tokens.h"
 

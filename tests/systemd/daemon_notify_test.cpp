@@ -195,7 +195,9 @@ TEST_F(DaemonNotifyTest, RefusedReloadSaysWhyInStatusWhileTheOldConfigStreams)
     while (refused && refused->fields()["STATUS"].find("reload refused") == std::string::npos)
         refused = waitFor("STATUS", 10s);
     ASSERT_TRUE(refused) << "no STATUS= saying the reload was refused";
-    EXPECT_NE(refused->fields()["STATUS"].find("missing.y4m"), std::string::npos) << refused->text;
+    // The loader finds the sink's path first (check-config would refuse it too), before any source is opened.
+    EXPECT_NE(refused->fields()["STATUS"].find("sink[0].path"), std::string::npos) << refused->text;
+    EXPECT_NE(refused->fields()["STATUS"].find("which is not a folder"), std::string::npos) << refused->text;
     EXPECT_TRUE(waitFor("READY", 10s)) << "no READY=1 after the refused reload";
     auto flowing = collect(1s);
     EXPECT_GE(count(flowing, "WATCHDOG"), 2u) << "frames should still flow from the old config";
