@@ -3,15 +3,27 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+
+#include "base/regular_file.h"
+#include "config/nesting_depth.h"
 
 namespace overlayd {
+
+namespace detail {
+
+Error calibrationError(const std::string &path, const std::string &what, unsigned line)
+{
+    return makeError(ErrorCode::Malformed,
+                     "calibration file " + path + (line > 0 ? ":" + std::to_string(line) : "") + ": " + what);
+}
+
+} // namespace detail
 
 namespace {
 
 Error malformed(const std::string &path, const std::string &what)
 {
-    return makeError(ErrorCode::Malformed, "calibration file '" + path + "': " + what);
+    return detail::calibrationError(path, what);
 }
 
 Result<DistortionModel> pickModel(const std::string &path, std::string_view model, size_t count)
@@ -67,18 +79,28 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
     return out;
 }
 
+Result<Calibration> loadCalibrationText(const std::string &path, const std::string &text)
+{
+    const std::string extension = std::filesystem::path(path).extension().string();
+    const bool xml = extension == ".xml" || text.starts_with("<?xml");
+    // cv::FileStorage recurses once per level and overflows the stack on a few thousand; yaml-cpp stops at its own
+    // limit with a message that does not say why ("bad file").
+    if (auto deep = config::findTooDeep(text, xml ? config::TextSyntax::Xml : config::TextSyntax::Yaml))
+        return detail::calibrationError(path,
+                                        "nested deeper than " + std::to_string(config::kMaxNestingDepth) +
+                                            " levels (a calibration file needs 3)",
+                                        deep->line);
+    if (xml || text.starts_with("%YAML:"))
+        return detail::loadOpenCvCalibration(path, text);
+    return detail::loadRosCalibration(path, text);
+}
+
 Result<Calibration> loadCalibration(const std::string &path)
 {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        return makeError(ErrorCode::NotFound, "calibration file '" + path + "' does not exist");
-    std::ifstream in(path);
-    std::string firstLine;
-    std::getline(in, firstLine);
-    const std::string extension = std::filesystem::path(path).extension().string();
-    if (extension == ".xml" || firstLine.rfind("%YAML:", 0) == 0 || firstLine.rfind("<?xml", 0) == 0)
-        return detail::loadOpenCvCalibration(path);
-    return detail::loadRosCalibration(path);
+    auto text = readRegularFile(path, kMaxCalibrationFileBytes);
+    if (!text)
+        return makeError(text.error().code, "calibration file " + path + " " + text.error().message);
+    return loadCalibrationText(path, *text);
 }
 
 } // namespace overlayd

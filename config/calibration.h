@@ -17,11 +17,23 @@ struct Calibration {
     Distortion distortion{};
 };
 
+// A calibration file is a few hundred bytes; anything near this is not one.
+inline constexpr size_t kMaxCalibrationFileBytes = 1u << 20;
+// Distortion coefficient counts OpenCV's calibrateCamera writes (k1 k2 p1 p2 [k3 [k4 k5 k6 [s1..s4 [tx ty]]]]).
+inline constexpr size_t kOpenCvCoefficientCounts[] = {4, 5, 8, 12, 14};
+inline constexpr size_t kMaxCoefficients = 14;
+
 // Reads `path`: .xml, or YAML starting with OpenCV's "%YAML:1.0" header, through cv::FileStorage (camera_matrix,
 // distortion_coefficients, image_width, image_height, optional distortion_model); other YAML as ROS camera_info
-// (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients). NotFound for a missing
-// file, Malformed (naming the file and the field) for anything that does not parse. Never throws.
+// (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients). The file must be a regular
+// file of at most kMaxCalibrationFileBytes, nest at most config::kMaxNestingDepth levels and name no key twice in a
+// mapping; each matrix's declared size is checked against what the field needs before its data is read. NotFound
+// for a missing file, Malformed (naming the file, the line where it can and the field) for anything that does not
+// parse, InvalidArgument or Io (naming the file) for what is not a calibration file at all. Never throws.
 Result<Calibration> loadCalibration(const std::string &path);
+// The same for a file's text already read (the fuzz target); `path` names it in messages and its extension (.xml)
+// picks the reader as the content does.
+Result<Calibration> loadCalibrationText(const std::string &path, const std::string &text);
 
 // Shared by both readers: checks a row-major 3x3 camera matrix and picks the distortion model. `model` is a ROS
 // name (plumb_bob | rational_polynomial | equidistant, also fisheye) or empty to infer it from the count.
@@ -30,8 +42,12 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
                                     int height);
 
 namespace detail {
-Result<Calibration> loadOpenCvCalibration(const std::string &path);
-Result<Calibration> loadRosCalibration(const std::string &path);
+// `text` is the file's content, already checked for size and depth.
+Result<Calibration> loadOpenCvCalibration(const std::string &path, const std::string &text);
+Result<Calibration> loadRosCalibration(const std::string &path, const std::string &text);
+
+// "calibration file PATH: what", and "calibration file PATH:LINE: what" when line (1-based) is known.
+Error calibrationError(const std::string &path, const std::string &what, unsigned line = 0);
 } // namespace detail
 
 } // namespace overlayd

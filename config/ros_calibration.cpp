@@ -1,5 +1,8 @@
 // ROS camera_info YAML (camera_calibration's output), read with yaml-cpp: cv::FileStorage needs OpenCV's header.
+// Every refusal names the line (yaml-cpp's marks count from 0).
 #include "config/calibration.h"
+
+#include <map>
 
 #include <yaml-cpp/yaml.h>
 
@@ -7,50 +10,111 @@ namespace overlayd::detail {
 
 namespace {
 
-Error malformed(const std::string &path, const std::string &what)
+unsigned lineOf(const YAML::Node &node)
 {
-    return makeError(ErrorCode::Malformed, "calibration file '" + path + "': " + what);
+    return node.Mark().line >= 0 ? unsigned(node.Mark().line + 1) : 0;
 }
 
-// A ROS matrix: {rows, cols, data: [...]}, row-major.
-std::vector<double> matrixData(const YAML::Node &node)
+class Reader
 {
-    const YAML::Node data = node["data"];
-    if (!data || !data.IsSequence())
-        return {};
-    return data.as<std::vector<double>>();
-}
+public:
+    explicit Reader(const std::string &path) : path_(path) {}
 
-Result<Calibration> read(const std::string &path, const YAML::Node &root)
-{
-    if (!root.IsMap())
-        return malformed(path, "not a YAML mapping");
-    if (!root["camera_matrix"])
-        return malformed(path, "no camera_matrix");
-    const std::vector<double> k = matrixData(root["camera_matrix"]);
-    if (k.size() != 9)
-        return malformed(path, "camera_matrix.data must hold 9 numbers");
-    std::array<double, 9> matrix{};
-    std::copy(k.begin(), k.end(), matrix.begin());
-    std::vector<double> coefficients;
-    if (root["distortion_coefficients"])
-        coefficients = matrixData(root["distortion_coefficients"]);
-    if (!root["image_width"] || !root["image_height"])
-        return malformed(path, "image_width and image_height are required");
-    const std::string model = root["distortion_model"] ? root["distortion_model"].as<std::string>() : "";
-    return makeCalibration(path, matrix, coefficients, model, root["image_width"].as<int>(),
-                           root["image_height"].as<int>());
-}
+    Error error(const YAML::Node &at, const std::string &what) const
+    {
+        return calibrationError(path_, what, lineOf(at));
+    }
+
+    // yaml-cpp keeps both entries of a key given twice and answers with the first: refused, in every mapping.
+    Status checkDuplicates(const YAML::Node &node) const
+    {
+        if (node.IsSequence())
+            for (const YAML::Node &item : node)
+                if (auto nested = checkDuplicates(item); !nested)
+                    return nested; // depth is bounded by the pre-scan
+        if (!node.IsMap())
+            return Ok{};
+        std::map<std::string, unsigned> seen;
+        for (const auto &entry : node) {
+            const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "";
+            if (const auto [it, fresh] = seen.emplace(key, lineOf(entry.first)); !fresh)
+                return error(entry.first,
+                             "'" + key + "' given twice (first on line " + std::to_string(it->second) + ")");
+            if (auto nested = checkDuplicates(entry.second); !nested)
+                return nested;
+        }
+        return Ok{};
+    }
+
+    // A ROS matrix: {rows, cols, data: [...]}, row-major; rows and cols, when given, must agree with the data.
+    Result<std::vector<double>> matrix(const YAML::Node &root, const std::string &key) const
+    {
+        const YAML::Node node = root[key];
+        if (!node.IsMap())
+            return error(node, key + ": expected {rows, cols, data: [...]}");
+        const YAML::Node data = node["data"];
+        if (!data || !data.IsSequence())
+            return error(data ? data : node, key + ".data: expected a list of numbers");
+        std::vector<double> values;
+        for (const YAML::Node &value : data) {
+            if (!value.IsScalar())
+                return error(value, key + ".data: expected a list of numbers");
+            values.push_back(value.as<double>());
+        }
+        const YAML::Node rows = node["rows"], cols = node["cols"];
+        if (rows && cols && size_t(rows.as<int>()) * size_t(cols.as<int>()) != values.size())
+            return error(rows, key + ": rows x cols = " + rows.Scalar() + "x" + cols.Scalar() + ", but data holds " +
+                                   std::to_string(values.size()) + " numbers");
+        return values;
+    }
+
+    Result<Calibration> read(const YAML::Node &root) const
+    {
+        if (!root.IsMap())
+            return calibrationError(path_, "not a YAML mapping");
+        if (auto unique = checkDuplicates(root); !unique)
+            return unique.error();
+        if (!root["camera_matrix"])
+            return calibrationError(path_, "no camera_matrix");
+        auto k = matrix(root, "camera_matrix");
+        if (!k)
+            return k.error();
+        if (k->size() != 9)
+            return error(root["camera_matrix"]["data"],
+                         "camera_matrix.data must hold 9 numbers (3x3), got " + std::to_string(k->size()));
+        std::array<double, 9> camera{};
+        std::copy(k->begin(), k->end(), camera.begin());
+        std::vector<double> coefficients;
+        if (root["distortion_coefficients"]) {
+            auto d = matrix(root, "distortion_coefficients");
+            if (!d)
+                return d.error();
+            if (d->size() > kMaxCoefficients)
+                return error(root["distortion_coefficients"]["data"],
+                             "distortion_coefficients.data holds " + std::to_string(d->size()) + " numbers; at most " +
+                                 std::to_string(kMaxCoefficients));
+            coefficients = std::move(*d);
+        }
+        if (!root["image_width"] || !root["image_height"])
+            return calibrationError(path_, "image_width and image_height are required");
+        const std::string model = root["distortion_model"] ? root["distortion_model"].as<std::string>() : "";
+        return makeCalibration(path_, camera, coefficients, model, root["image_width"].as<int>(),
+                               root["image_height"].as<int>());
+    }
+
+private:
+    const std::string &path_;
+};
 
 } // namespace
 
-Result<Calibration> loadRosCalibration(const std::string &path)
+Result<Calibration> loadRosCalibration(const std::string &path, const std::string &text)
 {
     // yaml-cpp throws on syntax errors and on values of the wrong type; nothing may escape the loader.
     try {
-        return read(path, YAML::LoadFile(path));
+        return Reader(path).read(YAML::Load(text));
     } catch (const YAML::Exception &e) {
-        return malformed(path, "does not parse (line " + std::to_string(e.mark.line + 1) + ": " + e.msg + ")");
+        return calibrationError(path, "does not parse (" + e.msg + ")", unsigned(e.mark.line + 1));
     }
 }
 
