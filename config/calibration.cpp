@@ -1,6 +1,7 @@
 // Calibration import: picks the reader for a file and turns its camera matrix and coefficients into our types.
 #include "config/calibration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -81,6 +82,10 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
 
 Result<Calibration> loadCalibrationText(const std::string &path, const std::string &text)
 {
+    // cv::FileStorage reads the text as C strings and crashes (SIGSEGV) on a NUL byte in an XML file.
+    if (const size_t nul = text.find('\0'); nul != std::string::npos)
+        return detail::calibrationError(path, "holds a NUL byte: not a text file",
+                                        unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
     const std::string extension = std::filesystem::path(path).extension().string();
     const bool xml = extension == ".xml" || text.starts_with("<?xml");
     // cv::FileStorage recurses once per level and overflows the stack on a few thousand; yaml-cpp stops at its own

@@ -132,7 +132,8 @@ private:
 
 Result<Calibration> loadOpenCvCalibration(const std::string &path, const std::string &text)
 {
-    // cv::FileStorage throws cv::Exception on syntax errors; nothing may escape the loader.
+    // cv::FileStorage throws cv::Exception on syntax errors, and std::length_error on some (a key that is empty, as
+    // "   : 1280" in a mapping is); nothing may escape the loader.
     try {
         cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
         if (!fs.isOpened())
@@ -140,6 +141,8 @@ Result<Calibration> loadOpenCvCalibration(const std::string &path, const std::st
         return Reader(path, text).read(fs);
     } catch (const cv::Exception &e) {
         return calibrationError(path, "does not parse (" + e.msg + ")");
+    } catch (const std::exception &e) {
+        return calibrationError(path, std::string("does not parse (") + e.what() + ")");
     }
 }
 

@@ -115,6 +115,8 @@ Result<Calibration> loadRosCalibration(const std::string &path, const std::strin
         return Reader(path).read(YAML::Load(text));
     } catch (const YAML::Exception &e) {
         return calibrationError(path, "does not parse (" + e.msg + ")", unsigned(e.mark.line + 1));
+    } catch (const std::exception &e) { // from the standard library underneath (bad_alloc, length_error)
+        return calibrationError(path, std::string("does not parse (") + e.what() + ")");
     }
 }
 

@@ -200,5 +200,20 @@ TEST_F(CalibrationLimitsTest, AKeyGivenTwiceIsRefusedAtItsSecondLine)
         << message;
 }
 
+// Found by tests/fuzz/calibration_fuzz (kept there as seeds): cv::FileStorage crashed (SIGSEGV) on a NUL byte in an
+// XML file, and threw std::length_error, which escaped the loader (std::terminate), on an empty key in a mapping.
+TEST_F(CalibrationLimitsTest, InputsThatCrashedOpenCvAreRefused)
+{
+    const char nul[] = "<?xml version=\"1.0\"?>\n<opencv_storage>\n<a>\0\0\0</a>\n</opencv_storage>\n";
+    std::string message = refusal(write("nul.xml", std::string(nul, sizeof nul - 1)));
+    EXPECT_NE(message.find("nul.xml:3: holds a NUL byte"), std::string::npos) << message;
+    std::ifstream seed(std::string(OVERLAYD_SOURCE_DIR) + "/tests/fuzz/calibration_seeds/regression_empty_key.yaml",
+                       std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(seed)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(text.empty());
+    message = refusal(write("empty_key.yaml", text));
+    EXPECT_NE(message.find("does not parse"), std::string::npos) << message;
+}
+
 } // namespace
 } // namespace overlayd::test
