@@ -18,6 +18,29 @@ Error calibrationError(const std::string &path, const std::string &what, unsigne
                      "calibration file " + path + (line > 0 ? ":" + std::to_string(line) : "") + ": " + what);
 }
 
+std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &matrix)
+{
+    if (!matrix.isMap)
+        return "not an opencv-matrix (rows, cols, dt, data)";
+    if (!matrix.rows || !matrix.cols)
+        return "rows and cols must be integers";
+    const long long rows = *matrix.rows, cols = *matrix.cols;
+    const std::string size = std::to_string(rows) + "x" + std::to_string(cols);
+    if (field == "camera_matrix" && (rows != 3 || cols != 3))
+        return size + "; it must be 3x3";
+    const long long n = rows == 1 ? cols : cols == 1 ? rows : 0;
+    if (field != "camera_matrix" && std::find(std::begin(kOpenCvCoefficientCounts), std::end(kOpenCvCoefficientCounts),
+                                              size_t(std::max(n, 0LL))) == std::end(kOpenCvCoefficientCounts))
+        return size + "; it must be 1xN or Nx1 with N = 4, 5, 8, 12 or 14";
+    // One letter is one channel; "2d", "3f" ... interleave channels that a calibration does not have.
+    if (!matrix.dt || matrix.dt->size() != 1 || std::string_view("ucwsifdh").find(*matrix.dt) == std::string::npos)
+        return "dt must be one single-channel type (u, c, w, s, i, f, d, h), got '" + matrix.dt.value_or("") + "'";
+    if (matrix.count != size_t(rows * cols))
+        return "data must hold rows x cols = " + std::to_string(rows * cols) + " numbers, got " +
+               std::to_string(matrix.count.value_or(0));
+    return {};
+}
+
 } // namespace detail
 
 namespace {
@@ -87,7 +110,9 @@ Result<Calibration> loadCalibrationText(const std::string &path, const std::stri
         return detail::calibrationError(path, "holds a NUL byte: not a text file",
                                         unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
     const std::string extension = std::filesystem::path(path).extension().string();
-    const bool xml = extension == ".xml" || text.starts_with("<?xml");
+    // The content decides first: OpenCV's YAML header, then an XML declaration or the .xml name.
+    const bool openCvYaml = text.starts_with("%YAML:");
+    const bool xml = !openCvYaml && (extension == ".xml" || text.starts_with("<?xml"));
     // cv::FileStorage recurses once per level and overflows the stack on a few thousand; yaml-cpp stops at its own
     // limit with a message that does not say why ("bad file").
     if (auto deep = config::findTooDeep(text, xml ? config::TextSyntax::Xml : config::TextSyntax::Yaml))
@@ -95,9 +120,9 @@ Result<Calibration> loadCalibrationText(const std::string &path, const std::stri
                                         "nested deeper than " + std::to_string(config::kMaxNestingDepth) +
                                             " levels (a calibration file needs 3)",
                                         deep->line);
-    if (xml || text.starts_with("%YAML:"))
-        return detail::loadOpenCvCalibration(path, text);
-    return detail::loadRosCalibration(path, text);
+    if (xml)
+        return detail::loadOpenCvXmlCalibration(path, text);
+    return detail::loadYamlCalibration(path, text, openCvYaml);
 }
 
 Result<Calibration> loadCalibration(const std::string &path)

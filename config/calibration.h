@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,9 +43,22 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
                                     int height);
 
 namespace detail {
-// `text` is the file's content, already checked for size and depth.
-Result<Calibration> loadOpenCvCalibration(const std::string &path, const std::string &text);
-Result<Calibration> loadRosCalibration(const std::string &path, const std::string &text);
+// `text` is the file's content, already checked for size and depth. OpenCV's XML goes through cv::FileStorage;
+// YAML, OpenCV's (%YAML:1.0) and ROS's, through yaml-cpp, whose marks give every refusal its line (and which, unlike
+// cv::FileStorage's YAML parser, does not loop forever on some malformed files).
+Result<Calibration> loadOpenCvXmlCalibration(const std::string &path, const std::string &text);
+Result<Calibration> loadYamlCalibration(const std::string &path, const std::string &text, bool openCv);
+
+// What an opencv-matrix declares, as either parser saw it, before its data is read.
+struct DeclaredMatrix {
+    bool isMap = false;
+    std::optional<long long> rows, cols; // nullopt when not an integer
+    std::optional<std::string> dt;       // nullopt when not a string
+    std::optional<size_t> count;         // entries in data; nullopt when data is not a list
+};
+// What is wrong with the matrix declared for `field` ("camera_matrix": 3x3; "distortion_coefficients": 1xN or
+// Nx1, N one of kOpenCvCoefficientCounts; one channel; data rows x cols long), "" when nothing.
+std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &matrix);
 
 // "calibration file PATH: what", and "calibration file PATH:LINE: what" when line (1-based) is known.
 Error calibrationError(const std::string &path, const std::string &what, unsigned line = 0);

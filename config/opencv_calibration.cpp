@@ -1,6 +1,6 @@
-// OpenCV calibration files (what calibrateCamera samples write), read through cv::FileStorage. Matrices are read
-// field by field rather than with `>> cv::Mat`, which allocates whatever rows x cols the file declares before it
-// looks at the data: the declared size is checked against what the field needs first.
+// OpenCV calibration files in XML (what calibrateCamera samples write with a .xml name), read through cv::FileStorage.
+// Matrices are read field by field rather than with `>> cv::Mat`, which allocates whatever rows x cols the file
+// declares before it looks at the data: the declared size is checked against what the field needs first.
 #include "config/calibration.h"
 
 #include <algorithm>
@@ -58,29 +58,24 @@ public:
         return Ok{};
     }
 
-    // An opencv-matrix {rows, cols, dt, data} whose size `fits`, read row-major as doubles.
-    template<typename Fits>
-    Result<std::vector<double>> matrix(const cv::FileNode &root, const std::string &key, Fits fits,
-                                       const std::string &needed) const
+    // An opencv-matrix {rows, cols, dt, data}, its declaration checked first, read row-major as doubles.
+    Result<std::vector<double>> matrix(const cv::FileNode &root, const std::string &key) const
     {
         const cv::FileNode node = root[key];
-        if (!node.isMap())
-            return error(key, "not an opencv-matrix (rows, cols, dt, data)");
-        const cv::FileNode rows = node["rows"], cols = node["cols"], dt = node["dt"], data = node["data"];
-        if (!rows.isInt() || !cols.isInt())
-            return error(key, "rows and cols must be integers");
-        if (!fits(int(rows), int(cols)))
-            return error(key, std::to_string(int(rows)) + "x" + std::to_string(int(cols)) + "; " + needed);
-        // One letter is one channel; "2d", "3f" ... interleave channels that a calibration does not have.
-        if (!dt.isString() || std::string(dt).size() != 1 ||
-            std::string("ucwsifdh").find(std::string(dt)) == std::string::npos)
-            return error(key, "dt must be one single-channel type (u, c, w, s, i, f, d, h), got '" +
-                                  (dt.isString() ? std::string(dt) : std::string()) + "'");
-        const size_t count = size_t(int(rows)) * size_t(int(cols));
-        if (!data.isSeq() || data.size() != count)
-            return error(key, "data must hold rows x cols = " + std::to_string(count) + " numbers, got " +
-                                  std::to_string(data.isSeq() ? data.size() : 0));
+        DeclaredMatrix declared{node.isMap()};
+        if (declared.isMap) {
+            const cv::FileNode rows = node["rows"], cols = node["cols"], dt = node["dt"], data = node["data"];
+            if (rows.isInt() && cols.isInt())
+                declared.rows = int(rows), declared.cols = int(cols);
+            if (dt.isString())
+                declared.dt = std::string(dt);
+            if (data.isSeq())
+                declared.count = data.size();
+        }
+        if (const std::string problem = openCvMatrixProblem(key, declared); !problem.empty())
+            return error(key, problem);
         std::vector<double> values;
+        const cv::FileNode data = node["data"];
         for (auto it = data.begin(); it != data.end(); ++it) {
             if (!(*it).isReal() && !(*it).isInt())
                 return error(key, "data holds something that is not a number");
@@ -95,21 +90,14 @@ public:
             return unique.error();
         if (fs["camera_matrix"].empty())
             return calibrationError(path_, "no camera_matrix");
-        auto k = matrix(
-            fs.root(), "camera_matrix", [](int r, int c) { return r == 3 && c == 3; }, "it must be 3x3");
+        auto k = matrix(fs.root(), "camera_matrix");
         if (!k)
             return k.error();
         std::array<double, 9> camera{};
         std::copy(k->begin(), k->end(), camera.begin());
         std::vector<double> coefficients;
         if (!fs["distortion_coefficients"].empty()) {
-            const auto counted = [](int r, int c) {
-                const auto &counts = kOpenCvCoefficientCounts;
-                const int n = r == 1 ? c : c == 1 ? r : 0;
-                return std::find(std::begin(counts), std::end(counts), size_t(std::max(n, 0))) != std::end(counts);
-            };
-            auto d = matrix(fs.root(), "distortion_coefficients", counted,
-                            "it must be 1xN or Nx1 with N = 4, 5, 8, 12 or 14");
+            auto d = matrix(fs.root(), "distortion_coefficients");
             if (!d)
                 return d.error();
             coefficients = std::move(*d);
@@ -130,12 +118,13 @@ private:
 
 } // namespace
 
-Result<Calibration> loadOpenCvCalibration(const std::string &path, const std::string &text)
+Result<Calibration> loadOpenCvXmlCalibration(const std::string &path, const std::string &text)
 {
     // cv::FileStorage throws cv::Exception on syntax errors, and std::length_error on some (a key that is empty, as
     // "   : 1280" in a mapping is); nothing may escape the loader.
     try {
-        cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+        // FORMAT_XML: never its YAML parser (it loops forever on some files), whatever the text looks like.
+        cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_XML);
         if (!fs.isOpened())
             return calibrationError(path, "cv::FileStorage cannot read it");
         return Reader(path, text).read(fs);

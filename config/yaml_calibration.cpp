@@ -1,5 +1,7 @@
-// ROS camera_info YAML (camera_calibration's output), read with yaml-cpp: cv::FileStorage needs OpenCV's header.
-// Every refusal names the line (yaml-cpp's marks count from 0).
+// Calibration YAML read with yaml-cpp: ROS camera_info (camera_calibration's output) and OpenCV's own (%YAML:1.0,
+// !!opencv-matrix), whose header line yaml-cpp does not know and sees as a comment. Not cv::FileStorage for the
+// latter: its YAML parser loops forever on some malformed files (found by tests/fuzz/calibration_fuzz) and knows no
+// line numbers. Every refusal names the line (yaml-cpp's marks count from 0).
 #include "config/calibration.h"
 
 #include <map>
@@ -18,7 +20,7 @@ unsigned lineOf(const YAML::Node &node)
 class Reader
 {
 public:
-    explicit Reader(const std::string &path) : path_(path) {}
+    Reader(const std::string &path, bool openCv) : path_(path), openCv_(openCv) {}
 
     Error error(const YAML::Node &at, const std::string &what) const
     {
@@ -46,8 +48,19 @@ public:
         return Ok{};
     }
 
+    Result<std::vector<double>> numbers(const YAML::Node &data, const std::string &key) const
+    {
+        std::vector<double> values;
+        for (const YAML::Node &value : data) {
+            if (!value.IsScalar())
+                return error(value, key + ".data: expected a list of numbers");
+            values.push_back(value.as<double>());
+        }
+        return values;
+    }
+
     // A ROS matrix: {rows, cols, data: [...]}, row-major; rows and cols, when given, must agree with the data.
-    Result<std::vector<double>> matrix(const YAML::Node &root, const std::string &key) const
+    Result<std::vector<double>> rosMatrix(const YAML::Node &root, const std::string &key) const
     {
         const YAML::Node node = root[key];
         if (!node.IsMap())
@@ -55,17 +68,45 @@ public:
         const YAML::Node data = node["data"];
         if (!data || !data.IsSequence())
             return error(data ? data : node, key + ".data: expected a list of numbers");
-        std::vector<double> values;
-        for (const YAML::Node &value : data) {
-            if (!value.IsScalar())
-                return error(value, key + ".data: expected a list of numbers");
-            values.push_back(value.as<double>());
-        }
+        auto values = numbers(data, key);
         const YAML::Node rows = node["rows"], cols = node["cols"];
-        if (rows && cols && size_t(rows.as<int>()) * size_t(cols.as<int>()) != values.size())
+        if (values && rows && cols && size_t(rows.as<int>()) * size_t(cols.as<int>()) != values->size())
             return error(rows, key + ": rows x cols = " + rows.Scalar() + "x" + cols.Scalar() + ", but data holds " +
-                                   std::to_string(values.size()) + " numbers");
+                                   std::to_string(values->size()) + " numbers");
         return values;
+    }
+
+    // An !!opencv-matrix {rows, cols, dt, data}: the declaration is checked before the data is read.
+    Result<std::vector<double>> openCvMatrix(const YAML::Node &root, const std::string &key) const
+    {
+        const YAML::Node node = root[key];
+        DeclaredMatrix declared{node.IsMap()};
+        if (declared.isMap) {
+            const YAML::Node rows = node["rows"], cols = node["cols"], dt = node["dt"], data = node["data"];
+            long long r = 0, c = 0;
+            if (rows && cols && YAML::convert<long long>::decode(rows, r) && YAML::convert<long long>::decode(cols, c))
+                declared.rows = r, declared.cols = c;
+            if (dt && dt.IsScalar())
+                declared.dt = dt.Scalar();
+            if (data && data.IsSequence())
+                declared.count = data.size();
+        }
+        if (const std::string problem = openCvMatrixProblem(key, declared); !problem.empty())
+            return calibrationError(path_, key + ": " + problem, keyLine(root, key));
+        return numbers(node["data"], key);
+    }
+
+    Result<std::vector<double>> matrix(const YAML::Node &root, const std::string &key) const
+    {
+        return openCv_ ? openCvMatrix(root, key) : rosMatrix(root, key);
+    }
+
+    static unsigned keyLine(const YAML::Node &map, const std::string &key)
+    {
+        for (const auto &entry : map)
+            if (entry.first.IsScalar() && entry.first.Scalar() == key)
+                return lineOf(entry.first);
+        return 0;
     }
 
     Result<Calibration> read(const YAML::Node &root) const
@@ -89,7 +130,7 @@ public:
             auto d = matrix(root, "distortion_coefficients");
             if (!d)
                 return d.error();
-            if (d->size() > kMaxCoefficients)
+            if (d->size() > kMaxCoefficients) // OpenCV's were checked against kOpenCvCoefficientCounts
                 return error(root["distortion_coefficients"]["data"],
                              "distortion_coefficients.data holds " + std::to_string(d->size()) + " numbers; at most " +
                                  std::to_string(kMaxCoefficients));
@@ -104,15 +145,20 @@ public:
 
 private:
     const std::string &path_;
+    bool openCv_;
 };
 
 } // namespace
 
-Result<Calibration> loadRosCalibration(const std::string &path, const std::string &text)
+Result<Calibration> loadYamlCalibration(const std::string &path, const std::string &text, bool openCv)
 {
+    // "%YAML:1.0" is OpenCV's spelling; as a comment of the same length every line keeps its number.
+    std::string yaml = text;
+    if (openCv)
+        yaml[0] = '#';
     // yaml-cpp throws on syntax errors and on values of the wrong type; nothing may escape the loader.
     try {
-        return Reader(path).read(YAML::Load(text));
+        return Reader(path, openCv).read(YAML::Load(yaml));
     } catch (const YAML::Exception &e) {
         return calibrationError(path, "does not parse (" + e.msg + ")", unsigned(e.mark.line + 1));
     } catch (const std::exception &e) { // from the standard library underneath (bad_alloc, length_error)
