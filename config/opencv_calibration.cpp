@@ -62,7 +62,8 @@ public:
     Result<std::vector<double>> matrix(const cv::FileNode &root, const std::string &key) const
     {
         const cv::FileNode node = root[key];
-        DeclaredMatrix declared{node.isMap()};
+        DeclaredMatrix declared;
+        declared.isMap = node.isMap();
         if (declared.isMap) {
             const cv::FileNode rows = node["rows"], cols = node["cols"], dt = node["dt"], data = node["data"];
             if (rows.isInt() && cols.isInt())

@@ -80,7 +80,8 @@ public:
     Result<std::vector<double>> openCvMatrix(const YAML::Node &root, const std::string &key) const
     {
         const YAML::Node node = root[key];
-        DeclaredMatrix declared{node.IsMap()};
+        DeclaredMatrix declared;
+        declared.isMap = node.IsMap();
         if (declared.isMap) {
             const YAML::Node rows = node["rows"], cols = node["cols"], dt = node["dt"], data = node["data"];
             long long r = 0, c = 0;
