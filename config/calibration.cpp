@@ -1,17 +1,53 @@
 // Calibration import: picks the reader for a file and turns its camera matrix and coefficients into our types.
 #include "config/calibration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+
+#include "base/regular_file.h"
+#include "config/nesting_depth.h"
 
 namespace overlayd {
+
+namespace detail {
+
+Error calibrationError(const std::string &path, const std::string &what, unsigned line)
+{
+    return makeError(ErrorCode::Malformed,
+                     "calibration file " + path + (line > 0 ? ":" + std::to_string(line) : "") + ": " + what);
+}
+
+std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &matrix)
+{
+    if (!matrix.isMap)
+        return "not an opencv-matrix (rows, cols, dt, data)";
+    if (!matrix.rows || !matrix.cols)
+        return "rows and cols must be integers";
+    const long long rows = *matrix.rows, cols = *matrix.cols;
+    const std::string size = std::to_string(rows) + "x" + std::to_string(cols);
+    if (field == "camera_matrix" && (rows != 3 || cols != 3))
+        return size + "; it must be 3x3";
+    const long long n = rows == 1 ? cols : cols == 1 ? rows : 0;
+    if (field != "camera_matrix" && std::find(std::begin(kOpenCvCoefficientCounts), std::end(kOpenCvCoefficientCounts),
+                                              size_t(std::max(n, 0LL))) == std::end(kOpenCvCoefficientCounts))
+        return size + "; it must be 1xN or Nx1 with N = 4, 5, 8, 12 or 14";
+    // One letter is one channel; "2d", "3f" ... interleave channels that a calibration does not have.
+    if (!matrix.dt || matrix.dt->size() != 1 || std::string_view("ucwsifdh").find(*matrix.dt) == std::string::npos)
+        return "dt must be one single-channel type (u, c, w, s, i, f, d, h), got '" + matrix.dt.value_or("") + "'";
+    if (matrix.count != size_t(rows * cols))
+        return "data must hold rows x cols = " + std::to_string(rows * cols) + " numbers, got " +
+               std::to_string(matrix.count.value_or(0));
+    return {};
+}
+
+} // namespace detail
 
 namespace {
 
 Error malformed(const std::string &path, const std::string &what)
 {
-    return makeError(ErrorCode::Malformed, "calibration file '" + path + "': " + what);
+    return detail::calibrationError(path, what);
 }
 
 Result<DistortionModel> pickModel(const std::string &path, std::string_view model, size_t count)
@@ -67,18 +103,34 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
     return out;
 }
 
+Result<Calibration> loadCalibrationText(const std::string &path, const std::string &text)
+{
+    // cv::FileStorage reads the text as C strings and crashes (SIGSEGV) on a NUL byte in an XML file.
+    if (const size_t nul = text.find('\0'); nul != std::string::npos)
+        return detail::calibrationError(path, "holds a NUL byte: not a text file",
+                                        unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
+    const std::string extension = std::filesystem::path(path).extension().string();
+    // The content decides first: OpenCV's YAML header, then an XML declaration or the .xml name.
+    const bool openCvYaml = text.starts_with("%YAML:");
+    const bool xml = !openCvYaml && (extension == ".xml" || text.starts_with("<?xml"));
+    // cv::FileStorage recurses once per level and overflows the stack on a few thousand; yaml-cpp stops at its own
+    // limit with a message that does not say why ("bad file").
+    if (auto deep = config::findTooDeep(text, xml ? config::TextSyntax::Xml : config::TextSyntax::Yaml))
+        return detail::calibrationError(path,
+                                        "nested deeper than " + std::to_string(config::kMaxNestingDepth) +
+                                            " levels (a calibration file needs 3)",
+                                        deep->line);
+    if (xml)
+        return detail::loadOpenCvXmlCalibration(path, text);
+    return detail::loadYamlCalibration(path, text, openCvYaml);
+}
+
 Result<Calibration> loadCalibration(const std::string &path)
 {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        return makeError(ErrorCode::NotFound, "calibration file '" + path + "' does not exist");
-    std::ifstream in(path);
-    std::string firstLine;
-    std::getline(in, firstLine);
-    const std::string extension = std::filesystem::path(path).extension().string();
-    if (extension == ".xml" || firstLine.rfind("%YAML:", 0) == 0 || firstLine.rfind("<?xml", 0) == 0)
-        return detail::loadOpenCvCalibration(path);
-    return detail::loadRosCalibration(path);
+    auto text = readRegularFile(path, kMaxCalibrationFileBytes);
+    if (!text)
+        return makeError(text.error().code, "calibration file " + path + " " + text.error().message);
+    return loadCalibrationText(path, *text);
 }
 
 } // namespace overlayd

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,11 +18,23 @@ struct Calibration {
     Distortion distortion{};
 };
 
+// A calibration file is a few hundred bytes; anything near this is not one.
+inline constexpr size_t kMaxCalibrationFileBytes = 1u << 20;
+// Distortion coefficient counts OpenCV's calibrateCamera writes (k1 k2 p1 p2 [k3 [k4 k5 k6 [s1..s4 [tx ty]]]]).
+inline constexpr size_t kOpenCvCoefficientCounts[] = {4, 5, 8, 12, 14};
+inline constexpr size_t kMaxCoefficients = 14;
+
 // Reads `path`: .xml, or YAML starting with OpenCV's "%YAML:1.0" header, through cv::FileStorage (camera_matrix,
 // distortion_coefficients, image_width, image_height, optional distortion_model); other YAML as ROS camera_info
-// (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients). NotFound for a missing
-// file, Malformed (naming the file and the field) for anything that does not parse. Never throws.
+// (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients). The file must be a regular
+// file of at most kMaxCalibrationFileBytes, nest at most config::kMaxNestingDepth levels and name no key twice in a
+// mapping; each matrix's declared size is checked against what the field needs before its data is read. NotFound
+// for a missing file, Malformed (naming the file, the line where it can and the field) for anything that does not
+// parse, InvalidArgument or Io (naming the file) for what is not a calibration file at all. Never throws.
 Result<Calibration> loadCalibration(const std::string &path);
+// The same for a file's text already read (the fuzz target); `path` names it in messages and its extension (.xml)
+// picks the reader as the content does.
+Result<Calibration> loadCalibrationText(const std::string &path, const std::string &text);
 
 // Shared by both readers: checks a row-major 3x3 camera matrix and picks the distortion model. `model` is a ROS
 // name (plumb_bob | rational_polynomial | equidistant, also fisheye) or empty to infer it from the count.
@@ -30,8 +43,25 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
                                     int height);
 
 namespace detail {
-Result<Calibration> loadOpenCvCalibration(const std::string &path);
-Result<Calibration> loadRosCalibration(const std::string &path);
+// `text` is the file's content, already checked for size and depth. OpenCV's XML goes through cv::FileStorage;
+// YAML, OpenCV's (%YAML:1.0) and ROS's, through yaml-cpp, whose marks give every refusal its line (and which, unlike
+// cv::FileStorage's YAML parser, does not loop forever on some malformed files).
+Result<Calibration> loadOpenCvXmlCalibration(const std::string &path, const std::string &text);
+Result<Calibration> loadYamlCalibration(const std::string &path, const std::string &text, bool openCv);
+
+// What an opencv-matrix declares, as either parser saw it, before its data is read.
+struct DeclaredMatrix {
+    bool isMap = false;
+    std::optional<long long> rows, cols; // nullopt when not an integer
+    std::optional<std::string> dt;       // nullopt when not a string
+    std::optional<size_t> count;         // entries in data; nullopt when data is not a list
+};
+// What is wrong with the matrix declared for `field` ("camera_matrix": 3x3; "distortion_coefficients": 1xN or
+// Nx1, N one of kOpenCvCoefficientCounts; one channel; data rows x cols long), "" when nothing.
+std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &matrix);
+
+// "calibration file PATH: what", and "calibration file PATH:LINE: what" when line (1-based) is known.
+Error calibrationError(const std::string &path, const std::string &what, unsigned line = 0);
 } // namespace detail
 
 } // namespace overlayd

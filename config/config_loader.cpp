@@ -3,16 +3,15 @@
 #include "config/daemon_config.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "base/regular_file.h"
 #include "config/camera_request.h"
 #include "config/config_sections.h"
 #include "config/limits.h"
+#include "config/nesting_depth.h"
 
 namespace overlayd {
 
@@ -192,6 +191,39 @@ void mergeDropIn(toml::table &root, toml::table &dropIn)
         into->insert_or_assign(key, std::move(value));
 }
 
+// One TOML text into `into`; false, with the problem recorded against `file`, when it nests too deep (toml++ limits
+// nested values but recurses once per dotted key part, and overflows the stack on tens of thousands) or does not
+// parse. toml++ stops at the first syntax error: nothing after it can be read reliably.
+bool parseToml(std::string_view text, const std::string &file, toml::table &into, Problems &found)
+{
+    if (auto deep = findTooDeep(text, TextSyntax::Toml)) {
+        found.add(deep->line, deep->column, "",
+                  "nested deeper than " + std::to_string(kMaxNestingDepth) +
+                      " levels (arrays, inline tables and the parts of dotted keys and table names)",
+                  file);
+        return false;
+    }
+    try {
+        into = toml::parse(text, file);
+    } catch (const toml::parse_error &e) {
+        found.add(e.source().begin.line, e.source().begin.column, "", "syntax error: " + std::string(e.description()),
+                  file);
+        return false;
+    }
+    return true;
+}
+
+// The file's text, or the problem that it cannot be one (missing, not a regular file, too large, unreadable).
+std::optional<std::string> readConfigText(const std::string &path, Problems &found)
+{
+    auto text = readRegularFile(path, kMaxConfigFileBytes);
+    if (!text) {
+        found.add(0, 0, "", "the config file " + text.error().message, path);
+        return std::nullopt;
+    }
+    return std::move(*text);
+}
+
 } // namespace
 } // namespace config
 
@@ -201,42 +233,29 @@ Result<DaemonConfig> loadConfigText(std::string_view text, const std::string &na
     problems.clear();
     config::Problems found(name);
     toml::table root;
-    try {
-        root = toml::parse(text, name);
-    } catch (const toml::parse_error &e) {
-        // toml++ stops at the first syntax error: nothing after it can be read reliably.
-        found.add(e.source().begin.line, e.source().begin.column, "", "syntax error: " + std::string(e.description()));
+    if (!config::parseToml(text, name, root, found))
         return config::summarize(found, problems);
-    }
     return config::readRoot(root, name, baseDirectory, found, problems);
 }
 
 Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigProblem> &problems)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        problems = {ConfigProblem{path, 0, 0, "", std::string("cannot open the config file: ") + std::strerror(errno)}};
-        return makeError(ErrorCode::ConfigError, problems.front().format());
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
+    problems.clear();
+    config::Problems found(path);
+    const auto text = config::readConfigText(path, found);
+    if (!text)
+        return config::summarize(found, problems);
     std::string base = std::filesystem::path(path).parent_path().string();
     base = base.empty() ? "." : base;
     const std::string dropInPath = liveDropInPath(path);
-    if (!std::filesystem::exists(dropInPath))
-        return loadConfigText(text.str(), path, base, problems);
-    problems.clear();
-    config::Problems found(path);
+    std::error_code absent;
+    if (!std::filesystem::exists(dropInPath, absent))
+        return loadConfigText(*text, path, base, problems);
     toml::table root, dropIn;
-    for (auto [file, into] : {std::pair{&path, &root}, std::pair{&dropInPath, &dropIn}}) {
-        try {
-            *into = file == &path ? toml::parse(text.str(), path) : toml::parse_file(dropInPath);
-        } catch (const toml::parse_error &e) {
-            found.add(e.source().begin.line, e.source().begin.column, "",
-                      "syntax error: " + std::string(e.description()), *file);
-            return config::summarize(found, problems);
-        }
-    }
+    const auto dropInText = config::readConfigText(dropInPath, found);
+    if (!dropInText || !config::parseToml(*text, path, root, found) ||
+        !config::parseToml(*dropInText, dropInPath, dropIn, found))
+        return config::summarize(found, problems);
     config::mergeDropIn(root, dropIn);
     return config::readRoot(root, path, base, found, problems);
 }

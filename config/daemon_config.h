@@ -44,8 +44,12 @@ struct ConfigProblem {
     std::string format() const;
 };
 
+// A config file (and its live drop-in) larger than this is refused before it is read: real ones are a few KiB.
+inline constexpr size_t kMaxConfigFileBytes = 1u << 20;
+
 // Parses and validates everything, collecting every problem instead of stopping at the first. Never throws. On
-// failure `problems` is non-empty and the result's error (ConfigError) summarizes them.
+// failure `problems` is non-empty and the result's error (ConfigError) summarizes them. The file must be a regular
+// file of at most kMaxConfigFileBytes; a directory, device or FIFO is refused with what it is, without blocking.
 Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigProblem> &problems);
 // The same from text (tests, stdin); `name` stands in for the file name in messages, and relative paths in the
 // config resolve against baseDirectory.

@@ -4,45 +4,30 @@
 // is decoded.
 #include "config/config_sections.h"
 
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "base/regular_file.h"
 #include "media/codec/image_codec.h"
 
 namespace overlayd::config {
 
 namespace {
 
-constexpr std::uintmax_t kMaxImageFileBytes = 16u << 20;
+constexpr size_t kMaxImageFileBytes = 16u << 20;
 constexpr unsigned kMaxImageSide = 4096;
 
-// The file's bytes, after its size was checked; nullopt (with the problem recorded) when it cannot be read.
+// The file's bytes, after its kind and size were checked; nullopt (with the problem recorded) when it cannot be read.
 std::optional<std::vector<uint8_t>> readImageFile(TableReader &table, const std::string &path)
 {
-    std::error_code error;
-    const std::uintmax_t bytes = std::filesystem::file_size(path, error);
-    if (error || !std::filesystem::is_regular_file(path, error)) {
-        table.problem("path", "cannot read the image " + path + (error ? ": " + error.message() : ""));
+    auto file = readRegularFileBytes(path, kMaxImageFileBytes);
+    if (!file) {
+        table.problem("path", "the image " + path + " " + file.error().message);
         return std::nullopt;
     }
-    if (bytes > kMaxImageFileBytes) {
-        table.problem("path", "the image " + path + " has " + std::to_string(bytes) + " bytes; at most " +
-                                  std::to_string(kMaxImageFileBytes) + " are read");
-        return std::nullopt;
-    }
-    std::vector<uint8_t> file(bytes);
-    std::ifstream in(path, std::ios::binary);
-    in.read(reinterpret_cast<char *>(file.data()), std::streamsize(file.size()));
-    if (!in.is_open() || in.bad()) {
-        table.problem("path", "cannot read the image " + path);
-        return std::nullopt;
-    }
-    file.resize(size_t(in.gcount())); // a file cut short since its size was read decodes as truncated
-    return file;
+    return std::move(*file);
 }
 
 // Straight RGBA to premultiplied, each colour times alpha / 255, rounded.

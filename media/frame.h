@@ -30,6 +30,9 @@ struct FrameView {
 
 // Frames wider or taller than this are refused before anything is allocated (V4L2 drivers top out at 16384 too).
 inline constexpr unsigned kMaxFrameDimension = 16384;
+// And a frame a file declares (a Y4M header) is refused above this many bytes of samples, before anything is
+// allocated: 16384 x 16384 at 4:2:0 would be 384 MiB a frame, four times over in the frame pool.
+inline constexpr size_t kMaxFrameBytes = size_t(256) << 20;
 
 struct PlaneLayout {
     size_t offset = 0;

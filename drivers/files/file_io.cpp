@@ -5,6 +5,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include "base/regular_file.h"
+
 namespace overlayd {
 
 namespace {
@@ -27,9 +29,14 @@ void makeParentFolders(const std::string &path)
 
 Result<UniqueFile> openForReading(const std::string &path)
 {
-    UniqueFile file(std::fopen(path.c_str(), "rb"));
+    // Not fopen: a FIFO with no writer would block it, and a directory would open and fail at the first read.
+    auto regular = openRegularFile(path);
+    if (!regular)
+        return makeError(regular.error().code, path + ": " + regular.error().message);
+    UniqueFile file(::fdopen(regular->fd.get(), "rb"));
     if (!file)
         return ioError("cannot open", path, errno);
+    (void)regular->fd.release(); // the FILE owns it now
     return file;
 }
 
@@ -54,21 +61,10 @@ Result<size_t> readUpTo(std::FILE *file, void *data, size_t size, const std::str
 
 Result<std::vector<uint8_t>> readWholeFile(const std::string &path, uintmax_t maxBytes)
 {
-    auto file = openForReading(path);
-    if (!file)
-        return file.error();
-    std::error_code error;
-    const uintmax_t size = std::filesystem::file_size(path, error);
-    if (error)
-        return makeError(ErrorCode::Io, path + ": cannot read its size: " + error.message());
-    if (size > maxBytes)
-        return makeError(ErrorCode::Malformed, path + " has " + std::to_string(size) + " bytes; at most " +
-                                                   std::to_string(maxBytes) + " are read");
-    std::vector<uint8_t> bytes(size);
-    auto got = readUpTo(file->get(), bytes.data(), bytes.size(), path);
-    if (!got)
-        return got.error();
-    bytes.resize(*got);
+    auto bytes = readRegularFileBytes(path, size_t(maxBytes));
+    if (!bytes)
+        return makeError(bytes.error().code == ErrorCode::InvalidArgument ? ErrorCode::Malformed : bytes.error().code,
+                         path + ": " + bytes.error().message);
     return bytes;
 }
 

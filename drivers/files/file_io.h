@@ -15,7 +15,8 @@ struct FileCloser {
 };
 using UniqueFile = std::unique_ptr<std::FILE, FileCloser>;
 
-// NotFound when the file does not exist, Io for any other failure (errno's text in the message).
+// NotFound when the file does not exist, InvalidArgument when it is not a regular file (a directory, a device, a
+// FIFO: a replay reads files), Io for any other failure (errno's text in the message).
 Result<UniqueFile> openForReading(const std::string &path);
 // Creates the folders a path to be written needs (failures are left to the open that follows).
 void makeParentFolders(const std::string &path);

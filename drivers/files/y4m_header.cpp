@@ -115,6 +115,10 @@ Result<Y4mHeader> parseY4mHeader(std::string_view line, const std::string &path)
     if (header.width > kMaxFrameDimension || header.height > kMaxFrameDimension)
         return malformed(path, std::to_string(header.width) + "x" + std::to_string(header.height) +
                                    " exceeds the limit of " + std::to_string(kMaxFrameDimension) + " per side");
+    if (header.frameBytes() > kMaxFrameBytes)
+        return malformed(path, std::to_string(header.width) + "x" + std::to_string(header.height) + " C" +
+                                   header.chromaTag + " is " + std::to_string(header.frameBytes()) +
+                                   " bytes a frame, over the limit of " + std::to_string(kMaxFrameBytes));
     return header;
 }
 

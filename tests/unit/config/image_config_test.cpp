@@ -171,7 +171,7 @@ size_px = [0.0, 10.0]
         return test::hasProblem(problems, key, words);
     };
     EXPECT_TRUE(has("annotation[0].path", "missing")) << all;
-    EXPECT_TRUE(has("annotation[1].path", "cannot read")) << all;
+    EXPECT_TRUE(has("annotation[1].path", "missing.png does not exist")) << all;
     EXPECT_TRUE(has("annotation[2].path", "not a PNG or JPEG")) << all;
     EXPECT_TRUE(has("annotation[3].path", "4097x1; at most 4096")) << all;
     EXPECT_TRUE(has("annotation[4].anchor", "not both")) << all;

@@ -1,5 +1,6 @@
 // Y4M: our sink read back by ffprobe/ffmpeg (size, pix_fmt, frame count, colours) and by our replay (same bytes);
 // ffmpeg's own files read by our replay; truncated and malformed files give Malformed errors naming the frame.
+#include <filesystem>
 #include <fstream>
 #include <ostream>
 
@@ -9,6 +10,7 @@
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
 #include "drivers/synthetic/patterns.h"
+#include "media/frame.h"
 #include "test_util.h"
 
 namespace overlayd {
@@ -284,6 +286,9 @@ TEST(Y4mReplay, MalformedFilesAreErrorsNotCrashes)
         {"YUV4MPEG2 W0 H8\n", ErrorCode::Malformed, "width"},
         {"YUV4MPEG2 Wabc H8\n", ErrorCode::Malformed, "width"},
         {"YUV4MPEG2 W100000 H8\n", ErrorCode::Malformed, "exceeds"},
+        // 16384 x 16384 x 3 bytes = 768 MiB a frame: within the per-side limit, over kMaxFrameBytes.
+        {"YUV4MPEG2 W16384 H16384 C444\nFRAME\n", ErrorCode::Malformed, "805306368 bytes a frame, over the limit"},
+        {"YUV4MPEG2 W16384 H16384 C420jpeg\nFRAME\n", ErrorCode::Malformed, "402653184 bytes a frame"},
         {"YUV4MPEG2 W16 H8 F0:1\n", ErrorCode::Malformed, "frame rate"},
         {"YUV4MPEG2 W16 H8 C411\n", ErrorCode::Unsupported, "C411"},
         {"YUV4MPEG2 W16 H8 C420p10\n", ErrorCode::Unsupported, "C420p10"},
@@ -307,6 +312,26 @@ TEST(Y4mReplay, MissingFileIsNotFound)
 {
     unsigned good = 0;
     EXPECT_EQ(firstError(replay("/nonexistent/in.y4m"), &good).code, ErrorCode::NotFound);
+}
+
+// Largest frames under the limit still parse: 16384 x 10922 at 4:2:0 is 255.99 MiB.
+TEST(Y4mHeader, AFrameJustUnderTheByteLimitIsAccepted)
+{
+    auto header = parseY4mHeader("YUV4MPEG2 W16384 H10922 C420jpeg", "big.y4m");
+    ASSERT_TRUE(header.ok()) << header.error().message;
+    EXPECT_LE(header->frameBytes(), kMaxFrameBytes);
+    EXPECT_FALSE(parseY4mHeader("YUV4MPEG2 W16384 H10924 C420jpeg", "big.y4m").ok());
+}
+
+// A directory opens with fopen() and fails only at the first read ("header missing"): named for what it is.
+TEST(Y4mReplay, ADirectoryIsNotAFile)
+{
+    test::TempDir dir;
+    const std::string path = dir.path("folder.y4m");
+    ASSERT_TRUE(std::filesystem::create_directory(path));
+    unsigned good = 0;
+    const Error error = firstError(replay(path), &good);
+    EXPECT_EQ(error.message, path + ": is a directory, not a regular file");
 }
 
 } // namespace
