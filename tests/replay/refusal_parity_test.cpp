@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -121,7 +123,7 @@ TEST(BoundedSuggestions, HugeAndManyUnknownKeysGetAShortAnswer)
         many += "unknown_" + std::to_string(i) + " = 1\n";
     writeFile(dir + "/huge_key.toml", "[daemon]\n" + std::string(100000, 'k') + " = 1\n");
     writeFile(dir + "/many_keys.toml", many);
-    for (const std::string &name : {"huge_key.toml", "many_keys.toml"})
+    for (const std::string &name : std::vector<std::string>{"huge_key.toml", "many_keys.toml"})
         for (const std::string &args : {"check-config " + name, "run --config " + name + " --frames 1"}) {
             SCOPED_TRACE(args);
             const RunResult result = runOverlayd(args, dir);
