@@ -1,6 +1,8 @@
 // Every intrinsics form, near/far, depth range, distortion and viewport of [camera]/[viewport], against pixels
 // computed by hand from the forms' definitions or by cv::projectPoints / cv::fisheye::projectPoints.
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -331,6 +333,22 @@ TEST(Intrinsics, AnExplicitCropOutsideTheImageEmptyOrOfAnotherAspectIsRefused)
         EXPECT_TRUE(located) << c.crop << "\n" << formatProblems(problems);
     }
     loadValid(kHeader + kIdentityPose + "calibration_crop = [0, 0, 1201, 676]\n" + pinhole);
+}
+
+// Numbers as written: a float is rounded to double once. The value is 1 + 2^-53 (halfway between 1 and the next
+// double 1 + 2^-52) plus 1e-60: correctly rounded it is 1 + 2^-52, but rounded first to long double (x86's 64-bit
+// mantissa, or arm64's 113-bit one, both hold 1 + 2^-53 exactly and lose the 1e-60) and then to double it ties to
+// even, 1. toml++ (built without float charconv, so std::istringstream >> double, which is strtod) rounds once.
+TEST(Intrinsics, FloatsAreRoundedToDoubleOnce)
+{
+    const std::string written = "1.000000000000000111022302462515654042363166809082031250000001";
+    double once = 0.0;
+    std::from_chars(written.data(), written.data() + written.size(), once);
+    const double twice = static_cast<double>(std::strtold(written.c_str(), nullptr));
+    ASSERT_EQ(once, std::nextafter(1.0, 2.0));
+    ASSERT_NE(once, twice) << "the value must tell one rounding from two";
+    const DaemonConfig config = loadValid(kHeader + kIdentityPose + "near = " + written + "\n");
+    EXPECT_EQ(config.camera.near, once);
 }
 
 } // namespace
