@@ -1,5 +1,6 @@
 // readPointsFile: five finite numbers per non-empty line, every problem at file:line.
 #include "alignment/points_file.h"
+#include "alignment/points_json.h"
 
 #include <algorithm>
 #include <charconv>
@@ -37,6 +38,8 @@ Result<std::vector<double>> numbersOf(const std::string &line)
 
 Result<std::vector<Correspondence>> parsePoints(const std::string &text, const std::string &name)
 {
+    if (looksLikeJson(text, name))
+        return parsePointsJson(text, name);
     std::vector<Correspondence> points;
     std::istringstream in(text);
     std::string line;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <string>
 
@@ -40,20 +41,65 @@ std::string sizeText(int width, int height)
            std::to_string(height / d) + ")";
 }
 
+// The intrinsics as calibrated, with the image size they were made at (the stream's window when not given).
+PinholeIntrinsics calibrated(const PinholeIntrinsics &pinhole, const Viewport &vp)
+{
+    PinholeIntrinsics k = pinhole;
+    if (k.width <= 0 || k.height <= 0) {
+        k.width = vp.window().width;
+        k.height = vp.window().height;
+    }
+    return k;
+}
+
+std::string number(double value)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
 } // namespace
+
+Status CameraSpec::checkCalibrationRegion(const Viewport &vp) const
+{
+    if (calibrationCrop != CalibrationCrop::Region || form != IntrinsicsForm::Pinhole)
+        return Ok{};
+    const PinholeIntrinsics k = calibrated(pinhole, vp);
+    const CalibrationRegion &r = calibrationRegion;
+    const std::string region =
+        "the region [" + number(r.x) + ", " + number(r.y) + ", " + number(r.width) + ", " + number(r.height) + "]";
+    if (!(r.width > 0.0) || !(r.height > 0.0))
+        return makeError(ErrorCode::InvalidArgument, region + " is empty: width and height must be > 0");
+    if (r.x < 0.0 || r.y < 0.0 || r.x + r.width > k.width || r.y + r.height > k.height)
+        return makeError(ErrorCode::InvalidArgument,
+                         region + " reaches outside the calibrated " + sizeText(k.width, k.height) + " image");
+    const int width = vp.window().width, height = vp.window().height;
+    if (std::abs(r.height * width / r.width - height) >= 1.0)
+        return makeError(ErrorCode::InvalidArgument,
+                         region + " is not of the stream's aspect (" + sizeText(width, height) +
+                             "): scaled to the stream's width it would be " + number(r.height * width / r.width) +
+                             " rows high, not " + std::to_string(height));
+    return Ok{};
+}
 
 Result<PinholeIntrinsics> CameraSpec::scaledPinhole(const Viewport &vp) const
 {
-    PinholeIntrinsics k = pinhole;
+    const PinholeIntrinsics k = calibrated(pinhole, vp);
     const int width = vp.window().width, height = vp.window().height;
-    if (k.width <= 0 || k.height <= 0) { // no image size given: the intrinsics are for this stream's window
-        k.width = width;
-        k.height = height;
-    }
-    if (k.width == width && k.height == height)
-        return k;
     CalibrationWindow w;
-    if (sameAspect(k, width, height)) {
+    if (calibrationCrop == CalibrationCrop::Region) {
+        // Checked before (with the config's keys); here again so that build() alone never makes a wrong camera.
+        if (auto status = checkCalibrationRegion(vp); !status)
+            return status.error();
+        w.x0 = calibrationRegion.x;
+        w.y0 = calibrationRegion.y;
+        w.sx = width / calibrationRegion.width;
+        w.sy = height / calibrationRegion.height;
+        w.cropped = true;
+    } else if (k.width == width && k.height == height) {
+        return k;
+    } else if (sameAspect(k, width, height)) {
         w.sx = double(width) / k.width, w.sy = double(height) / k.height;
     } else if (calibrationCrop == CalibrationCrop::Center) {
         // The largest centred region of the stream's aspect, scaled by one factor to the window.
@@ -83,15 +129,18 @@ Result<PinholeIntrinsics> CameraSpec::scaledPinhole(const Viewport &vp) const
 
 std::string CameraSpec::calibrationScaling(const Viewport &vp) const
 {
+    const bool sameSize = pinhole.width == vp.window().width && pinhole.height == vp.window().height;
     if (form != IntrinsicsForm::Pinhole || pinhole.width <= 0 || pinhole.height <= 0 ||
-        (pinhole.width == vp.window().width && pinhole.height == vp.window().height))
+        (sameSize && calibrationCrop != CalibrationCrop::Region))
         return {};
     const auto scaled = scaledPinhole(vp);
     if (!scaled)
         return {};
     const bool cropped = !sameAspect(pinhole, vp.window().width, vp.window().height);
-    return "camera: intrinsics calibrated at " + sizeText(pinhole.width, pinhole.height) + " " +
-           (cropped ? "cropped to the centre and scaled" : "scaled") + " to the " +
+    const char *how = calibrationCrop == CalibrationCrop::Region ? "cropped to calibration_crop and scaled"
+                      : cropped                                  ? "cropped to the centre and scaled"
+                                                                 : "scaled";
+    return "camera: intrinsics calibrated at " + sizeText(pinhole.width, pinhole.height) + " " + how + " to the " +
            sizeText(vp.window().width, vp.window().height) + " stream: fx " + std::to_string(scaled->fx) + ", fy " +
            std::to_string(scaled->fy) + ", cx " + std::to_string(scaled->cx) + ", cy " + std::to_string(scaled->cy);
 }

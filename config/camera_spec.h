@@ -19,8 +19,16 @@ namespace overlayd {
 
 // Which of Projection's constructors the intrinsics use.
 // How a stream of another aspect than the calibrated image was made from it (libcamera's ScalerCrop would describe
-// it): None refuses another aspect; Center is the largest centred region of the stream's aspect, scaled uniformly.
-enum class CalibrationCrop { None, Center };
+// it): None refuses another aspect; Center is the largest centred region of the stream's aspect, scaled uniformly;
+// Region is CameraSpec::calibrationRegion, scaled to the stream (a binned mode: the whole sensor, scale 1/2).
+enum class CalibrationCrop { None, Center, Region };
+
+// A region of the calibrated image in its pixels' edge coordinates: x, y of the top-left corner, width, height.
+struct CalibrationRegion {
+    double x = 0, y = 0, width = 0, height = 0;
+
+    bool operator==(const CalibrationRegion &) const = default;
+};
 
 enum class IntrinsicsForm {
     FieldOfView,         // fovDeg across fovAxis, aspect from the viewport window (round circles)
@@ -47,6 +55,9 @@ public:
     Result<PinholeIntrinsics> scaledPinhole(const Viewport &viewport) const;
     // What scaledPinhole does to the calibration for this window, in words ("" when the sizes match), for a log.
     std::string calibrationScaling(const Viewport &viewport) const;
+    // An explicit calibration_crop region against the calibrated image and this stream: inside the image, not
+    // empty, and of the stream's aspect within a pixel. Ok for the other crop forms.
+    Status checkCalibrationRegion(const Viewport &viewport) const;
     // World to the internal camera frame: the pose in its mount frame, after world to mount.
     glm::dmat4 view() const;
 
@@ -61,7 +72,8 @@ public:
     FrustumBounds bounds{};      // Frustum and Orthographic: left, right, bottom, top (near/far below)
     PinholeIntrinsics pinhole{}; // width, height 0: the stream's viewport window
     CalibrationCrop calibrationCrop = CalibrationCrop::None;
-    WindowIntrinsics window{}; // focal, centre, half spans (near/far below)
+    CalibrationRegion calibrationRegion{}; // for CalibrationCrop::Region
+    WindowIntrinsics window{};             // focal, centre, half spans (near/far below)
     glm::dvec2 orthoSize{2.0, 2.0};
     double near = 0.1, far = 1000.0; // metres in front of the camera; far may be kInfiniteFar (perspective)
     DepthRange depth = DepthRange::MinusOneToOne;

@@ -113,6 +113,11 @@ void checkCamera(TableReader &root, DaemonConfig &config, const SceneGraph &grap
         root.problem("viewport", viewport.error().message);
         return;
     }
+    if (auto region = spec.checkCalibrationRegion(*viewport); !region) {
+        if (camera)
+            camera->problem("calibration_crop", region.error().message);
+        return;
+    }
     auto projection = spec.buildProjection(*viewport);
     if (!projection) {
         if (camera)

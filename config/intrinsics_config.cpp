@@ -86,6 +86,35 @@ void readPinhole(TableReader &camera, bool calibrated, PinholeIntrinsics &k)
     table->finish();
 }
 
+// calibration_crop = "none" | "center" | [x, y, width, height] (calibrated pixels, as libcamera's ScalerCrop).
+// What depends on the stream's size is checked with the camera (CameraSpec::checkCalibrationRegion).
+void readCalibrationCrop(TableReader &camera, CameraSpec &out)
+{
+    const toml::node *node = camera.node("calibration_crop");
+    if (!node || !node->is_array()) {
+        if (auto crop = camera.choice<CalibrationCrop>(
+                "calibration_crop", {{"none", CalibrationCrop::None}, {"center", CalibrationCrop::Center}}))
+            out.calibrationCrop = *crop;
+        return;
+    }
+    const auto values = camera.numbers("calibration_crop");
+    if (!values)
+        return;
+    if (values->size() != 4) {
+        camera.problem("calibration_crop", "expected \"none\", \"center\" or [x, y, width, height] (4 numbers, "
+                                           "calibrated pixels), got " +
+                                               std::to_string(values->size()) + " numbers");
+        return;
+    }
+    const CalibrationRegion region{(*values)[0], (*values)[1], (*values)[2], (*values)[3]};
+    if (region.x < 0.0 || region.y < 0.0 || !(region.width > 0.0) || !(region.height > 0.0)) {
+        camera.problem("calibration_crop", "x and y must be >= 0, width and height > 0");
+        return;
+    }
+    out.calibrationCrop = CalibrationCrop::Region;
+    out.calibrationRegion = region;
+}
+
 void readForm(TableReader &camera, std::string_view key, CameraSpec &out)
 {
     if (key == "fov") {
@@ -187,9 +216,7 @@ void readIntrinsics(TableReader &camera, const std::string &baseDirectory, Camer
         else
             readForm(camera, *form, out);
     }
-    if (auto crop = camera.choice<CalibrationCrop>(
-            "calibration_crop", {{"none", CalibrationCrop::None}, {"center", CalibrationCrop::Center}}))
-        out.calibrationCrop = *crop;
+    readCalibrationCrop(camera, out);
     if (auto near = camera.positive("near"))
         out.near = *near;
     if (auto far = readFar(camera)) {

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include <glm/geometric.hpp>
+
 namespace overlayd {
 
 namespace {
@@ -30,7 +32,11 @@ PointReport explainPoint(const Camera &camera, const glm::dvec3 &world, const Pr
     const Projection &projection = camera.projection();
     const glm::dvec4 clip = projection.matrix() * eye;
     const double nearNdc = projection.depthRange() == DepthRange::ZeroToOne ? 0.0 : -1.0;
-    if (projection.isPerspective() && clip.w <= 0.0)
+    if (camera.seesBehind() && glm::length(glm::dvec3(eye)) < camera.nearDistance())
+        report.reason = "before-near"; // such a lens clips by the near sphere, and sees behind the camera
+    else if (camera.seesBehind())
+        report.reason = clip.z > clip.w && clip.w > 0.0 ? "beyond-far" : "outside-image-circle";
+    else if (projection.isPerspective() && clip.w <= 0.0)
         report.reason = "behind-camera";
     else if (clip.z < nearNdc * clip.w)
         report.reason = "before-near";

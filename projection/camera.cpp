@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
 namespace overlayd {
@@ -22,6 +23,13 @@ constexpr int kMaxRefineDepth = 12;
 // chordError assumes each piece is a parabola; the cubic part it misses has been seen to add 0.2% (strong
 // lenses, long pieces). Aiming 10% below the tolerance keeps the drawn polyline within it.
 constexpr double kChordSafety = 0.9;
+
+// The depth d of the near plane: the internal point (0, 0, -d) has clip z + nearW w = 0. For a perspective
+// matrix w = d (m[2][3] = -1, m[3][3] = 0), so -m22 d + m32 + nearW d = 0.
+double nearDistanceOf(const glm::dmat4 &m, double nearW)
+{
+    return m[3][2] / (m[2][2] - nearW);
+}
 
 // How far the curve strays from its chord AB, estimated from its point M at the parameter midpoint. Checking M's
 // own distance is not enough: the parameter is not arc length (perspective and distortion stretch it), so M can
@@ -75,8 +83,21 @@ Camera::Camera(const glm::dmat4 &view, const Projection &projection, std::option
     : view_(view), projection_(projection), lens_(std::move(lens)), viewport_(viewport),
       viewProjection_(projection.matrix() * view), inverseViewProjection_(glm::inverse(viewProjection_)),
       segmentPlanes_(projection.depthRange(), projection.hasFarPlane(), lens_ ? lens_->guardBand() : kLineGuardBand),
-      nearPlaneW_(projection.depthRange() == DepthRange::MinusOneToOne ? 1.0 : 0.0), path_(composePointPath())
+      nearPlaneW_(projection.depthRange() == DepthRange::MinusOneToOne ? 1.0 : 0.0),
+      nearDistance_(nearDistanceOf(projection_.matrix(), nearPlaneW_)), path_(composePointPath()),
+      wide_(composeWideField())
 {}
+
+WideField Camera::composeWideField() const
+{
+    WideField field;
+    field.toNormalized = path_.toNormalized;
+    field.toNormalizedW = path_.toNormalizedW;
+    field.backSlope2 = path_.backSlope2;
+    field.near2 = path_.near2;
+    field.hasFar = path_.hasFar;
+    return field;
+}
 
 PointPath Camera::composePointPath() const
 {
@@ -95,6 +116,12 @@ PointPath Camera::composePointPath() const
         path.toPixelOffset = scale * lens_->normalizedToNdc().offset + offset;
         path.validRadius2 = lens_->validRadius() * lens_->validRadius();
         path.coeffs = lens_->distortion().coeffs;
+        if (lens_->seesBehind()) {
+            const double backSlope = std::tan(M_PI - lens_->validAngle());
+            path.wide = true;
+            path.backSlope2 = backSlope * backSlope;
+            path.near2 = nearDistance_ * nearDistance_;
+        }
     } else {
         path.toPixel = viewportLinear;
         path.toPixelOffset = offset;
@@ -151,12 +178,17 @@ ProjectedPoint Camera::project(const glm::dvec4 &world) const
     return {{r.x, r.y}, r.depth, r.inScissor ? PointStatus::Visible : PointStatus::Outside};
 }
 
-std::optional<std::array<double, 2>> Camera::clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const
+SegmentPieces Camera::clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const
 {
+    if (path_.wide)
+        return wide_.pieces(a, b);
+    SegmentPieces pieces;
     auto range = segmentPlanes_.clipSegment(a, b);
-    if (!range || !lens_)
-        return range;
-    return lens_->clipToValidCone(a, b, (*range)[0], (*range)[1]);
+    if (range && lens_)
+        range = lens_->clipToValidCone(a, b, (*range)[0], (*range)[1]);
+    if (range)
+        pieces.ranges[pieces.count++] = *range;
+    return pieces;
 }
 
 void Camera::refine(const glm::dvec4 &a, const glm::dvec4 &d, double tA, const glm::dvec2 &pA, double tB,
@@ -190,8 +222,9 @@ void Camera::emitPiece(const glm::dvec4 &a, const glm::dvec4 &d, double t0, doub
 void Camera::projectSegment(const glm::dvec4 &a, const glm::dvec4 &b, Polylines &out, double tolerancePx) const
 {
     const glm::dvec4 ca = viewProjection_ * a, cb = viewProjection_ * b;
-    if (auto range = clipSegment(ca, cb))
-        emitPiece(ca, cb - ca, (*range)[0], (*range)[1], false, tolerancePx, out);
+    const SegmentPieces pieces = clipSegment(ca, cb);
+    for (int i = 0; i < pieces.count; ++i)
+        emitPiece(ca, cb - ca, pieces.ranges[i][0], pieces.ranges[i][1], false, tolerancePx, out);
 }
 
 void Camera::projectPolyline(std::span<const glm::dvec4> world, bool closed, Polylines &out, double tolerancePx) const
@@ -204,14 +237,15 @@ void Camera::projectPolyline(std::span<const glm::dvec4> world, bool closed, Pol
     glm::dvec4 ca = viewProjection_ * world[0];
     for (std::size_t i = 0; i < segments; ++i) {
         const glm::dvec4 cb = viewProjection_ * world[(i + 1) % count];
-        auto range = clipSegment(ca, cb);
-        if (range) {
-            const bool joins = previousReachedEnd && (*range)[0] == 0.0;
-            emitPiece(ca, cb - ca, (*range)[0], (*range)[1], joins, tolerancePx, out);
-            previousReachedEnd = (*range)[1] == 1.0;
-        } else {
-            previousReachedEnd = false;
+        const SegmentPieces pieces = clipSegment(ca, cb);
+        for (int p = 0; p < pieces.count; ++p) {
+            const auto &range = pieces.ranges[p];
+            const bool joins = previousReachedEnd && range[0] == 0.0;
+            emitPiece(ca, cb - ca, range[0], range[1], joins, tolerancePx, out);
+            previousReachedEnd = range[1] == 1.0;
         }
+        if (pieces.count == 0)
+            previousReachedEnd = false;
         ca = cb;
     }
 }
@@ -219,6 +253,8 @@ void Camera::projectPolyline(std::span<const glm::dvec4> world, bool closed, Pol
 Result<Ray> Camera::unproject(const glm::dvec2 &pixel) const
 {
     glm::dvec2 ndc = viewport_.pixelToNdc(viewport_.toUser(pixel));
+    if (path_.wide)
+        return unprojectWide(ndc);
     if (lens_) {
         auto undistorted = lens_->undistortNdc(ndc);
         if (!undistorted)
@@ -235,6 +271,29 @@ Result<Ray> Camera::unproject(const glm::dvec2 &pixel) const
         return Ray{eye, glm::normalize(p0 - eye)};
     }
     return Ray{p0, glm::normalize(p1 - p0)};
+}
+
+Result<Ray> Camera::unprojectWide(const glm::dvec2 &ndc) const
+{
+    // Distorted normalized point -> its angle theta_d and azimuth; theta from the model's inverse on the angle.
+    const glm::dvec2 distorted = lens_->ndcToNormalized()(ndc);
+    const double thetaD = glm::length(distorted);
+    auto theta = undistortFisheyeAngle(lens_->distortion(), thetaD, lens_->validAngle());
+    if (!theta)
+        return theta.error();
+    const glm::dvec2 azimuth = thetaD > 0.0 ? distorted / thetaD : glm::dvec2(0.0);
+    const glm::dvec3 optical(std::sin(*theta) * azimuth, std::cos(*theta));
+    // Optical <- internal camera frame, read off the projection matrix and the point path (columns: the images
+    // of the internal axes), so no axis convention is assumed here.
+    glm::dmat3 opticalFromInternal(0.0);
+    for (int i = 0; i < 3; ++i) {
+        glm::dvec4 axis(0.0);
+        axis[i] = 1.0;
+        opticalFromInternal[i] = wide_.optical(projection_.matrix() * axis);
+    }
+    const glm::dvec3 internal = glm::inverse(opticalFromInternal) * optical;
+    const glm::dvec3 world = glm::dvec3(glm::inverse(view_) * glm::dvec4(internal, 0.0));
+    return Ray{position(), glm::normalize(world)};
 }
 
 } // namespace overlayd

@@ -24,6 +24,7 @@
 #include "pose.h"
 #include "projection.h"
 #include "viewport.h"
+#include "wide_field.h"
 
 namespace overlayd {
 
@@ -91,6 +92,11 @@ public:
     const std::optional<Lens> &lens() const { return lens_; }
     const ClipPlanes &segmentClipPlanes() const { return segmentPlanes_; }
     glm::dvec3 position() const;
+    // The near distance along the optical axis (a pinhole projection's near plane, in metres).
+    double nearDistance() const { return nearDistance_; }
+    // A fisheye of more than 180 degrees: it sees behind the camera plane, and clips by the near sphere
+    // |P| < near instead of the near plane (docs/config.md, "Fisheye lenses beyond 180 degrees").
+    bool seesBehind() const { return lens_ && lens_->seesBehind(); }
 
 private:
     Camera(const glm::dmat4 &view, const Projection &projection, std::optional<Lens> lens, const Viewport &viewport);
@@ -103,7 +109,10 @@ private:
     // Emits the clip-space piece a + t d, t in [t0, t1]; continues the last polyline when asked to.
     void emitPiece(const glm::dvec4 &a, const glm::dvec4 &d, double t0, double t1, bool continueLast, double tolerance,
                    Polylines &out) const;
-    std::optional<std::array<double, 2>> clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const;
+    SegmentPieces clipSegment(const glm::dvec4 &a, const glm::dvec4 &b) const;
+    WideField composeWideField() const;
+    // Through a lens that sees behind the camera the optical direction is no NDC point: the angle path.
+    Result<Ray> unprojectWide(const glm::dvec2 &ndc) const;
 
     glm::dmat4 view_;
     Projection projection_;
@@ -113,7 +122,9 @@ private:
     glm::dmat4 inverseViewProjection_;
     ClipPlanes segmentPlanes_;
     double nearPlaneW_; // the near test is z + nearPlaneW_ * w >= 0: 0 for ZeroToOne, 1 for MinusOneToOne
+    double nearDistance_;
     PointPath path_;
+    WideField wide_;
 };
 
 } // namespace overlayd

@@ -1,7 +1,9 @@
 // OpenCV's distortion models (calib3d projectPoints, fisheye::projectPoints) and their numerical inverse.
 #include "distortion.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/mat2x2.hpp>
@@ -97,22 +99,83 @@ Result<glm::dvec2> undistortNormalized(const Distortion &distortion, const glm::
     return makeError(ErrorCode::NoConvergence, "undistortion did not converge (point outside the lens's field?)");
 }
 
-double monotonicRadius(const Distortion &distortion)
+namespace {
+
+// The scan's step is 0.01 degrees from the axis; a model that grows at every step up to kScanEnd keeps growing to
+// just short of the back axis, where a direction has no azimuth left and the scan stops.
+constexpr double kNarrowMaxAngle = 89.0 * M_PI / 180.0;
+constexpr int kNarrowSteps = 8900;
+constexpr int kScanSteps = 18000 - 1; // 179.99 degrees
+
+double scanAngle(int i)
 {
-    // Scan outwards in small steps of the viewing angle, up to just short of 90 degrees off-axis.
-    constexpr double kMaxAngle = 89.0 * M_PI / 180.0;
-    constexpr int kSteps = 8900;
-    if (distortion.model == DistortionModel::None)
-        return std::tan(kMaxAngle);
+    return kNarrowMaxAngle * i / kNarrowSteps;
+}
+
+} // namespace
+
+double fisheyeMaxAngle(const Distortion &distortion)
+{
     double previous = 0.0;
-    for (int i = 1; i <= kSteps; ++i) {
-        const double r = std::tan(kMaxAngle * i / kSteps);
-        const double image = radialImage(distortion, r);
+    for (int i = 1; i <= kScanSteps; ++i) {
+        const double image = formulas::fisheyeTheta(distortion.coeffs, scanAngle(i));
+        // The peak lies between steps i - 2 and i: i - 2 is the last step known to be before it.
         if (!(image > previous))
-            return std::tan(kMaxAngle * (i - 1) / kSteps);
+            return scanAngle(std::max(i - 2, 0));
         previous = image;
     }
-    return std::tan(kMaxAngle);
+    return scanAngle(kScanSteps);
+}
+
+double monotonicRadius(const Distortion &distortion)
+{
+    // Scan outwards in small steps of the viewing angle, up to just short of 90 degrees off-axis: the radius
+    // X/Z ends there. A fisheye is scanned on its angle, further (fisheyeMaxAngle); past 90 degrees every
+    // radius in front of the camera is valid.
+    if (distortion.model == DistortionModel::None)
+        return std::tan(kNarrowMaxAngle);
+    if (distortion.model == DistortionModel::Fisheye) {
+        const double angle = fisheyeMaxAngle(distortion);
+        return angle >= M_PI / 2 ? std::numeric_limits<double>::infinity() : std::tan(angle);
+    }
+    double previous = 0.0;
+    for (int i = 1; i <= kNarrowSteps; ++i) {
+        const double r = std::tan(scanAngle(i));
+        const double image = radialImage(distortion, r);
+        if (!(image > previous))
+            return std::tan(scanAngle(i - 1));
+        previous = image;
+    }
+    return std::tan(kNarrowMaxAngle);
+}
+
+Result<double> undistortFisheyeAngle(const Distortion &distortion, double thetaD, double maxAngle)
+{
+    // theta_d(theta) grows on [0, maxAngle] (that is what maxAngle means), so bisection cannot miss the root;
+    // Newton's steps speed it up where they stay inside the bracket.
+    // The rim itself is reached by projecting points on the field's edge: allow its rounding, no more.
+    const double rim = formulas::fisheyeTheta(distortion.coeffs, maxAngle);
+    if (!(thetaD >= 0.0) || thetaD > rim * (1.0 + 1e-12))
+        return makeError(ErrorCode::NoConvergence, "pixel lies outside the lens model's valid field");
+    if (thetaD >= rim)
+        return maxAngle;
+    double lo = 0.0, hi = maxAngle, theta = std::min(thetaD, maxAngle);
+    for (int iteration = 0; iteration < 200 && hi - lo > 0.0; ++iteration) {
+        const double f = formulas::fisheyeTheta(distortion.coeffs, theta) - thetaD;
+        if (f == 0.0)
+            break;
+        (f < 0.0 ? lo : hi) = theta;
+        const double h = 1e-7;
+        const double slope = (formulas::fisheyeTheta(distortion.coeffs, theta + h) -
+                              formulas::fisheyeTheta(distortion.coeffs, theta - h)) /
+                             (2.0 * h);
+        const double newton = theta - f / slope;
+        const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+        if (next == theta)
+            break;
+        theta = next;
+    }
+    return theta;
 }
 
 } // namespace overlayd

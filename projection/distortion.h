@@ -33,6 +33,13 @@ glm::dvec2 distortNormalized(const Distortion &distortion, const glm::dvec2 &xy)
 Result<glm::dvec2> undistortNormalized(const Distortion &distortion, const glm::dvec2 &distorted);
 // The radius |(x, y)| up to which the radial mapping keeps increasing. Past it, polynomial models fold back and
 // send points far outside the calibrated field onto the image, so nothing beyond it is drawn.
+// For a fisheye that is +infinity when the model keeps growing past 90 degrees from the axis (fisheyeMaxAngle).
 double monotonicRadius(const Distortion &distortion);
+// The fisheye's angle from the optical axis up to which theta_d keeps growing, scanned in steps of 0.01 degrees
+// up to 179.99 degrees: a lens of more than 180 degrees field of view sees points behind the camera plane.
+double fisheyeMaxAngle(const Distortion &distortion);
+// The angle theta in [0, maxAngle] whose distorted angle theta_d(theta) is thetaD (the fisheye model's inverse
+// on the angle, which unlike X/Z goes on past 90 degrees); fails beyond theta_d(maxAngle).
+Result<double> undistortFisheyeAngle(const Distortion &distortion, double thetaD, double maxAngle);
 
 } // namespace overlayd

@@ -27,6 +27,8 @@ Result<Lens> Lens::create(const PinholeIntrinsics &k, const Distortion &distorti
     lens.ndcToNormalized_ = ndcToPixel.then(pixelToNormalized);
     lens.normalizedToNdc_ = normalizedToPixel.then(pixelToNdc);
     lens.validRadius_ = monotonicRadius(distortion);
+    lens.validAngle_ =
+        distortion.model == DistortionModel::Fisheye ? fisheyeMaxAngle(distortion) : std::atan(lens.validRadius_);
     lens.guardBand_ = lens.computeGuardBand();
     return lens;
 }
@@ -111,8 +113,10 @@ NdcBounds Lens::computeGuardBand() const
         glm::dvec2 n = ndcToNormalized_(distorted);
         if (auto u = undistortNormalized(distortion_, n); u && glm::length(*u) <= validRadius_)
             n = *u;
-        else
+        else if (std::isfinite(validRadius_))
             n = glm::normalize(n) * validRadius_;
+        else
+            return; // a lens that sees behind the camera clips segments on the angle, not with side planes
         const glm::dvec2 ndc = normalizedToNdc_(n);
         box = {std::min(box.xMin, ndc.x), std::max(box.xMax, ndc.x), std::min(box.yMin, ndc.y),
                std::max(box.yMax, ndc.y)};

@@ -1,6 +1,8 @@
 // A calibrated lens: pinhole intrinsics plus distortion, applied as a warp of NDC (so any viewport can follow).
 #pragma once
 
+#include <cmath>
+
 #include <glm/mat2x2.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
@@ -34,6 +36,11 @@ public:
     const Distortion &distortion() const { return distortion_; }
     // Normalized radius beyond which the model folds back (see monotonicRadius); nothing past it is drawn.
     double validRadius() const { return validRadius_; }
+    // The angle from the optical axis up to which the model is valid (atan(validRadius) but for a wide fisheye).
+    double validAngle() const { return validAngle_; }
+    // A fisheye whose model keeps growing past 90 degrees: it sees points behind the camera plane, which no
+    // X/Z radius describes (validRadius is then infinite and the camera works on the angle).
+    bool seesBehind() const { return validAngle_ > M_PI / 2; }
     // Whether a clip-space point lies inside the cone of valid radii (w > 0 assumed).
     bool insideValidCone(const glm::dvec4 &clip) const;
     // The part [t0, t1] of the clip-space segment a + t (b - a) inside the valid cone, within [t0, t1] given.
@@ -50,6 +57,7 @@ private:
     Affine2 ndcToNormalized_;
     Affine2 normalizedToNdc_;
     double validRadius_ = 0.0;
+    double validAngle_ = 0.0;
     NdcBounds guardBand_;
 };
 

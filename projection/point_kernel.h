@@ -52,6 +52,48 @@ template<DistortionModel Model, class V>
     }
 }
 
+template<class V>
+[[gnu::always_inline]] inline MaskOf<V> inScissor(const PointPath &p, V x, V y)
+{
+    return (x >= p.scissorMin.x) & (x <= p.scissorMax.x) & (y >= p.scissorMin.y) & (y <= p.scissorMax.y);
+}
+
+// A fisheye of more than 180 degrees: theta = atan2(|(X, Y)|, Z) rather than atan(|(X, Y)| / Z), which ends at
+// the camera plane. In front of it (w > 0) the operations are those of distortLanes, so the pixels agree with a
+// narrower lens's; the near plane becomes the near sphere (a plane would cut off the field behind the camera).
+template<class V>
+[[gnu::always_inline]] inline ProjectedLanes<V> projectWideFisheye(const PointPath &p, V cx, V cy, V cz, V cw)
+{
+    ProjectedLanes<V> out;
+    const V sx = p.toNormalized[0][0] * cx + p.toNormalized[1][0] * cy + p.toNormalizedW.x * cw;
+    const V sy = p.toNormalized[0][1] * cx + p.toNormalized[1][1] * cy + p.toNormalizedW.y * cw;
+    const V rw2 = sx * sx + sy * sy;
+    const MaskOf<V> finite = laneAbs(cw) <= std::numeric_limits<double>::max();
+    const MaskOf<V> pastNear = rw2 + cw * cw >= p.near2;
+    const MaskOf<V> inField = (cw >= 0.0) | (rw2 >= p.backSlope2 * (cw * cw));
+    const MaskOf<V> hasFar = broadcastMask<V>(p.hasFar);
+    out.clipped = maskNot(finite & pastNear & inField) | (hasFar & (cw - cz < 0.0));
+    const V inverseW = 1.0 / cw;
+    out.depth = cz * inverseW;
+    const V rw = laneSqrt(rw2);
+    const V inverseRw = 1.0 / rw;
+    const V r = rw * inverseW;
+    const MaskOf<V> front = cw > 0.0;
+    // Behind the plane atan2(rw, w) = pi/2 - atan(w / rw): one atan either way.
+    const V zero = V{};
+    const V angle = fastAtan(select(front, r, cw * inverseRw));
+    const V theta = select(front, angle, (zero + atan_detail::kPiOver2) - angle);
+    const std::array<double, 8> &c = p.coeffs;
+    const V t2 = theta * theta, t4 = t2 * t2;
+    const V thetaD = theta * (1.0 + t2 * ((c[0] + c[1] * t2) + (c[2] + c[3] * t2) * t4));
+    const V scale = select(front & maskNot(r > 1e-8), inverseW, thetaD * inverseRw);
+    const V dx = sx * scale, dy = sy * scale;
+    out.x = p.toPixel[0][0] * dx + p.toPixel[1][0] * dy + p.toPixelOffset.x;
+    out.y = p.toPixel[0][1] * dx + p.toPixel[1][1] * dy + p.toPixelOffset.y;
+    out.inScissor = inScissor(p, out.x, out.y);
+    return out;
+}
+
 template<DistortionModel Model, class V>
 [[gnu::always_inline]] inline ProjectedLanes<V> projectClipLanes(const PointPath &p, V cx, V cy, V cz, V cw)
 {
@@ -61,6 +103,10 @@ template<DistortionModel Model, class V>
     // (Named masks, not calls inside | and &: clang warns about bitwise operators on bools next to calls.)
     const MaskOf<V> notInFront = maskNot((cw > 0.0) & (cw <= std::numeric_limits<double>::max()));
     const MaskOf<V> hasFar = broadcastMask<V>(p.hasFar);
+    if constexpr (Model == DistortionModel::Fisheye) {
+        if (p.wide)
+            return projectWideFisheye(p, cx, cy, cz, cw);
+    }
     out.clipped = notInFront | (cz + p.nearW * cw < 0.0) | (hasFar & (cw - cz < 0.0));
     // One division per point; clipped lanes go through the maths too (nothing traps) and are discarded.
     const V inverseW = 1.0 / cw;
@@ -79,8 +125,7 @@ template<DistortionModel Model, class V>
         out.x = p.toPixel[0][0] * dx + p.toPixel[1][0] * dy + p.toPixelOffset.x;
         out.y = p.toPixel[0][1] * dx + p.toPixel[1][1] * dy + p.toPixelOffset.y;
     }
-    out.inScissor =
-        (out.x >= p.scissorMin.x) & (out.x <= p.scissorMax.x) & (out.y >= p.scissorMin.y) & (out.y <= p.scissorMax.y);
+    out.inScissor = inScissor(p, out.x, out.y);
     return out;
 }
 

@@ -14,6 +14,12 @@ struct PointPath {
     glm::dmat2 toPixel{1.0};       // (distorted) normalized coordinates or NDC -> pixel
     glm::dvec2 toPixelOffset{0.0};
     double validRadius2 = 0.0;
+    // A fisheye that sees more than 180 degrees (Lens::seesBehind): the angle from the axis decides, not X/Z.
+    // Points count as in front down to the near sphere |P| = near; behind the camera plane, a point is in the
+    // field while |(X, Y)|^2 >= backSlope2 Z^2 (outside the cone about the back axis the lens cannot see).
+    bool wide = false;
+    double backSlope2 = 0.0;
+    double near2 = 0.0;
     double nearW = 0.0; // the near test is z + nearW * w >= 0: 0 for ZeroToOne, 1 for MinusOneToOne
     bool hasFar = false;
     glm::dvec2 scissorMin{0.0}, scissorMax{0.0};

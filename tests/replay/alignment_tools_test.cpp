@@ -65,13 +65,7 @@ cv::Vec3d vectorAfter(const std::string &output, const std::string &key)
 std::vector<cv::Point2d> projectedPixels(const std::string &config, const std::vector<cv::Point3d> &points,
                                          const std::string &dir)
 {
-    std::string args = "project --config '" + config + "' --json --";
-    char number[96];
-    for (const cv::Point3d &p : points) {
-        std::snprintf(number, sizeof number, " %.17g %.17g %.17g", p.x, p.y, p.z);
-        args += number;
-    }
-    const RunResult run = runOverlayd(args, dir);
+    const RunResult run = runOverlayd("project --config '" + config + "' --json --" + pointArguments(points), dir);
     EXPECT_EQ(run.exitStatus, 0) << run.all();
     std::vector<cv::Point2d> out;
     for (size_t at = run.out.find("\"pixel\":["); at != std::string::npos; at = run.out.find("\"pixel\":[", at + 1)) {

@@ -2,6 +2,7 @@
 #include "harness.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -89,6 +90,17 @@ std::vector<uint8_t> readFile(const std::string &path)
 {
     std::ifstream in(path, std::ios::binary);
     return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string pointArguments(const std::vector<cv::Point3d> &points)
+{
+    std::string args;
+    char number[96];
+    for (const cv::Point3d &p : points) {
+        std::snprintf(number, sizeof number, " %.17g %.17g %.17g", p.x, p.y, p.z);
+        args += number;
+    }
+    return args;
 }
 
 void writeFile(const std::string &path, const std::string &text)

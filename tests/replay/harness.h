@@ -37,6 +37,9 @@ cv::Mat renderFrameBgr(const std::string &config, const std::string &format, int
 cv::Mat rawToBgr(const std::vector<uint8_t> &bytes, size_t offset, const std::string &format, int width, int height);
 size_t rawFrameSize(const std::string &format, int width, int height);
 
+// " x y z x y z ...": points as command-line arguments, each number exact (%.17g).
+std::string pointArguments(const std::vector<cv::Point3d> &points);
+
 std::vector<uint8_t> readFile(const std::string &path);
 void writeFile(const std::string &path, const std::string &text);
 

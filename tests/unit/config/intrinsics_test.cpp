@@ -1,6 +1,8 @@
 // Every intrinsics form, near/far, depth range, distortion and viewport of [camera]/[viewport], against pixels
 // computed by hand from the forms' definitions or by cv::projectPoints / cv::fisheye::projectPoints.
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -244,6 +246,109 @@ TEST(Viewport, WindowScissorAndPinholeWithoutImageSize)
     expectPixel(camera, {0.5, 0.2, 2}, 100 + 319.5 + 75, 50 + 179.5 + 30);
     EXPECT_EQ(camera.viewport().scissor(), (PixelRect{100, 50, 320, 360}));
     EXPECT_EQ(camera.project(glm::dvec3(0.5, 0.2, 2)).status, PointStatus::Outside);
+}
+
+} // namespace
+} // namespace overlayd::test
+
+namespace overlayd::test {
+namespace {
+
+// calibration_crop = [x, y, width, height]: the stream is that region of the calibrated image scaled to the stream.
+// Worked by hand for a 4:3 1600x1200 calibration (f 1000, centre (799.5, 649.5)) and a 1280x720 stream made from the
+// region [100, 300, 1200, 675] (off-centre, 16:9): s = 1280 / 1200 = 720 / 675 = 16/15, f' = 1000 s = 1066.67,
+// cx' = (799.5 + 0.5 - 100) s - 0.5 = 746.1667, cy' = (649.5 + 0.5 - 300) s - 0.5 = 372.8333 (pixel centres at
+// integers, as every scaling here); pixels against cv::projectPoints with that K.
+TEST(Intrinsics, PinholeWithAnExplicitCropRegionIsCroppedThereAndScaled)
+{
+    const Camera camera = buildCamera(kHeader + "[camera]\nrvec = [0, 0, 0]\ntvec = [0, 0, 0]\n"
+                                                "calibration_crop = [100, 300, 1200, 675]\n"
+                                                "[camera.pinhole]\nfx = 1000\nfy = 1000\ncx = 799.5\ncy = 649.5\n"
+                                                "width = 1600\nheight = 1200\n");
+    ASSERT_TRUE(camera.projection().pinholeIntrinsics().has_value());
+    const PinholeIntrinsics k = *camera.projection().pinholeIntrinsics();
+    const double s = 16.0 / 15.0;
+    EXPECT_NEAR(k.fx, 1000.0 * s, 1e-9);
+    EXPECT_NEAR(k.fy, 1000.0 * s, 1e-9);
+    EXPECT_NEAR(k.cx, 700.0 * s - 0.5, 1e-9);
+    EXPECT_NEAR(k.cy, 350.0 * s - 0.5, 1e-9);
+    const cv::Matx33d expectedK(1000.0 * s, 0, 700.0 * s - 0.5, 0, 1000.0 * s, 350.0 * s - 0.5, 0, 0, 1);
+    const std::vector<cv::Point3d> world{{0.5, -0.25, 3}, {-1, 0.4, 2}, {0.02, 0.01, 5}};
+    const auto expected = opencvProject(world, cv::Matx33d::eye(), {0, 0, 0}, expectedK, {});
+    for (size_t i = 0; i < world.size(); ++i)
+        expectPixel(camera, {world[i].x, world[i].y, world[i].z}, expected[i].x, expected[i].y);
+}
+
+// 2x2 binning: the whole 2560x1440 sensor as calibrated, streamed at 1280x720, is crop = the whole sensor, scale 0.5;
+// and the same size as calibrated with a smaller region is a digital zoom (scale 2 from [320, 180, 640, 360]).
+TEST(Intrinsics, AnExplicitCropDescribesBinningAndZoom)
+{
+    DaemonConfig binned = loadValid(kHeader + kIdentityPose +
+                                    "calibration_crop = [0, 0, 2560, 1440]\n"
+                                    "[camera.pinhole]\nfx = 2000\nfy = 2000\n"
+                                    "cx = 1279.5\ncy = 719.5\nwidth = 2560\nheight = 1440\n");
+    auto camera = binned.camera.build(1280, 720);
+    ASSERT_TRUE(camera.ok()) << camera.error().message;
+    EXPECT_NEAR(camera->projection().pinholeIntrinsics()->fx, 1000.0, 1e-12);
+    EXPECT_NEAR(camera->projection().pinholeIntrinsics()->cx, 639.5, 1e-12);
+    EXPECT_NEAR(camera->projection().pinholeIntrinsics()->cy, 359.5, 1e-12);
+    EXPECT_NE(binned.camera.calibrationScaling(camera->viewport()).find("cropped to calibration_crop"),
+              std::string::npos);
+
+    DaemonConfig zoomed = loadValid(kHeader + kIdentityPose +
+                                    "calibration_crop = [320, 180, 640, 360]\n"
+                                    "[camera.pinhole]\nfx = 500\nfy = 500\n"
+                                    "cx = 639.5\ncy = 359.5\nwidth = 1280\nheight = 720\n");
+    auto zoom = zoomed.camera.build(1280, 720);
+    ASSERT_TRUE(zoom.ok()) << zoom.error().message;
+    EXPECT_NEAR(zoom->projection().pinholeIntrinsics()->fx, 1000.0, 1e-12);
+    EXPECT_NEAR(zoom->projection().pinholeIntrinsics()->cx, (639.5 + 0.5 - 320) * 2 - 0.5, 1e-12);
+    EXPECT_NEAR(zoom->projection().pinholeIntrinsics()->cy, (359.5 + 0.5 - 180) * 2 - 0.5, 1e-12);
+}
+
+// Refused at camera.calibration_crop with its line: outside the calibrated image, empty, another aspect than the
+// stream's by more than a pixel, not four numbers. Under 1 px of aspect is allowed (1201x676 -> 1280x720.47).
+TEST(Intrinsics, AnExplicitCropOutsideTheImageEmptyOrOfAnotherAspectIsRefused)
+{
+    const std::string pinhole = "[camera.pinhole]\nfx = 1000\nfy = 1000\ncx = 799.5\ncy = 599.5\n"
+                                "width = 1600\nheight = 1200\n";
+    const struct {
+        const char *crop, *words;
+    } cases[] = {
+        {"[500, 600, 1200, 675]", "reaches outside the calibrated 1600x1200 (4:3) image"},
+        {"[-1, 0, 1200, 675]", "x and y must be >= 0, width and height > 0"},
+        {"[0, 0, 0, 675]", "x and y must be >= 0, width and height > 0"},
+        {"[0, 0, 1200, 700]", "is not of the stream's aspect (1280x720 (16:9))"},
+        {"[0, 0, 1600, 1200]", "is not of the stream's aspect"},
+        {"[0, 0, 1200]", "got 3 numbers"},
+        {"\"left\"", "unknown value 'left'"},
+    };
+    for (const auto &c : cases) {
+        const auto problems = loadInvalid(kHeader + kIdentityPose + "calibration_crop = " + c.crop + "\n" + pinhole);
+        EXPECT_TRUE(hasProblem(problems, "camera.calibration_crop", c.words)) << c.crop << "\n"
+                                                                              << formatProblems(problems);
+        bool located = false;
+        for (const ConfigProblem &p : problems)
+            located = located || (p.key == "camera.calibration_crop" && p.line == 7);
+        EXPECT_TRUE(located) << c.crop << "\n" << formatProblems(problems);
+    }
+    loadValid(kHeader + kIdentityPose + "calibration_crop = [0, 0, 1201, 676]\n" + pinhole);
+}
+
+// Numbers as written: a float is rounded to double once. The value is 1 + 2^-53 (halfway between 1 and the next
+// double 1 + 2^-52) plus 1e-60: correctly rounded it is 1 + 2^-52, but rounded first to long double (x86's 64-bit
+// mantissa, or arm64's 113-bit one, both hold 1 + 2^-53 exactly and lose the 1e-60) and then to double it ties to
+// even, 1. toml++ (built without float charconv, so std::istringstream >> double, which is strtod) rounds once.
+TEST(Intrinsics, FloatsAreRoundedToDoubleOnce)
+{
+    const std::string written = "1.000000000000000111022302462515654042363166809082031250000001";
+    double once = 0.0;
+    std::from_chars(written.data(), written.data() + written.size(), once);
+    const double twice = static_cast<double>(std::strtold(written.c_str(), nullptr));
+    ASSERT_EQ(once, std::nextafter(1.0, 2.0));
+    ASSERT_NE(once, twice) << "the value must tell one rounding from two";
+    const DaemonConfig config = loadValid(kHeader + kIdentityPose + "near = " + written + "\n");
+    EXPECT_EQ(config.camera.near, once);
 }
 
 } // namespace
