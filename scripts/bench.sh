@@ -31,7 +31,7 @@ build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build_dir/CMakeCache.txt"
 [ "$build_type" = Release ] || echo "bench.sh: $build_dir is a $build_type build, not Release" >&2
 targets=()
 for bench in "${benches[@]}"; do targets+=(--target "$(basename "$bench")"); done
-cmake --build "$build_dir" -j "$(nproc)" "${targets[@]}"
+cmake --build "$build_dir" -j "$(nproc)" "${targets[@]}" >&2 # stdout: the tables only
 
 mkdir -p "$out_dir"
 work=$(mktemp -d)
