@@ -62,8 +62,9 @@ public:
 
     ProjectedPoint project(const glm::dvec3 &world) const { return project(glm::dvec4(world, 1.0)); }
     ProjectedPoint project(const glm::dvec4 &world) const;
-    // Batch form: projects min(world.size(), out.size()) points; allocates nothing. Same bits as project(), 2, 4
-    // or 8 points at a time (the widest loop the CPU runs; see docs/speed.md).
+    // Batch form: projects min(world.size(), out.size()) points; allocates nothing. Same bits as project(), in
+    // registers of 2, 4 or 8 points, two or four registers interleaved (the widest loop the CPU runs; see
+    // docs/speed.md).
     void projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out) const
     {
         projectPoints(world, out, BatchKernel::Best);
@@ -72,6 +73,8 @@ public:
     void projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out, BatchKernel kernel) const;
     // Whether this build and this CPU can run `kernel` (Best and Lanes2 always can).
     static bool batchKernelAvailable(BatchKernel kernel);
+    // The loop Best stands for on this CPU (never Best itself).
+    static BatchKernel bestBatchKernel();
 
     // Appends the visible part of the straight 3D segment a-b as polylines (several where the lens's valid field
     // cuts it); curved through a distorting lens to within tolerancePx.

@@ -38,14 +38,19 @@ bool Camera::batchKernelAvailable(BatchKernel kernel)
     return false;
 }
 
+BatchKernel Camera::bestBatchKernel()
+{
+    return batchKernelAvailable(BatchKernel::Lanes8Avx512) ? BatchKernel::Lanes8Avx512
+           : batchKernelAvailable(BatchKernel::Lanes4Avx2) ? BatchKernel::Lanes4Avx2
+                                                           : BatchKernel::Lanes2;
+}
+
 void Camera::projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out, BatchKernel kernel) const
 {
     const BatchJob job{path_,        viewProjection_, lens_ ? lens_->distortion().model : DistortionModel::None,
                        world.data(), out.data(),      std::min(world.size(), out.size())};
     if (kernel == BatchKernel::Best)
-        kernel = batchKernelAvailable(BatchKernel::Lanes8Avx512) ? BatchKernel::Lanes8Avx512
-                 : batchKernelAvailable(BatchKernel::Lanes4Avx2) ? BatchKernel::Lanes4Avx2
-                                                                 : BatchKernel::Lanes2;
+        kernel = bestBatchKernel();
     else if (!batchKernelAvailable(kernel))
         kernel = BatchKernel::Lanes2;
 #ifdef OVERLAYD_HAVE_X86_KERNELS

@@ -21,13 +21,13 @@ struct BatchJob {
 };
 
 namespace baseline {
-void projectPoints(const BatchJob &job); // 2 lanes: SSE2 on x86-64, NEON on arm64
+void projectPoints(const BatchJob &job); // 2-lane registers: SSE2 on x86-64, NEON on arm64
 }
 namespace avx2 {
-void projectPoints(const BatchJob &job); // 4 lanes; only on x86-64 CPUs that report AVX2
+void projectPoints(const BatchJob &job); // 4-lane registers; only on x86-64 CPUs that report AVX2
 }
 namespace avx512 {
-void projectPoints(const BatchJob &job); // 8 lanes; only on x86-64 CPUs that report AVX-512F
+void projectPoints(const BatchJob &job); // 8-lane registers; only on x86-64 CPUs that report AVX-512F
 }
 
 } // namespace overlayd

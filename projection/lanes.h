@@ -33,8 +33,9 @@ constexpr int kLaneCount = sizeof(V) / sizeof(double);
 template<class V>
 [[gnu::always_inline]] inline V select(MaskOf<V> m, V a, V b)
 {
-    // Bitwise blend: the lanes types reinterpret as their mask type without conversion.
-    return (V)(((MaskOf<V>)a & m) | ((MaskOf<V>)b & ~m));
+    // The vector conditional, not a bitwise blend written out: GCC turned (a & m) | (b & ~m) into two dependent
+    // xors per select (b ^ ((a ^ b) & m)), where this is one blend (vblendmpd on a mask register, vblendvpd, bsl).
+    return m ? a : b;
 }
 
 [[gnu::always_inline]] inline bool maskNot(bool m)

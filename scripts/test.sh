@@ -2,11 +2,12 @@
 # The whole test suite from a fresh Debian 12 machine: install what is missing, build, run every test through
 # CTest, then print the projection benchmark's speed ratios against OpenCV measured in the same run (reported,
 # not asserted: these machines drift by up to 1.5x; the benchmark itself refuses to time mismatching results).
+# scripts/bench.sh runs every benchmark on a Release build for the README's Speed table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 build_dir=${BUILD_DIR:-build}
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
-"$build_dir/tests/bench/projection_bench" --points=200000 --benchmark_min_time=0.05 --benchmark_color=false 2>/dev/null |
+"$build_dir/tests/bench/projection_bench" --benchmark_min_time=0.05 --benchmark_color=false 2>/dev/null |
     grep -o "ratio .*" || true

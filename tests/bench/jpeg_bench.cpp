@@ -5,8 +5,9 @@
 // Both paths get the same help: one persistent libjpeg-turbo handle, a preallocated output buffer, and the same
 // chroma subsampling (4:2:2 for YUYV, 4:2:0 for NV12), so the ratio measures what happens before the DCT. Before any
 // timing, each frame's two JPEGs are decoded and compared (mean |difference| per channel <= 2 levels); a mismatch
-// aborts the run, so a fast wrong answer is never reported. At the end a "ratio" line per case gives both costs per
-// frame, wall clock and CPU time (the steadier figure on a shared machine; the fastest of --benchmark_repetitions),
+// aborts the run, so a fast wrong answer is never reported. Cases are named BM_Jpeg/<path>/<format>/<size>/<colours>
+// (path: native, native_planes_only, rgb_round_trip). At the end a "ratio" line per case gives both costs per
+// frame, wall clock and CPU time (the steadier figure on a shared machine; the median of --benchmark_repetitions),
 // and the speed-up.
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,7 @@
 #include "media/frame_buffer.h"
 #include "media/jpeg/jfif_planes.h"
 #include "media/jpeg/jpeg_encoder.h"
+#include "tests/bench_support/same_run.h"
 
 namespace {
 
@@ -41,9 +43,9 @@ struct Case {
 };
 
 const Case kCases[] = {
-    {"YUYV-601-limited", "YUYV", {YcbcrMatrix::Bt601, ColourRange::Limited}, TJSAMP_422},
-    {"NV12-601-limited", "NV12", {YcbcrMatrix::Bt601, ColourRange::Limited}, TJSAMP_420},
-    {"YUYV-709-limited", "YUYV", {YcbcrMatrix::Bt709, ColourRange::Limited}, TJSAMP_422},
+    {"YUYV/1920x1080/bt601-limited", "YUYV", {YcbcrMatrix::Bt601, ColourRange::Limited}, TJSAMP_422},
+    {"NV12/1920x1080/bt601-limited", "NV12", {YcbcrMatrix::Bt601, ColourRange::Limited}, TJSAMP_420},
+    {"YUYV/1920x1080/bt709-limited", "YUYV", {YcbcrMatrix::Bt709, ColourRange::Limited}, TJSAMP_422},
 };
 
 struct TjDeleter {
@@ -138,8 +140,9 @@ void setUp(const Case &spec, int quality)
     if (!(worst <= kMaxMeanDifference))
         fail(std::string(spec.name) + ": native and round-trip JPEGs differ by a mean of " + std::to_string(worst) +
              " levels; not timing a wrong answer");
-    std::printf("verified %s: mean |native - round trip| R %.2f G %.2f B %.2f; %zu vs %lu bytes\n", spec.name,
-                sums[0] / pixels, sums[1] / pixels, sums[2] / pixels, f.native.size(), f.roundTripSize);
+    // stderr: stdout carries the JSON under --benchmark_format=json.
+    std::fprintf(stderr, "verified %s: mean |native - round trip| R %.2f G %.2f B %.2f; %zu vs %lu bytes\n", spec.name,
+                 sums[0] / pixels, sums[1] / pixels, sums[2] / pixels, f.native.size(), f.roundTripSize);
 }
 
 void setCounters(benchmark::State &state)
@@ -183,35 +186,6 @@ void benchRoundTrip(benchmark::State &state, const std::string &name)
     setCounters(state);
 }
 
-// Console output as usual, plus wall and CPU milliseconds per frame of every run, keyed by benchmark name (without
-// the repetition suffix).
-class RecordingReporter : public benchmark::ConsoleReporter
-{
-public:
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        ConsoleReporter::ReportRuns(runs);
-        for (const Run &run : runs)
-            if (run.run_type == Run::RT_Iteration && run.iterations > 0) {
-                const double scale = 1e3 / static_cast<double>(run.iterations);
-                keepLeast(wallMs, run.run_name.str(), run.real_accumulated_time * scale);
-                keepLeast(cpuMs, run.run_name.str(), run.cpu_accumulated_time * scale);
-            }
-    }
-
-    std::map<std::string, double> wallMs, cpuMs;
-
-private:
-    // With --benchmark_repetitions the fastest repetition is kept: on a shared machine the others measure the
-    // neighbours as well.
-    static void keepLeast(std::map<std::string, double> &times, const std::string &name, double ms)
-    {
-        auto [it, inserted] = times.try_emplace(name, ms);
-        if (!inserted)
-            it->second = std::min(it->second, ms);
-    }
-};
-
 } // namespace
 
 int main(int argc, char **argv)
@@ -229,33 +203,33 @@ int main(int argc, char **argv)
     if (quality < 1 || quality > 100)
         fail("--quality must be in 1..100");
 
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
+    if (!bench::initialize(argc, argv))
         return EXIT_FAILURE;
 
     for (const Case &spec : kCases) {
         setUp(spec, quality);
         const std::string name = spec.name;
-        benchmark::RegisterBenchmark(("native/" + name).c_str(), benchNative, name)->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("native-planes-only/" + name).c_str(), benchGather, name)
+        benchmark::RegisterBenchmark(("BM_Jpeg/native/" + name).c_str(), benchNative, name)
             ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("rgb-round-trip/" + name).c_str(), benchRoundTrip, name)
+        benchmark::RegisterBenchmark(("BM_Jpeg/native_planes_only/" + name).c_str(), benchGather, name)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_Jpeg/rgb_round_trip/" + name).c_str(), benchRoundTrip, name)
             ->Unit(benchmark::kMillisecond);
     }
 
-    RecordingReporter reporter;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::Shutdown();
-
+    const auto reporter = bench::runAll();
     for (const Case &spec : kCases) {
-        const std::string native = std::string("native/") + spec.name, rgb = std::string("rgb-round-trip/") + spec.name;
-        if (!reporter.wallMs.count(native) || !reporter.wallMs.count(rgb))
+        const std::string native = std::string("BM_Jpeg/native/") + spec.name,
+                          rgb = std::string("BM_Jpeg/rgb_round_trip/") + spec.name;
+        const auto nativeWall = reporter->wallSeconds(native), rgbWall = reporter->wallSeconds(rgb);
+        const auto nativeCpu = reporter->cpuSeconds(native), rgbCpu = reporter->cpuSeconds(rgb);
+        if (!nativeWall || !rgbWall || !nativeCpu || !rgbCpu)
             continue; // filtered out by --benchmark_filter
-        std::printf("ratio %s q%d: wall native %.2f / round trip %.2f ms/frame = %.2fx; cpu native %.2f / round trip "
-                    "%.2f ms/frame = %.2fx\n",
-                    spec.name, quality, reporter.wallMs[native], reporter.wallMs[rgb],
-                    reporter.wallMs[rgb] / reporter.wallMs[native], reporter.cpuMs[native], reporter.cpuMs[rgb],
-                    reporter.cpuMs[rgb] / reporter.cpuMs[native]);
+        std::fprintf(reporter->ratioStream(),
+                     "ratio %s q%d: wall native %.2f / round trip %.2f ms/frame = %.2fx; cpu native %.2f / round trip "
+                     "%.2f ms/frame = %.2fx\n",
+                     spec.name, quality, *nativeWall * 1e3, *rgbWall * 1e3, *rgbWall / *nativeWall, *nativeCpu * 1e3,
+                     *rgbCpu * 1e3, *rgbCpu / *nativeCpu);
     }
     return EXIT_SUCCESS;
 }

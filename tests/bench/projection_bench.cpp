@@ -1,16 +1,20 @@
 // projection_bench: Camera::projectPoints against cv::projectPoints / cv::fisheye::projectPoints, same points.
 //
-// Usage: projection_bench [--points=N] [Google Benchmark flags]. Before any timing, every model's pixels are
-// checked against OpenCV's (max difference <= 1e-6 px) for every batch loop this CPU runs; a mismatch aborts the
-// run, so a fast wrong answer can never be reported. At the end a "ratio" line per model gives both costs per
-// point and the speed-up of the default loop (wall clock), and a "kernel" line per loop and model gives wall-clock
-// and CPU-time ratios (CPU time is the steadier figure on a shared machine).
+// Usage: projection_bench [--points=N[,N...]] [Google Benchmark flags]; 1000 and 100000 points unless given.
+// Before any timing, every model's pixels are checked against OpenCV's (max difference <= 1e-6 px) for every batch
+// loop this CPU runs; a mismatch aborts the run, so a fast wrong answer can never be reported.
+//
+// Cases are named BM_Project/<who>/<model>/<points>: who is opencv, ours (the loop Camera::projectPoints picks on
+// this CPU) or ours_lanes2 / ours_avx2 / ours_avx512 (each loop forced). At the end a "ratio" line per model and
+// size gives OpenCV's and the picked loop's CPU time per point and the speed-up, and a "kernel" line the same for
+// every loop (scripts/test.sh prints the ratio lines; scripts/bench.sh reads the JSON of the same runs).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,6 +25,7 @@
 #include <opencv2/core.hpp>
 
 #include "projection/camera.h"
+#include "tests/bench_support/same_run.h"
 
 namespace {
 
@@ -48,11 +53,19 @@ struct KernelChoice {
     BatchKernel kernel;
 };
 const KernelChoice kKernels[] = {
-    {"overlayd", BatchKernel::Best},
-    {"overlayd-lanes2", BatchKernel::Lanes2},
-    {"overlayd-avx2", BatchKernel::Lanes4Avx2},
-    {"overlayd-avx512", BatchKernel::Lanes8Avx512},
+    {"ours", BatchKernel::Best},
+    {"ours_lanes2", BatchKernel::Lanes2},
+    {"ours_avx2", BatchKernel::Lanes4Avx2},
+    {"ours_avx512", BatchKernel::Lanes8Avx512},
 };
+
+const char *kernelName(BatchKernel kernel)
+{
+    for (const KernelChoice &k : kKernels)
+        if (k.kernel == kernel)
+            return k.name;
+    return "?";
+}
 
 // One model's camera (for both libraries) and the shared input points.
 struct Fixture {
@@ -78,6 +91,7 @@ struct Fixture {
     void ourProject(BatchKernel kernel = BatchKernel::Best) { camera->projectPoints(world, ours, kernel); }
 };
 
+// Keyed by "<model>/<points>".
 std::map<std::string, Fixture> fixtures;
 
 [[noreturn]] void fail(const std::string &message)
@@ -86,9 +100,14 @@ std::map<std::string, Fixture> fixtures;
     std::exit(EXIT_FAILURE);
 }
 
+std::string caseName(const Model &model, std::size_t points)
+{
+    return std::string(model.name) + "/" + std::to_string(points);
+}
+
 void setUp(const Model &model, std::size_t points)
 {
-    Fixture &f = fixtures[model.name];
+    Fixture &f = fixtures[caseName(model, points)];
     f.model = &model;
     const int width = 1920, height = 1080;
     const PinholeIntrinsics intrinsics{model.focal, model.focal, 959.5, 539.5, 0.0, width, height};
@@ -136,8 +155,9 @@ void setUp(const Model &model, std::size_t points)
             fail(std::string(model.name) + " (" + k.name + "): overlayd and OpenCV differ by up to " +
                  std::to_string(worst) + " px (allowed " + std::to_string(kMaxDifferencePx) +
                  "); not timing a wrong answer");
-        std::printf("verified %s (%s): %zu points, max |overlayd - OpenCV| = %.3g px\n", model.name, k.name, points,
-                    worst);
+        // stderr: stdout carries the JSON under --benchmark_format=json.
+        std::fprintf(stderr, "verified %s (%s): %zu points, max |overlayd - OpenCV| = %.3g px\n", model.name, k.name,
+                     points, worst);
     }
 }
 
@@ -152,6 +172,8 @@ void setCounters(benchmark::State &state, std::size_t points)
 void benchOverlayd(benchmark::State &state, const std::string &name, BatchKernel kernel)
 {
     Fixture &f = fixtures.at(name);
+    if (kernel == BatchKernel::Best) // which loop that is, in every report (the JSON's "label")
+        state.SetLabel(std::string("runs ") + kernelName(Camera::bestBatchKernel()));
     for (auto _ : state) {
         f.ourProject(kernel);
         benchmark::DoNotOptimize(f.ours.data());
@@ -171,83 +193,74 @@ void benchOpenCv(benchmark::State &state, const std::string &name)
     setCounters(state, f.world.size());
 }
 
-// Console output as usual, plus the real and CPU time per point of every run, keyed by benchmark name. CPU time
-// is the steadier figure on a shared machine (time spent descheduled does not count).
-class RecordingReporter : public benchmark::ConsoleReporter
+std::string benchName(const char *who, const Model &model, std::size_t points)
 {
-public:
-    explicit RecordingReporter(std::size_t points) : points_(points) {}
+    return std::string("BM_Project/").append(who).append("/").append(caseName(model, points));
+}
 
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        ConsoleReporter::ReportRuns(runs);
-        for (const Run &run : runs)
-            if (run.run_type == Run::RT_Iteration && run.iterations > 0) {
-                const double scale = 1e9 / (static_cast<double>(run.iterations) * points_);
-                nsPerPoint[run.benchmark_name()] = run.real_accumulated_time * scale;
-                cpuNsPerPoint[run.benchmark_name()] = run.cpu_accumulated_time * scale;
-            }
-    }
-
-    std::map<std::string, double> nsPerPoint;
-    std::map<std::string, double> cpuNsPerPoint;
-
-private:
-    std::size_t points_;
-};
+// "<what> <model> <points>: cv X / ours Y ns/point = Zx" from CPU time; nothing if either case did not run.
+void printRatio(const bench::SameRunReporter &reporter, const char *what, const char *kernel, const Model &model,
+                std::size_t points)
+{
+    const std::optional<double> cv = reporter.cpuSeconds(benchName("opencv", model, points));
+    const std::optional<double> ours = reporter.cpuSeconds(benchName(kernel, model, points));
+    if (!cv || !ours)
+        return; // filtered out by --benchmark_filter, or not available on this CPU
+    const double scale = 1e9 / static_cast<double>(points);
+    std::fprintf(reporter.ratioStream(), "%s %s %zu points: cv %.2f ns/point, %s %.2f ns/point, speed-up %.2fx\n", what,
+                 model.name, points, *cv * scale, kernel, *ours * scale, *cv / *ours);
+}
 
 } // namespace
 
 int main(int argc, char **argv)
 {
-    std::size_t points = 1'000'000;
-    // Take --points=N out of argv before Google Benchmark sees (and rejects) it.
+    std::vector<std::size_t> sizes{1000, 100'000};
+    // Take --points=N[,N...] out of argv before Google Benchmark sees (and rejects) it.
     int kept = 1;
     for (int i = 1; i < argc; ++i) {
-        if (std::strncmp(argv[i], "--points=", 9) == 0)
-            points = std::strtoull(argv[i] + 9, nullptr, 10);
-        else
+        if (std::strncmp(argv[i], "--points=", 9) == 0) {
+            sizes.clear();
+            for (const char *p = argv[i] + 9; *p;) {
+                char *end = nullptr;
+                sizes.push_back(std::strtoull(p, &end, 10));
+                if (end == p || sizes.back() == 0 || (*end != ',' && *end != '\0'))
+                    fail("--points takes positive numbers separated by commas");
+                p = *end ? end + 1 : end;
+            }
+        } else {
             argv[kept++] = argv[i];
-    }
-    argc = kept;
-    if (points == 0)
-        fail("--points must be a positive number");
-
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
-        return EXIT_FAILURE;
-
-    for (const Model &model : kModels) {
-        setUp(model, points);
-        const std::string name = model.name;
-        benchmark::RegisterBenchmark(("opencv/" + name).c_str(), benchOpenCv, name)->Unit(benchmark::kMillisecond);
-        for (const KernelChoice &k : kKernels)
-            if (Camera::batchKernelAvailable(k.kernel))
-                benchmark::RegisterBenchmark((std::string(k.name) + "/" + name).c_str(), benchOverlayd, name, k.kernel)
-                    ->Unit(benchmark::kMillisecond);
-    }
-
-    RecordingReporter reporter(points);
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::Shutdown();
-
-    // "ratio" lines: the default loop, wall-clock time (what scripts/test.sh prints); "kernel" lines: every loop,
-    // both clocks.
-    for (const KernelChoice &k : kKernels) {
-        for (const Model &model : kModels) {
-            const std::string name = model.name;
-            const auto cv = reporter.nsPerPoint.find("opencv/" + name);
-            const auto ours = reporter.nsPerPoint.find(std::string(k.name) + "/" + name);
-            if (cv == reporter.nsPerPoint.end() || ours == reporter.nsPerPoint.end())
-                continue; // filtered out by --benchmark_filter, or not available on this CPU
-            const double cvCpu = reporter.cpuNsPerPoint[cv->first], oursCpu = reporter.cpuNsPerPoint[ours->first];
-            if (k.kernel == BatchKernel::Best)
-                std::printf("ratio %s: cv %.2f ns/point, overlayd %.2f ns/point, speed-up %.2fx\n", name.c_str(),
-                            cv->second, ours->second, cv->second / ours->second);
-            std::printf("kernel %s %s: wall cv %.2f / %.2f ns/point = %.2fx; cpu cv %.2f / %.2f ns/point = %.2fx\n",
-                        k.name, name.c_str(), cv->second, ours->second, cv->second / ours->second, cvCpu, oursCpu,
-                        cvCpu / oursCpu);
         }
     }
+    argc = kept;
+    if (sizes.empty())
+        fail("--points takes positive numbers separated by commas");
+
+    if (!bench::initialize(argc, argv))
+        return EXIT_FAILURE;
+
+    for (const std::size_t points : sizes)
+        for (const Model &model : kModels) {
+            setUp(model, points);
+            const std::string name = caseName(model, points);
+            benchmark::RegisterBenchmark(benchName("opencv", model, points).c_str(), benchOpenCv, name)
+                ->Unit(benchmark::kMicrosecond);
+            for (const KernelChoice &k : kKernels)
+                if (Camera::batchKernelAvailable(k.kernel)) {
+                    benchmark::RegisterBenchmark(benchName(k.name, model, points).c_str(), benchOverlayd, name,
+                                                 k.kernel)
+                        ->Unit(benchmark::kMicrosecond);
+                }
+        }
+
+    const auto reporter = bench::runAll();
+    for (const std::size_t points : sizes)
+        for (const Model &model : kModels)
+            printRatio(*reporter, "ratio", "ours", model, points);
+    for (const KernelChoice &k : kKernels)
+        if (k.kernel != BatchKernel::Best)
+            for (const std::size_t points : sizes)
+                for (const Model &model : kModels)
+                    printRatio(*reporter, "kernel", k.name, model, points);
     return EXIT_SUCCESS;
 }

@@ -4,7 +4,6 @@
 // premultiplied colour), grown until it covers ~9.5% of the pixels, the coverage landscape.md measures. Frames come
 // from a ring larger than the caches so that both the blend and the copy start cold.
 #include <cstring>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,44 +71,28 @@ void convertBench(benchmark::State &state, const char *formatName, unsigned widt
     }
 }
 
-// Prints blend / memcpy per case once every run is in, because runs drift and only a same-run ratio means much.
-class RatioReporter : public benchmark::ConsoleReporter
-{
-public:
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        for (const Run &run : runs)
-            seconds_[run.benchmark_name()] = run.GetAdjustedRealTime();
-        ConsoleReporter::ReportRuns(runs);
-    }
-    void Finalize() override
-    {
-        ConsoleReporter::Finalize();
-        for (const auto &[name, time] : seconds_) {
-            const bool aggregate = name.find('_') != std::string::npos;
-            if (name.rfind("blend/", 0) != 0 || (aggregate && !name.ends_with("_median")))
-                continue;
-            const auto copy = seconds_.find("memcpy/" + name.substr(6));
-            if (copy != seconds_.end())
-                std::printf("%-28s blend / cold memcpy = %.3f\n", name.c_str(), time / copy->second);
-        }
-    }
-
-private:
-    std::map<std::string, double> seconds_;
-};
-
 } // namespace
 } // namespace overlayd
 
 int main(int argc, char **argv)
 {
     using namespace overlayd;
+    if (!bench::initialize(argc, argv))
+        return 1;
+    constexpr const char *kFamily = "BM_GridLayer";
     for (const bench::FrameCase &c : bench::kFrameCases) {
-        bench::registerCase("blend", blendBench, c);
-        bench::registerCase("memcpy", memcpyBench, c);
-        bench::registerCase("convert", convertBench, c);
+        bench::registerCase(kFamily, "blend", blendBench, c);
+        bench::registerCase(kFamily, bench::kMemcpyCold, memcpyBench, c);
+        bench::registerCase(kFamily, "convert", convertBench, c);
     }
-    RatioReporter reporter;
-    return bench::runBenchmarks(argc, argv, reporter);
+    // blend / memcpy per case, from the same run: runs drift, only a same-run ratio means much.
+    const auto reporter = bench::runAll();
+    for (const bench::FrameCase &c : bench::kFrameCases) {
+        const auto blend = reporter->cpuSeconds(bench::caseName(kFamily, "blend", c));
+        const auto copy = reporter->cpuSeconds(bench::caseName(kFamily, bench::kMemcpyCold, c));
+        if (blend && copy)
+            std::fprintf(reporter->ratioStream(), "ratio %-16s blend / memcpy_cold = %.3f (CPU time)\n",
+                         c.name().c_str(), *blend / *copy);
+    }
+    return 0;
 }

@@ -13,6 +13,7 @@
 
 #include "media/frame.h"
 #include "media/pixel_format.h"
+#include "tests/bench_support/same_run.h"
 
 namespace overlayd::bench {
 
@@ -57,27 +58,25 @@ inline constexpr FrameCase kFrameCases[] = {
 
 using FrameBench = void (*)(benchmark::State &, const char *format, unsigned width, unsigned height);
 
-// Registers bench for one case as "<kind>/<case>", timed in milliseconds.
-inline void registerCase(const char *kind, FrameBench bench, const FrameCase &c)
+// The baseline's name in every overlay bench: a memcpy of a frame that is not in the cache.
+inline constexpr const char *kMemcpyCold = "memcpy_cold";
+
+// "<family>/<kind>/<case>", e.g. "BM_Blend/static/YUYV/1920x1080".
+inline std::string caseName(const char *family, const std::string &kind, const FrameCase &c)
+{
+    return std::string(family) + "/" + kind + "/" + c.name();
+}
+
+// Registers bench for one case as caseName(family, kind, c), timed in milliseconds.
+inline void registerCase(const char *family, const char *kind, FrameBench bench, const FrameCase &c)
 {
     benchmark::internal::Benchmark *b =
-        benchmark::RegisterBenchmark((std::string(kind) + "/" + c.name()).c_str(), bench, c.format, c.width, c.height)
+        benchmark::RegisterBenchmark(caseName(family, kind, c).c_str(), bench, c.format, c.width, c.height)
             ->Unit(benchmark::kMillisecond);
     // A fixed count instead of a minimum time: instructions/count.sh needs to know how many iterations ran (a timed
     // run also executes its probing rounds, which are not reported).
     if (const char *iterations = std::getenv("OVERLAYD_BENCH_ITERATIONS"))
         b->Iterations(std::max(1LL, std::atoll(iterations)));
-}
-
-// Google Benchmark's main, with a reporter that prints the same-run ratios at the end.
-inline int runBenchmarks(int argc, char **argv, benchmark::BenchmarkReporter &reporter)
-{
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
-        return 1;
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::Shutdown();
-    return 0;
 }
 
 } // namespace overlayd::bench

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -159,48 +158,32 @@ void cachedBench(benchmark::State &state, const char *formatName, unsigned width
     counters(state, grid, int(width), int(height));
 }
 
-// Prints every case over the memcpy of its frame once all runs are in: runs drift, only same-run ratios mean much;
-// CPU time too, which other processes on the machine disturb less.
-class RatioReporter : public benchmark::ConsoleReporter
-{
-public:
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        for (const Run &run : runs)
-            seconds_[run.benchmark_name()] = {run.GetAdjustedRealTime(), run.GetAdjustedCPUTime()};
-        ConsoleReporter::ReportRuns(runs);
-    }
-    void Finalize() override
-    {
-        ConsoleReporter::Finalize();
-        for (const auto &[name, times] : seconds_) {
-            const size_t slash = name.find('/');
-            const std::string kind = name.substr(0, slash), rest = name.substr(slash + 1);
-            const bool aggregate = rest.find('_') != std::string::npos;
-            if (kind == "memcpy" || (aggregate && !rest.ends_with("_median")))
-                continue;
-            const auto copy = seconds_.find("memcpy/" + rest);
-            if (copy != seconds_.end())
-                std::printf("%-28s %s / cold memcpy = %.2f (CPU time: %.2f)\n", name.c_str(), kind.c_str(),
-                            times.first / copy->second.first, times.second / copy->second.second);
-        }
-    }
-
-private:
-    std::map<std::string, std::pair<double, double>> seconds_; // real, CPU
-};
-
 } // namespace
 } // namespace overlayd
 
 int main(int argc, char **argv)
 {
     using namespace overlayd;
+    if (!bench::initialize(argc, argv))
+        return 1;
+    constexpr const char *kFamily = "BM_CoverageSink";
     for (const bench::FrameCase &c : bench::kFrameCases) {
-        bench::registerCase("sink", sinkBench, c);
-        bench::registerCase("cached", cachedBench, c);
-        bench::registerCase("memcpy", memcpyBench, c);
+        bench::registerCase(kFamily, "sink", sinkBench, c);
+        bench::registerCase(kFamily, "cached", cachedBench, c);
+        bench::registerCase(kFamily, bench::kMemcpyCold, memcpyBench, c);
     }
-    RatioReporter reporter;
-    return bench::runBenchmarks(argc, argv, reporter);
+    const auto reporter = bench::runAll();
+    // Every case over the memcpy of its frame, from the same run: runs drift, only same-run ratios mean much;
+    // wall and CPU time (other processes on the machine disturb the latter less).
+    for (const bench::FrameCase &c : bench::kFrameCases)
+        for (const char *kind : {"sink", "cached"}) {
+            const std::string name = bench::caseName(kFamily, kind, c),
+                              copy = bench::caseName(kFamily, bench::kMemcpyCold, c);
+            const auto wall = reporter->wallSeconds(name), cpu = reporter->cpuSeconds(name);
+            const auto copyWall = reporter->wallSeconds(copy), copyCpu = reporter->cpuSeconds(copy);
+            if (wall && cpu && copyWall && copyCpu)
+                std::fprintf(reporter->ratioStream(), "ratio %-16s %s / memcpy_cold = %.2f (CPU time: %.2f)\n",
+                             c.name().c_str(), kind, *wall / *copyWall, *cpu / *copyCpu);
+        }
+    return 0;
 }

@@ -16,7 +16,6 @@
 // static/touch says how far the static blend is from its own floor.
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -358,64 +357,43 @@ void opencvNaiveBench(benchmark::State &state, const char *formatName, unsigned 
     }
 }
 
-// Prints the ratios once every run is in: only same-run ratios mean much on a shared machine. CPU time, not wall
-// time: on a loaded machine wall time counts the time other processes held the core (all four cases are single
-// threaded and memory- or compute-bound, so on an idle machine the two agree).
-class RatioReporter : public benchmark::ConsoleReporter
-{
-public:
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        for (const Run &run : runs) {
-            const std::string name = run.benchmark_name();
-            const bool aggregate = run.run_type == Run::RT_Aggregate;
-            if (!aggregate || run.aggregate_name == "median")
-                seconds_[name.substr(0, name.find('_', name.find('/')))] = run.GetAdjustedCPUTime();
-        }
-        ConsoleReporter::ReportRuns(runs);
-    }
-    void Finalize() override
-    {
-        ConsoleReporter::Finalize();
-        std::printf("\n%-22s %14s %18s %15s %13s %16s %15s\n", "case", "static/memcpy", "naive/static",
-                    "dynamic/memcpy", "static/touch", "steering/memcpy", "steady/memcpy");
-        for (const auto &[name, time] : seconds_) {
-            if (name.rfind("memcpy/", 0) != 0)
-                continue;
-            const std::string which = name.substr(7);
-            const double copy = time, fixed = get("static/" + which), naive = get("opencv_naive/" + which),
-                         dynamic = get("dynamic/" + which), touch = get("touch/" + which),
-                         steering = get("steering/" + which), steady = get("steady/" + which);
-            std::printf("%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2) %13.2f %10.3f (<=2) %8.3f (<=0.5)\n",
-                        which.c_str(), fixed / copy, naive / fixed, dynamic / copy, fixed / touch, steering / copy,
-                        steady / copy);
-        }
-    }
-
-private:
-    double get(const std::string &name) const
-    {
-        const auto it = seconds_.find(name);
-        return it == seconds_.end() ? 0.0 : it->second;
-    }
-    std::map<std::string, double> seconds_;
-};
-
 } // namespace
 } // namespace overlayd
 
 int main(int argc, char **argv)
 {
     using namespace overlayd;
+    if (!bench::initialize(argc, argv))
+        return 1;
+    constexpr const char *kFamily = "BM_Blend";
     for (const bench::FrameCase &c : bench::kFrameCases) {
-        bench::registerCase("memcpy", memcpyBench, c);
-        bench::registerCase("touch", touchBench, c);
-        bench::registerCase("static", staticBench, c);
-        bench::registerCase("dynamic", dynamicBench, c);
-        bench::registerCase("steering", steeringChangeBench, c);
-        bench::registerCase("steady", steadyWheelBench, c);
-        bench::registerCase("opencv_naive", opencvNaiveBench, c);
+        bench::registerCase(kFamily, bench::kMemcpyCold, memcpyBench, c);
+        bench::registerCase(kFamily, "touch", touchBench, c);
+        bench::registerCase(kFamily, "static", staticBench, c);
+        bench::registerCase(kFamily, "dynamic", dynamicBench, c);
+        bench::registerCase(kFamily, "steering", steeringChangeBench, c);
+        bench::registerCase(kFamily, "steady", steadyWheelBench, c);
+        bench::registerCase(kFamily, "opencv_naive", opencvNaiveBench, c);
     }
-    RatioReporter reporter;
-    return bench::runBenchmarks(argc, argv, reporter);
+    const auto reporter = bench::runAll();
+
+    // The ratios from the same run (only same-run ratios mean much on a shared machine), CPU time, not wall time:
+    // on a loaded machine wall time counts the time other processes held the core (all the cases are single
+    // threaded and memory- or compute-bound, so on an idle machine the two agree). 0 where a case did not run.
+    std::FILE *out = reporter->ratioStream();
+    std::fprintf(out, "\n%-22s %14s %18s %15s %13s %16s %15s\n", "case", "static/memcpy", "naive/static",
+                 "dynamic/memcpy", "static/touch", "steering/memcpy", "steady/memcpy");
+    for (const bench::FrameCase &c : bench::kFrameCases) {
+        const auto get = [&](const char *kind) {
+            return reporter->cpuSeconds(bench::caseName(kFamily, kind, c)).value_or(0.0);
+        };
+        const double copy = get(bench::kMemcpyCold), fixed = get("static"), naive = get("opencv_naive"),
+                     dynamic = get("dynamic"), touch = get("touch"), steering = get("steering"), steady = get("steady");
+        if (copy == 0.0)
+            continue;
+        std::fprintf(out, "%-22s %8.3f (<=0.5) %11.1f (>=25) %9.3f (<=2) %13.2f %10.3f (<=2) %8.3f (<=0.5)\n",
+                     c.name().c_str(), fixed / copy, fixed > 0 ? naive / fixed : 0.0, dynamic / copy,
+                     touch > 0 ? fixed / touch : 0.0, steering / copy, steady / copy);
+    }
+    return 0;
 }

@@ -2,13 +2,12 @@
 // the pitched-down camera of scene_bench.cpp) at 1920x1080, the camera yawing between frames:
 //   stroke_raster  coverage rows into a sink that sums them (what a frame sink would blend);
 //   opencv_fill    cv::fillConvexPoly LINE_AA of each segment's inset quad into a full-frame CV_8UC1 mask, as
-//                  overlay/raster/rasterizer.cpp draws a translucent stroke (opencv_fill_clear also clears the mask after,
-//                  as that path must before the next item);
+//                  overlay/raster/rasterizer.cpp draws a translucent stroke (opencv_fill_clear also clears the mask
+//                  after, as that path must before the next item);
 //   memcpy         one cold 1920x1080 YUYV frame copy, the floor the targets are measured against.
 // ns_per_px is the time per covered pixel (pixels with coverage > 0 in StrokeRasterizer's output).
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -154,44 +153,30 @@ void opencvFillBench(benchmark::State &state, bool clear)
     setCounters(state);
 }
 
-// Prints same-run ratios at the end (CPU time: these machines are shared, see README's Speed).
-class RatioReporter : public benchmark::ConsoleReporter
-{
-public:
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        for (const Run &run : runs)
-            if (run.run_type != Run::RT_Aggregate || run.aggregate_name == "median")
-                seconds_[run.run_name.function_name.substr(0, run.run_name.function_name.find('/'))] =
-                    run.GetAdjustedCPUTime();
-        ConsoleReporter::ReportRuns(runs);
-    }
-    void Finalize() override
-    {
-        ConsoleReporter::Finalize();
-        const double raster = seconds_["stroke_raster"], copy = seconds_["memcpy"];
-        if (raster > 0 && copy > 0)
-            std::printf("\nstroke_raster / memcpy %.2f, opencv_fill / stroke_raster %.2f, opencv_fill_clear / "
-                        "stroke_raster %.2f\n",
-                        raster / copy, seconds_["opencv_fill"] / raster, seconds_["opencv_fill_clear"] / raster);
-    }
-
-private:
-    std::map<std::string, double> seconds_;
-};
-
 } // namespace
 } // namespace overlayd
 
 int main(int argc, char **argv)
 {
     using namespace overlayd;
-    benchmark::RegisterBenchmark("stroke_raster/grid/1920x1080", strokeRasterBench)->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark("opencv_fill/grid/1920x1080", opencvFillBench, false)->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark("opencv_fill_clear/grid/1920x1080", opencvFillBench, true)
+    if (!bench::initialize(argc, argv))
+        return 1;
+    benchmark::RegisterBenchmark("BM_Stroke/raster/grid/1920x1080", strokeRasterBench)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("BM_Stroke/opencv_fill/grid/1920x1080", opencvFillBench, false)
         ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark("memcpy/YUYV/1920x1080", bench::memcpyBench, "YUYV", 1920u, 1080u)
+    benchmark::RegisterBenchmark("BM_Stroke/opencv_fill_clear/grid/1920x1080", opencvFillBench, true)
         ->Unit(benchmark::kMicrosecond);
-    RatioReporter reporter;
-    return bench::runBenchmarks(argc, argv, reporter);
+    benchmark::RegisterBenchmark("BM_Stroke/memcpy_cold/YUYV/1920x1080", bench::memcpyBench, "YUYV", 1920u, 1080u)
+        ->Unit(benchmark::kMicrosecond);
+    const auto reporter = bench::runAll();
+    // Same-run ratios (CPU time: these machines are shared, see README's Speed).
+    const auto raster = reporter->cpuSeconds("BM_Stroke/raster/grid/1920x1080");
+    const auto copy = reporter->cpuSeconds("BM_Stroke/memcpy_cold/YUYV/1920x1080");
+    const auto fill = reporter->cpuSeconds("BM_Stroke/opencv_fill/grid/1920x1080");
+    const auto fillClear = reporter->cpuSeconds("BM_Stroke/opencv_fill_clear/grid/1920x1080");
+    if (raster && copy && fill && fillClear)
+        std::fprintf(reporter->ratioStream(),
+                     "\nratio raster / memcpy_cold %.2f, opencv_fill / raster %.2f, opencv_fill_clear / raster %.2f\n",
+                     *raster / *copy, *fill / *raster, *fillClear / *raster);
+    return 0;
 }

@@ -3,8 +3,8 @@
 # measure for the arm64 build under qemu-aarch64 and the x86-64 build under qemu-x86_64 (-cpu max: the AVX2 loops;
 # TCG has no AVX-512), repeatable whatever else the machine does.
 #
-#   count.sh "qemu-aarch64 -L .cache/arm64/sysroot" build-arm64-bench/tests/bench_overlay/overlay_scene_bench static/YUYV/1280x720
-#   count.sh "qemu-x86_64 -cpu max" build/tests/bench_overlay/overlay_scene_bench static/YUYV/1280x720
+#   count.sh "qemu-aarch64 -L .cache/arm64/sysroot" build-arm64-bench/tests/bench_overlay/overlay_scene_bench BM_Blend/static/YUYV/1280x720
+#   count.sh "qemu-x86_64 -cpu max" build/tests/bench_overlay/overlay_scene_bench BM_Blend/static/YUYV/1280x720
 #
 # The benchmark runs twice, for 2 and 12 iterations (OVERLAYD_BENCH_ITERATIONS, cold_frames.h); the difference of
 # the two totals over 10 is the cost of one iteration, without the process's start-up and the case's set-up.

@@ -1,10 +1,12 @@
 // batch_projection_test: every batch loop of Camera::projectPoints against the single-point Camera::project.
 //
 // project() is the reference here (it is itself held to OpenCV by opencv_compare_test). The batch loops must give
-// the same status and the same pixel and depth to within 1e-9 px, for every lens model, on random cameras, for
-// points in front, behind, beyond far, outside the lens's valid field and right on the scissor's edges.
+// the same status and the same pixel and depth (within 1e-9 px, and then bit for bit), for every lens model, on random
+// cameras, for points in front, behind, beyond far, outside the lens's valid field and right on the scissor's edges.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
@@ -114,11 +116,22 @@ void expectSame(const ProjectedPoint &batch, const ProjectedPoint &single, const
     EXPECT_LE(std::abs(batch.depth - single.depth), 1e-15 * std::max(1.0, std::abs(single.depth))) << where;
 }
 
+bool sameBits(const ProjectedPoint &a, const ProjectedPoint &b)
+{
+    return std::bit_cast<std::uint64_t>(a.pixel.x) == std::bit_cast<std::uint64_t>(b.pixel.x) &&
+           std::bit_cast<std::uint64_t>(a.pixel.y) == std::bit_cast<std::uint64_t>(b.pixel.y) &&
+           std::bit_cast<std::uint64_t>(a.depth) == std::bit_cast<std::uint64_t>(b.depth) && a.status == b.status;
+}
+
+// Close, and then bit for bit: every loop runs the single-point kernel's operations in the same order (no fused
+// multiply-add), so the doubles must be identical, not merely close; a loop that the compiler or a rewrite
+// contracted, reassociated or approximated differently shows here.
 TEST_P(BatchProjection, EqualsSinglePointProjection)
 {
     const auto [model, kernel] = GetParam();
     std::mt19937_64 rng(0xba7c4 + 16 * static_cast<int>(model) + static_cast<int>(kernel));
     int counts[3] = {0, 0, 0};
+    int differentBits = 0;
     for (int cam = 0; cam < 60; ++cam) {
         const CvCamera c = test::randomCvCamera(rng, model);
         const Camera camera = randomCamera(rng, c, cam);
@@ -129,8 +142,12 @@ TEST_P(BatchProjection, EqualsSinglePointProjection)
             const ProjectedPoint single = camera.project(world[i]);
             expectSame(batch[i], single, "camera " + std::to_string(cam) + " point " + std::to_string(i));
             counts[static_cast<int>(single.status)]++;
+            if (!sameBits(batch[i], single) && differentBits++ < 3)
+                ADD_FAILURE() << "camera " << cam << " point " << i << ": (" << batch[i].pixel.x << ", "
+                              << batch[i].pixel.y << ", " << batch[i].depth << ") differs in its bits from project()";
         }
     }
+    EXPECT_EQ(differentBits, 0) << "points whose bits differ from project()";
     // Every status must have been exercised, or the comparison proves little.
     EXPECT_GT(counts[static_cast<int>(PointStatus::Clipped)], 2000);
     EXPECT_GT(counts[static_cast<int>(PointStatus::Outside)], 1000);
