@@ -62,6 +62,7 @@ public:
     }
     Status close() override { return Ok{}; }
     std::string describe() const override { return "null (" + std::to_string(frames_) + " frames)"; }
+    bool writesInline() const override { return true; }
 
 private:
     uint64_t frames_ = 0;
