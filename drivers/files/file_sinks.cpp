@@ -32,7 +32,13 @@ public:
         const PixelFormatInfo &format = *frame.format;
         for (unsigned p = 0; p < format.numPlanes; ++p) {
             const size_t rowBytes = format.minStride(p, frame.width);
-            for (unsigned y = 0; y < format.planeHeight(p, frame.height); ++y) {
+            const unsigned rows = format.planeHeight(p, frame.height);
+            if (frame.planes[p].stride == rowBytes) { // packed rows: the plane in one write, not one per row
+                if (auto status = writeAll(*out, frame.planes[p].data, rowBytes * rows, path_); !status)
+                    return status;
+                continue;
+            }
+            for (unsigned y = 0; y < rows; ++y) {
                 const uint8_t *row = frame.planes[p].data + size_t(y) * frame.planes[p].stride;
                 if (auto status = writeAll(*out, row, rowBytes, path_); !status)
                     return status;
