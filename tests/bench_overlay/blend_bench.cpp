@@ -4,7 +4,6 @@
 // premultiplied colour), grown until it covers ~9.5% of the pixels, the coverage landscape.md measures. Frames come
 // from a ring larger than the caches so that both the blend and the copy start cold.
 #include <cstring>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,32 +71,11 @@ void convertBench(benchmark::State &state, const char *formatName, unsigned widt
     }
 }
 
-// Prints blend / memcpy per case once every run is in, because runs drift and only a same-run ratio means much.
-class RatioReporter : public benchmark::ConsoleReporter
+// "blend/YUYV/1280x720" -> "memcpy/YUYV/1280x720"
+std::string memcpyOf(const std::string &name)
 {
-public:
-    void ReportRuns(const std::vector<Run> &runs) override
-    {
-        for (const Run &run : runs)
-            seconds_[run.benchmark_name()] = run.GetAdjustedRealTime();
-        ConsoleReporter::ReportRuns(runs);
-    }
-    void Finalize() override
-    {
-        ConsoleReporter::Finalize();
-        for (const auto &[name, time] : seconds_) {
-            const bool aggregate = name.find('_') != std::string::npos;
-            if (name.rfind("blend/", 0) != 0 || (aggregate && !name.ends_with("_median")))
-                continue;
-            const auto copy = seconds_.find("memcpy/" + name.substr(6));
-            if (copy != seconds_.end())
-                std::printf("%-28s blend / cold memcpy = %.3f\n", name.c_str(), time / copy->second);
-        }
-    }
-
-private:
-    std::map<std::string, double> seconds_;
-};
+    return "memcpy/" + name.substr(6);
+}
 
 } // namespace
 } // namespace overlayd
@@ -110,6 +88,6 @@ int main(int argc, char **argv)
         bench::registerCase("memcpy", memcpyBench, c);
         bench::registerCase("convert", convertBench, c);
     }
-    RatioReporter reporter;
+    bench::SameRunRatios reporter("blend/", memcpyOf, "blend / cold memcpy");
     return bench::runBenchmarks(argc, argv, reporter);
 }

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -58,7 +60,7 @@ inline constexpr FrameCase kFrameCases[] = {
 using FrameBench = void (*)(benchmark::State &, const char *format, unsigned width, unsigned height);
 
 // Registers bench for one case as "<kind>/<case>", timed in milliseconds.
-inline void registerCase(const char *kind, FrameBench bench, const FrameCase &c)
+inline benchmark::internal::Benchmark *registerCase(const char *kind, FrameBench bench, const FrameCase &c)
 {
     benchmark::internal::Benchmark *b =
         benchmark::RegisterBenchmark((std::string(kind) + "/" + c.name()).c_str(), bench, c.format, c.width, c.height)
@@ -67,7 +69,46 @@ inline void registerCase(const char *kind, FrameBench bench, const FrameCase &c)
     // run also executes its probing rounds, which are not reported).
     if (const char *iterations = std::getenv("OVERLAYD_BENCH_ITERATIONS"))
         b->Iterations(std::max(1LL, std::atoll(iterations)));
+    return b;
 }
+
+// The console reporter that also prints same-run ratios at the end (runs drift, so only a same-run ratio means
+// much): every run whose name starts with `prefix` against the run `baselineOf` names for it, if there is one
+// (of repetitions, the medians only).
+class SameRunRatios : public benchmark::ConsoleReporter
+{
+public:
+    enum Clock { Real, Cpu };
+    SameRunRatios(std::string prefix, std::string (*baselineOf)(const std::string &name), const char *label,
+                  Clock clock = Real)
+        : prefix_(std::move(prefix)), baselineOf_(baselineOf), label_(label), clock_(clock)
+    {}
+    void ReportRuns(const std::vector<Run> &runs) override
+    {
+        for (const Run &run : runs)
+            seconds_[run.benchmark_name()] = clock_ == Real ? run.GetAdjustedRealTime() : run.GetAdjustedCPUTime();
+        ConsoleReporter::ReportRuns(runs);
+    }
+    void Finalize() override
+    {
+        ConsoleReporter::Finalize();
+        for (const auto &[name, time] : seconds_) {
+            const bool aggregate = name.find('_', name.rfind('/')) != std::string::npos;
+            if (name.rfind(prefix_, 0) != 0 || (aggregate && !name.ends_with("_median")))
+                continue;
+            const auto baseline = seconds_.find(baselineOf_(name));
+            if (baseline != seconds_.end())
+                std::printf("%-48s %s = %.3f\n", name.c_str(), label_, time / baseline->second);
+        }
+    }
+
+private:
+    std::string prefix_;
+    std::string (*baselineOf_)(const std::string &name);
+    const char *label_;
+    Clock clock_;
+    std::map<std::string, double> seconds_;
+};
 
 // Google Benchmark's main, with a reporter that prints the same-run ratios at the end.
 inline int runBenchmarks(int argc, char **argv, benchmark::BenchmarkReporter &reporter)
