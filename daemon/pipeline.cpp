@@ -1,6 +1,7 @@
 // Pipeline: the per-frame path and its statistics.
 #include "daemon/pipeline.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -92,6 +93,15 @@ void Pipeline::process(FrameLease lease)
     const auto start = std::chrono::steady_clock::now();
     blend(lease.view(), lease.metadata());
     const auto blended = std::chrono::steady_clock::now();
+    // Shared only when a sink keeps a reference: the others copy (or write inline) before this returns, and the
+    // lease goes back to the source right after, with no allocation for the frame.
+    const bool referenced =
+        std::any_of(sinks_.begin(), sinks_.end(), [&](const auto &sink) { return sink->takesLease(lease.view()); });
+    if (!referenced) {
+        pushToSinks(lease.view(), lease.metadata());
+        countFrame(lease.metadata(), start, blended);
+        return;
+    }
     const auto shared = std::make_shared<const FrameLease>(std::move(lease));
     for (auto &sink : sinks_)
         sink->push(shared);

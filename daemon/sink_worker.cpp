@@ -19,35 +19,39 @@ Status SinkWorker::open(const StreamFormat &format)
 {
     if (auto closed = close(); !closed)
         return closed;
-    std::vector<Slot> slots;
-    const unsigned count = std::max(1u, options_.queueDepth) + 1;
-    for (unsigned i = 0; i < count; ++i) {
-        auto buffer = FrameBuffer::allocate(format);
-        if (!buffer)
-            return buffer.error();
-        slots.push_back(Slot{std::move(*buffer), {}, nullptr});
-    }
+    if (!format.format)
+        return makeError(ErrorCode::InvalidArgument, "frame buffer needs a pixel format");
+    // Checked here so that a copy never meets a format it cannot hold; the frames themselves come later.
+    if (auto layout = makeFrameLayout(*format.format, format.width, format.height, format.stride); !layout)
+        return layout.error();
     if (auto opened = sink_->open(format); !opened)
         return opened;
-    slots_ = std::move(slots);
-    queued_.clear();
+    format_ = format;
+    inline_ = sink_->writesInline();
+    slots_.clear();
+    slots_.resize(inline_ ? 0 : std::max(1u, options_.queueDepth) + 1);
+    created_ = 0;
+    queued_.reset(slots_.size());
     free_.clear();
-    for (size_t i = 0; i < slots_.size(); ++i)
-        free_.push_back(i);
+    free_.reserve(slots_.size());
     stopping_ = false;
-    thread_ = std::thread(&SinkWorker::threadMain, this);
+    open_ = true;
+    if (!inline_)
+        thread_ = std::thread(&SinkWorker::threadMain, this);
     return Ok{};
 }
 
 std::optional<size_t> SinkWorker::takeFreeSlot(std::unique_lock<std::mutex> &lock)
 {
     if (lossless_)
-        slotFree_.wait(lock, [this] { return !free_.empty(); });
+        slotFree_.wait(lock, [this] { return !free_.empty() || created_ < slots_.size(); });
     if (!free_.empty()) {
         const size_t slot = free_.back();
         free_.pop_back();
         return slot;
     }
+    if (created_ < slots_.size())
+        return created_++;
     // Every slot is queued or being written: the policy decides which frame is lost.
     ++counters_.dropped;
     if (options_.dropPolicy == DropPolicy::DropNewest || queued_.empty())
@@ -61,6 +65,10 @@ void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
 {
     if (!isOpen())
         return;
+    if (inline_) {
+        writeInline(frame, metadata);
+        return;
+    }
     std::unique_lock lock(mutex_);
     const std::optional<size_t> slot = takeFreeSlot(lock);
     if (!slot)
@@ -69,7 +77,9 @@ void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
     lock.unlock();
     Slot &target = slots_[*slot];
     target.lease.reset(); // a dropped oldest frame may have been a reference
-    const Status copied = target.buffer.copyFrom(frame);
+    if (!target.buffer)
+        target.buffer = FrameBuffer::allocate(format_).value(); // the format was checked by open()
+    const Status copied = target.buffer->copyFrom(frame);
     target.metadata = metadata;
     lock.lock();
     if (!copied) {
@@ -116,29 +126,48 @@ void SinkWorker::threadMain()
         Slot &item = slots_[slot];
         const bool leased = item.lease != nullptr;
         const Status written =
-            leased ? sink_->writeLease(std::move(item.lease)) : sink_->write(item.buffer.view(), item.metadata);
+            leased ? sink_->writeLease(std::move(item.lease)) : sink_->write(item.buffer->view(), item.metadata);
         const auto elapsed = std::chrono::steady_clock::now() - start;
         if (!written)
             logger_.error(cat(describe(), ": ", written.error().message));
         lock.lock();
-        counters_.writeTime += elapsed;
-        ++(written ? counters_.written : counters_.failed);
-        counters_.zeroCopy += written && leased;
+        count(written, elapsed, leased);
         free_.push_back(slot);
         slotFree_.notify_one();
     }
 }
 
+void SinkWorker::writeInline(const FrameView &frame, const FrameMetadata &metadata)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const Status written = sink_->write(frame, metadata);
+    const auto elapsed = std::chrono::steady_clock::now() - start;
+    if (!written)
+        logger_.error(cat(describe(), ": ", written.error().message));
+    std::lock_guard lock(mutex_);
+    count(written, elapsed, false);
+}
+
+void SinkWorker::count(const Status &written, std::chrono::steady_clock::duration elapsed, bool leased)
+{
+    counters_.writeTime += elapsed;
+    ++(written ? counters_.written : counters_.failed);
+    counters_.zeroCopy += written && leased;
+}
+
 Status SinkWorker::close()
 {
-    if (!thread_.joinable())
+    if (!open_)
         return Ok{};
-    {
-        std::lock_guard lock(mutex_);
-        stopping_ = true;
+    if (thread_.joinable()) {
+        {
+            std::lock_guard lock(mutex_);
+            stopping_ = true;
+        }
+        wake_.notify_one();
+        thread_.join();
     }
-    wake_.notify_one();
-    thread_.join();
+    open_ = false;
     for (Slot &slot : slots_)
         slot.lease.reset();
     return sink_->close();
@@ -148,6 +177,15 @@ SinkCounters SinkWorker::counters() const
 {
     std::lock_guard lock(mutex_);
     return counters_;
+}
+
+size_t SinkWorker::allocatedFrames() const
+{
+    std::lock_guard lock(mutex_);
+    size_t frames = 0;
+    for (const Slot &slot : slots_)
+        frames += slot.buffer.has_value();
+    return frames;
 }
 
 } // namespace overlayd

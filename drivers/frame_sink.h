@@ -24,6 +24,10 @@ public:
 
     virtual std::string describe() const = 0;
 
+    // True for a sink whose write() costs next to nothing and never blocks (the null sink): its worker then calls
+    // write() on the pipeline's thread with the frame itself, so it holds no queue, no thread and no frame copies.
+    virtual bool writesInline() const { return false; }
+
     // Zero copy (opt-in; only the V4L2 output does it). takesLease() is asked on the pipeline's thread for every
     // source frame, so it may only read what open() decided; true: the frame goes to writeLease() instead of being
     // copied for write(). writeLease() gets a reference to the source's own buffer and drops it when the device is

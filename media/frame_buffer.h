@@ -16,6 +16,8 @@ class FrameBuffer
 public:
     // Refuses absurd sizes before allocating (see kMaxFrameDimension in frame.h).
     static Result<FrameBuffer> allocate(const StreamFormat &format);
+    // Another buffer with this one's layout (a pool growing: the layout was checked when the first was allocated).
+    FrameBuffer alike() const { return FrameBuffer(layout_); }
 
     FrameView view() { return layout_.view(bytes_.data()); }
     const FrameLayout &layout() const { return layout_; }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,12 +45,25 @@ struct FrameMetadata {
     std::optional<float> analogueGain;
 };
 
+// Whoever lends frames out by index (a source's buffer pool): a lease that ends gives its index back here.
+class LeaseOwner
+{
+public:
+    virtual ~LeaseOwner() = default;
+    virtual void giveBack(unsigned index) = 0;
+};
+
 // A frame lent by its source. Destroying (or resetting) the lease gives the buffer back; the view stays valid
 // until then. Move-only, so exactly one owner returns it.
 class FrameLease
 {
 public:
     FrameLease() = default;
+    // The sources' form: the lease keeps its owner alive, and making one allocates nothing (a std::function holding
+    // a shared_ptr would allocate every frame).
+    FrameLease(FrameView view, FrameMetadata metadata, std::shared_ptr<LeaseOwner> owner, unsigned index)
+        : view_(view), metadata_(metadata), owner_(std::move(owner)), index_(index)
+    {}
     FrameLease(FrameView view, FrameMetadata metadata, std::function<void()> giveBack)
         : view_(view), metadata_(metadata), giveBack_(std::move(giveBack))
     {}
@@ -61,6 +75,8 @@ public:
             view_ = other.view_;
             metadata_ = other.metadata_;
             giveBack_ = std::exchange(other.giveBack_, nullptr);
+            owner_ = std::move(other.owner_);
+            index_ = other.index_;
         }
         return *this;
     }
@@ -72,6 +88,8 @@ public:
     {
         if (giveBack_)
             std::exchange(giveBack_, nullptr)();
+        if (owner_)
+            std::exchange(owner_, nullptr)->giveBack(index_);
     }
 
     const FrameView &view() const { return view_; }
@@ -82,6 +100,8 @@ private:
     FrameView view_{};
     FrameMetadata metadata_{};
     std::function<void()> giveBack_;
+    std::shared_ptr<LeaseOwner> owner_;
+    unsigned index_ = 0;
 };
 
 } // namespace overlayd

@@ -40,7 +40,7 @@ size_t SceneRenderer::layerIndex(const std::string &name)
         if (layers_[i].name == name)
             return i;
     }
-    layers_.push_back(Layer{name, true, OverlayLayer(format_.width, format_.height), std::nullopt, {}});
+    layers_.push_back(Layer{name, true, std::nullopt, {}});
     return layers_.size() - 1;
 }
 
@@ -50,42 +50,42 @@ LayerRect SceneRenderer::scissor() const
     return {r.x, r.y, r.x + r.width, r.y + r.height};
 }
 
+void SceneRenderer::drawLayer(const Layer &layer, OverlayLayer &canvas)
+{
+    canvas.clearCovered();
+    for (size_t index : layer.annotations) {
+        const Annotation &annotation = scene_.annotations[index];
+        const Result<glm::dmat4> worldFromFrame =
+            isScreenText(annotation) ? Result<glm::dmat4>(glm::dmat4(1.0)) : graph_.worldMatrix(annotation.frame);
+        const glm::dmat4 matrix = worldFromFrame ? *worldFromFrame : glm::dmat4(1.0); // screen items: no frame
+        drawList_.clear();
+        buildPrimitives(annotation, matrix, camera_, drawList_);
+        rasterizer_.draw(drawList_, canvas, {0, 0}, scissor());
+    }
+    canvas.updateSpans();
+}
+
 Status SceneRenderer::renderWorld()
 {
     worldStale_ = false;
+    // One canvas for every layer, freed on return: fresh zero pages, so only the pages drawn on cost memory.
+    OverlayLayer canvas(format_.width, format_.height);
     for (Layer &layer : layers_) {
-        layer.pixels.clearCovered();
-        for (size_t index : layer.annotations) {
-            const Annotation &annotation = scene_.annotations[index];
-            const Result<glm::dmat4> worldFromFrame =
-                isScreenText(annotation) ? Result<glm::dmat4>(glm::dmat4(1.0)) : graph_.worldMatrix(annotation.frame);
-            const glm::dmat4 matrix = worldFromFrame ? *worldFromFrame : glm::dmat4(1.0); // screen items: no frame
-            drawList_.clear();
-            buildPrimitives(annotation, matrix, camera_, drawList_);
-            rasterizer_.draw(drawList_, layer.pixels, {0, 0}, scissor());
+        drawLayer(layer, canvas);
+        if (layer.native) {
+            if (Status status = layer.native->update(canvas, colorimetry_); !status)
+                return status;
+            continue;
         }
-        layer.pixels.updateSpans();
+        auto native = NativeLayer::convert(canvas, *format_.format, colorimetry_);
+        if (!native)
+            return native.error();
+        layer.native = std::move(*native);
     }
     for (TextSlot &slot : texts_)
         slot.rendered = false; // the viewport may have moved them
     for (ImageSprite &sprite : images_)
         sprite.rendered = false;
-    return convertAll();
-}
-
-Status SceneRenderer::convertAll()
-{
-    for (Layer &layer : layers_) {
-        if (layer.native) {
-            if (Status status = layer.native->update(layer.pixels, colorimetry_); !status)
-                return status;
-            continue;
-        }
-        auto native = NativeLayer::convert(layer.pixels, *format_.format, colorimetry_);
-        if (!native)
-            return native.error();
-        layer.native = std::move(*native);
-    }
     return Ok{};
 }
 
@@ -270,13 +270,16 @@ std::vector<std::string> SceneRenderer::layerNames() const
     return names;
 }
 
-const OverlayLayer *SceneRenderer::layerPixels(std::string_view name) const
+std::optional<OverlayLayer> SceneRenderer::layerPixels(std::string_view name)
 {
     for (const Layer &layer : layers_) {
-        if (layer.name == name)
-            return &layer.pixels;
+        if (layer.name != name)
+            continue;
+        OverlayLayer canvas(format_.width, format_.height);
+        drawLayer(layer, canvas);
+        return canvas;
     }
-    return nullptr;
+    return std::nullopt;
 }
 
 void SceneRenderer::drawWorldInto(const FrameView &frame)

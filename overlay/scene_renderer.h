@@ -1,5 +1,7 @@
-// SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One full-frame OverlayLayer per named layer
-// (so switching a layer off costs nothing and re-projects nothing), plus one small layer per screen text with
+// SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One NativeLayer per named layer (so switching a
+// layer off costs nothing and re-projects nothing): the layer is drawn on a full-frame RGBA canvas that all layers
+// share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its
+// memory is proportional to what it draws. Plus one small layer per screen text with
 // tokens, re-rendered only when its expanded string changes; likewise one small layer per image, warped from its
 // pixels again only when the camera (or the viewport) changes.
 //
@@ -39,14 +41,14 @@ public:
     Status renderWorld();
     // Whether the last blend drew the world straight into the frame (a moving camera), for tests and stats.
     bool drewDirectly() const { return drewDirectly_; }
-    // The RGBA layer of a named layer, for tests and previews; nullptr for an unknown name.
-    const OverlayLayer *layerPixels(std::string_view name) const;
+    // The RGBA pixels of a named layer, drawn again for the current camera (the renderer keeps only their native
+    // runs), for tests and previews; nothing for an unknown name.
+    std::optional<OverlayLayer> layerPixels(std::string_view name);
 
 private:
     struct Layer {
         std::string name;
         bool enabled = true;
-        OverlayLayer pixels;
         std::optional<NativeLayer> native;
         std::vector<size_t> annotations; // indices into scene_.annotations, in drawing order
     };
@@ -72,7 +74,8 @@ private:
     // The moving-camera path: every enabled world layer projected and painted into this frame.
     void drawWorldInto(const FrameView &frame);
     Status blendTexts(const FrameView &frame, const FrameMetadata &metadata, double fps);
-    Status convertAll();
+    // Paints a layer's annotations on a full-frame canvas (cleared) and finds its spans.
+    void drawLayer(const Layer &layer, OverlayLayer &canvas);
     size_t layerIndex(const std::string &name);
     LayerRect scissor() const;
 

@@ -31,7 +31,13 @@ public:
         const PixelFormatInfo &format = *frame.format;
         for (unsigned p = 0; p < format.numPlanes; ++p) {
             const size_t rowBytes = format.minStride(p, frame.width);
-            for (unsigned y = 0; y < format.planeHeight(p, frame.height); ++y) {
+            const unsigned rows = format.planeHeight(p, frame.height);
+            if (frame.planes[p].stride == rowBytes) { // packed rows: the plane in one write, not one per row
+                if (auto status = writeAll(*out, frame.planes[p].data, rowBytes * rows, path_); !status)
+                    return status;
+                continue;
+            }
+            for (unsigned y = 0; y < rows; ++y) {
                 const uint8_t *row = frame.planes[p].data + size_t(y) * frame.planes[p].stride;
                 if (auto status = file_.write(row, rowBytes); !status)
                     return status;
@@ -61,6 +67,7 @@ public:
     }
     Status close() override { return Ok{}; }
     std::string describe() const override { return "null (" + std::to_string(frames_) + " frames)"; }
+    bool writesInline() const override { return true; }
 
 private:
     uint64_t frames_ = 0;

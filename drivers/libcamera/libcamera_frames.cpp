@@ -84,7 +84,8 @@ Result<FrameLease> LibcameraSource::nextFrame()
     const MappedFrameBuffer &mapped = session.buffers[index];
     mapped.beginCpuAccess();
     session.recycler->lend();
-    return FrameLease(mapped.view(), metadata, [keep = session_, index] { keep->recycler->giveBack(index); });
+    // The lease keeps the session alive and gives the request back through its recycler (aliasing: no allocation).
+    return FrameLease(mapped.view(), metadata, std::shared_ptr<LeaseOwner>(session_, session_->recycler.get()), index);
 }
 
 } // namespace overlayd::lc

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "base/result.h"
+#include "media/stream.h"
 
 namespace overlayd::lc {
 
@@ -13,7 +14,7 @@ namespace overlayd::lc {
 // re-queue runs there: Camera::queueRequest is thread-safe, and one mutex orders give-backs against detach(). The
 // seam is `queue` (in production: end CPU access, Request::reuse, Camera::queueRequest), so the bookkeeping is
 // tested without a camera.
-class RequestRecycler
+class RequestRecycler : public LeaseOwner
 {
 public:
     // `queue(index)` re-queues request `index`; a negative errno is kept for takeError().
@@ -21,7 +22,7 @@ public:
     RequestRecycler(const RequestRecycler &) = delete;
     RequestRecycler &operator=(const RequestRecycler &) = delete;
 
-    void giveBack(unsigned index);
+    void giveBack(unsigned index) override;
     // The first failed re-queue since the last call (the camera went away): the source reports it as DeviceLost.
     std::optional<Error> takeError();
     // Requests lent and not yet given back.

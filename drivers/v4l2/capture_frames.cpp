@@ -76,7 +76,7 @@ Result<FrameLease> V4l2CaptureSource::deliver(const Dequeued &buffer)
         }
     }
     // The lease holds the hub, not the source: its last owner may be a sink thread, and may outlive stop().
-    return FrameLease(view, metadata, [hub = hub_, index = buffer.index] { hub->giveBack(index); });
+    return FrameLease(view, metadata, hub_, buffer.index);
 }
 
 void V4l2CaptureSource::requeue(unsigned index)

@@ -8,6 +8,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 #include "drivers/v4l2/buffer_pool.h"
+#include "media/stream.h"
 
 namespace overlayd::v4l2 {
 
@@ -18,7 +19,7 @@ namespace overlayd::v4l2 {
 // ioctls of one queue anyway; the lock guards our bookkeeping and the pool's lifetime (stop() detaches it).
 // Leases own a reference to the hub, so the exported dmabuf fds stay open (their numbers valid) while any lease
 // is out, even after the source stopped.
-class LeaseHub
+class LeaseHub : public LeaseOwner
 {
 public:
     LeaseHub(BufferPool &pool, std::vector<UniqueFd> dmabufs) : pool_(&pool), dmabufs_(std::move(dmabufs)) {}
@@ -26,7 +27,7 @@ public:
     LeaseHub &operator=(const LeaseHub &) = delete;
 
     // VIDIOC_QBUF of a buffer given back; a failure (device gone) is kept for takeError(). Nothing after detach().
-    void giveBack(unsigned index);
+    void giveBack(unsigned index) override;
     Status queue(unsigned index);
     int dequeue(Dequeued &out);
     unsigned queuedCount();

@@ -3,17 +3,43 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 
 namespace overlayd {
 
+namespace {
+
+uint8_t *zeroedBytes(size_t size)
+{
+    auto *bytes = static_cast<uint8_t *>(std::calloc(std::max<size_t>(size, 1), 1));
+    if (!bytes)
+        throw std::bad_alloc();
+    return bytes;
+}
+
+} // namespace
+
+void OverlayLayer::Free::operator()(uint8_t *p) const
+{
+    std::free(p);
+}
+
 OverlayLayer::OverlayLayer(unsigned width, unsigned height)
-    : width_(width), height_(height), pixels_(size_t(width) * height * 4, 0), rowStart_(height + 1, 0)
+    : width_(width), height_(height), pixels_(zeroedBytes(size_t(width) * height * 4)), rowStart_(height + 1, 0)
 {}
+
+OverlayLayer::OverlayLayer(const OverlayLayer &other)
+    : width_(other.width_), height_(other.height_), pixels_(zeroedBytes(other.bytes())), spans_(other.spans_),
+      rowStart_(other.rowStart_), coveredPixels_(other.coveredPixels_)
+{
+    std::memcpy(pixels_.get(), other.pixels_.get(), bytes());
+}
 
 void OverlayLayer::clear()
 {
-    std::fill(pixels_.begin(), pixels_.end(), 0);
+    std::memset(pixels_.get(), 0, bytes());
     spans_.clear();
     std::fill(rowStart_.begin(), rowStart_.end(), 0);
     coveredPixels_ = 0;
@@ -22,7 +48,7 @@ void OverlayLayer::clear()
 void OverlayLayer::clearCovered()
 {
     for (const Span &span : spans_)
-        std::memset(pixels_.data() + span.y * stride() + span.x0 * 4, 0, size_t(span.x1 - span.x0) * 4);
+        std::memset(data() + span.y * stride() + span.x0 * 4, 0, size_t(span.x1 - span.x0) * 4);
     spans_.clear();
     std::fill(rowStart_.begin(), rowStart_.end(), 0);
     coveredPixels_ = 0;
@@ -39,7 +65,7 @@ void OverlayLayer::fillRect(int x, int y, int width, int height, Rgba colour)
     const uint8_t px[4] = {premul(colour.r), premul(colour.g), premul(colour.b), colour.a};
     for (int row = y0; row < y1; ++row) {
         for (int col = x0; col < x1; ++col)
-            std::memcpy(pixels_.data() + row * stride() + col * 4, px, 4);
+            std::memcpy(data() + row * stride() + col * 4, px, 4);
     }
 }
 
@@ -49,7 +75,7 @@ void OverlayLayer::updateSpans()
     coveredPixels_ = 0;
     for (unsigned y = 0; y < height_; ++y) {
         rowStart_[y] = spans_.size();
-        const uint8_t *row = pixels_.data() + y * stride();
+        const uint8_t *row = data() + y * stride();
         unsigned x = 0;
         while (x < width_) {
             // Most of a layer is transparent: test the alpha of four pixels at a time.

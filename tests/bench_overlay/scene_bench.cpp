@@ -103,7 +103,7 @@ void staticBench(benchmark::State &state, const char *formatName, unsigned width
 }
 
 // Offsets from the frame's start of the cache lines the cached overlay's runs touch, in the runs' order.
-std::vector<size_t> touchedLines(const SceneRenderer &renderer, const FrameView &frame)
+std::vector<size_t> touchedLines(SceneRenderer &renderer, const FrameView &frame)
 {
     const uint8_t *const base = frame.planes[0].data;
     std::vector<size_t> lines;
@@ -130,7 +130,7 @@ void touchBench(benchmark::State &state, const char *formatName, unsigned width,
         return;
     Ring ring(*pixelFormatFromName(formatName), width, height);
     const std::vector<size_t> lines =
-        touchedLines(dynamic_cast<const SceneRenderer &>(*renderer), ring.layout.view(ring.frame(0)));
+        touchedLines(dynamic_cast<SceneRenderer &>(*renderer), ring.layout.view(ring.frame(0)));
     constexpr size_t kAhead = 16; // prefetched as far ahead as the blend prefetches its runs
     size_t i = 0;
     for (auto _ : state) {

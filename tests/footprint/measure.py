@@ -9,6 +9,12 @@
 - shared libraries: how many the running process has mapped (/proc/PID/maps), not what ldd lists;
 - memory at 1080p YUYV 30 fps with the demo scene and a null sink, after --seconds: VmRSS and, from
   /proc/PID/smaps, the part of it that is shared-library mappings, the heap and anonymous mappings.
+
+  tests/footprint/measure.py --overlayd build/daemon/overlayd --scenes [--seconds 5]
+
+- instead, memory only, for three scenes at 720p and 1080p YUYV 30 fps with a null sink: the demo, the reverse-camera
+  example (its GPIO lines and CAN input left out: they need the board) and twenty_layers.toml (20 layers); VmRSS,
+  the same split, and /proc/PID/smaps_rollup's Anonymous (what the process itself allocated and touched).
 """
 import argparse
 import os
@@ -20,14 +26,19 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DEMO = os.path.join(HERE, '..', '..', 'config', 'examples', 'demo.toml')
+EXAMPLES = os.path.join(HERE, '..', '..', 'config', 'examples')
+DEMO = os.path.join(EXAMPLES, 'demo.toml')
+SCENES = [('demo', DEMO), ('reverse camera', os.path.join(EXAMPLES, 'reverse_camera.toml')),
+          ('20 layers', os.path.join(HERE, 'twenty_layers.toml'))]
 
 
-def demo_config(width, height, sink):
-    """The demo scene with its [source] set to WIDTHxHEIGHT YUYV at 30 fps and its sinks replaced by SINK."""
-    with open(DEMO) as f:
+def demo_config(width, height, sink, path=DEMO):
+    """A scene (the demo's by default) with its [source] set to WIDTHxHEIGHT YUYV at 30 fps, its sinks replaced by
+    SINK, and the tables that need hardware (GPIO lines, CAN inputs) left out."""
+    with open(path) as f:
         text = f.read()
-    text = re.sub(r'(?ms)^\[\[sink\]\].*?(?=^\[|\Z)', '', text)
+    for table in (r'\[\[sink\]\]', r'\[\[gpio\.\w+\]\]', r'\[\[input\.can\]\]'):
+        text = re.sub(r'(?ms)^' + table + r'.*?(?=^\[|\Z)', '', text)
     text = re.sub(r'(?m)^width = \d+', 'width = %d' % width, text, count=1)
     text = re.sub(r'(?m)^height = \d+', 'height = %d' % height, text, count=1)
     text = re.sub(r'(?m)^format = "\w+"', 'format = "YUYV"', text, count=1)
@@ -74,7 +85,39 @@ def memory(pid):
                 kinds[current] += int(line.split()[1])
     with open('/proc/%d/status' % pid) as f:
         rss = int(re.search(r'VmRSS:\s+(\d+)', f.read()).group(1))
+    with open('/proc/%d/smaps_rollup' % pid) as f:
+        kinds['Anonymous'] = int(re.search(r'Anonymous:\s+(\d+)', f.read()).group(1))
     return len(libraries), rss, kinds
+
+
+def steady_memory(overlayd, config, seconds):
+    """Runs `overlayd run` on CONFIG for SECONDS and measures it (memory()) while it runs."""
+    proc = subprocess.Popen([overlayd, 'run', '--config', config], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE)
+    try:
+        time.sleep(seconds)
+        if proc.poll() is not None:
+            sys.exit('overlayd ended: ' + proc.stderr.read().decode())
+        return memory(proc.pid)
+    finally:
+        proc.terminate()
+        proc.wait()
+
+
+def describe(rss, kinds):
+    return ('VmRSS %.1f MiB (libraries %.1f, heap %.1f, anonymous %.1f, other %.1f; smaps_rollup Anonymous %.1f)'
+            % (rss / 1024, kinds['libraries'] / 1024, kinds['heap'] / 1024, kinds['anonymous'] / 1024,
+               kinds['other'] / 1024, kinds['Anonymous'] / 1024))
+
+
+def scenes(overlayd, seconds, work):
+    for name, path in SCENES:
+        for width, height in ((1280, 720), (1920, 1080)):
+            config = os.path.join(work, 'scene-%d.toml' % width)  # none of the scenes reads a relative path
+            with open(config, 'w') as f:
+                f.write(demo_config(width, height, '[[sink]]\nkind = "null"\n', path))
+            _, rss, kinds = steady_memory(overlayd, config, seconds)
+            print('%-15s %4dx%-4d YUYV 30 fps, null sink: %s' % (name, width, height, describe(rss, kinds)))
 
 
 def main():
@@ -82,8 +125,12 @@ def main():
     parser.add_argument('--overlayd', required=True)
     parser.add_argument('--runs', type=int, default=10)
     parser.add_argument('--seconds', type=float, default=10.0)
+    parser.add_argument('--scenes', action='store_true', help='memory of the three scenes at 720p and 1080p only')
     args = parser.parse_args()
     work = tempfile.mkdtemp(prefix='overlayd-footprint-')
+    if args.scenes:
+        scenes(args.overlayd, args.seconds, work)
+        return
     startup = os.path.join(work, 'startup.toml')
     with open(startup, 'w') as f:
         f.write(demo_config(1280, 720, '[[sink]]\nkind = "y4m"\npath = "-"\n'))
@@ -94,20 +141,9 @@ def main():
     steady = os.path.join(work, 'steady.toml')
     with open(steady, 'w') as f:
         f.write(demo_config(1920, 1080, '[[sink]]\nkind = "null"\n'))
-    proc = subprocess.Popen([args.overlayd, 'run', '--config', steady], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.PIPE)
-    try:
-        time.sleep(args.seconds)
-        if proc.poll() is not None:
-            sys.exit('overlayd ended: ' + proc.stderr.read().decode())
-        count, rss, kinds = memory(proc.pid)
-    finally:
-        proc.terminate()
-        proc.wait()
-    print('1080p YUYV 30 fps, demo scene, null sink, after %.0f s: %d shared libraries mapped, VmRSS %.1f MiB '
-          '(libraries %.1f, heap %.1f, anonymous %.1f, other %.1f)'
-          % (args.seconds, count, rss / 1024, kinds['libraries'] / 1024, kinds['heap'] / 1024,
-             kinds['anonymous'] / 1024, kinds['other'] / 1024))
+    count, rss, kinds = steady_memory(args.overlayd, steady, args.seconds)
+    print('1080p YUYV 30 fps, demo scene, null sink, after %.0f s: %d shared libraries mapped, %s'
+          % (args.seconds, count, describe(rss, kinds)))
 
 
 if __name__ == '__main__':

@@ -124,5 +124,54 @@ TEST_F(WorkerTest, FrameOfAnotherSizeIsRefusedAndCounted)
     EXPECT_EQ(shared->written(), 0u);
 }
 
+// Copy slots are allocated when the queue first needs them: a sink that has written each frame before the next
+// arrives holds one; a stuck one grows to queue_depth + 1 and no further.
+TEST_F(WorkerTest, PoolGrowsOnlyAsFarAsTheQueueGets)
+{
+    auto worker = makeWorker(DropPolicy::DropOldest);
+    ASSERT_TRUE(worker->open(format).ok());
+    EXPECT_EQ(worker->allocatedFrames(), 0u);
+    for (int i = 0; i < 10; ++i) {
+        push(*worker, uint8_t(i));
+        shared->waitEntered(i + 1);
+        while (worker->counters().written < unsigned(i + 1))
+            std::this_thread::yield();
+    }
+    EXPECT_EQ(worker->allocatedFrames(), 1u);
+    pushBehindStuckWrite(*worker, 20);
+    EXPECT_EQ(worker->allocatedFrames(), 5u); // 1 being written + queue_depth 4
+    shared->setGate(true);
+    ASSERT_TRUE(worker->close().ok());
+    EXPECT_EQ(shared->written(), 15u); // the 10, then 1 + the 4 newest of 20
+}
+
+TEST_F(WorkerTest, LosslessWorkerGrowsItsPoolBeforeItWaits)
+{
+    auto worker = makeWorker(DropPolicy::DropOldest, /*lossless=*/true);
+    ASSERT_TRUE(worker->open(format).ok());
+    shared->setGate(false);
+    for (int i = 0; i < 5; ++i)
+        push(*worker, uint8_t(i)); // would block at the first without room to grow
+    EXPECT_EQ(worker->allocatedFrames(), 5u);
+    shared->setGate(true);
+    ASSERT_TRUE(worker->close().ok());
+    EXPECT_EQ(shared->written(), 5u);
+}
+
+// The null sink is written on the caller's thread, from the frame itself: counted at once, nothing copied.
+TEST_F(WorkerTest, NullSinkIsWrittenInlineWithoutCopies)
+{
+    SinkOptions options;
+    options.kind = SinkKind::Null;
+    SinkWorker worker(std::move(makeSink(options).value()), options, logger);
+    ASSERT_TRUE(worker.open(format).ok());
+    for (int i = 0; i < 7; ++i)
+        push(worker, uint8_t(i));
+    EXPECT_EQ(worker.counters().written, 7u); // no waiting: written before push() returned
+    EXPECT_EQ(worker.allocatedFrames(), 0u);
+    ASSERT_TRUE(worker.close().ok());
+    EXPECT_EQ(worker.counters().dropped, 0u);
+}
+
 } // namespace
 } // namespace overlayd
