@@ -97,7 +97,7 @@ void readCalibrationCrop(TableReader &camera, CameraSpec &out)
             out.calibrationCrop = *crop;
         return;
     }
-    const auto values = camera.numbers("calibration_crop");
+    const auto values = camera.numbers("calibration_crop", 4);
     if (!values)
         return;
     if (values->size() != 4) {

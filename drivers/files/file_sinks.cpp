@@ -33,7 +33,7 @@ public:
             const size_t rowBytes = format.minStride(p, frame.width);
             const unsigned rows = format.planeHeight(p, frame.height);
             if (frame.planes[p].stride == rowBytes) { // packed rows: the plane in one write, not one per row
-                if (auto status = writeAll(*out, frame.planes[p].data, rowBytes * rows, path_); !status)
+                if (auto status = file_.write(frame.planes[p].data, rowBytes * rows); !status)
                     return status;
                 continue;
             }
