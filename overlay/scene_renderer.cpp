@@ -89,13 +89,28 @@ Status SceneRenderer::renderWorld()
     return Ok{};
 }
 
+void SceneRenderer::buildText(const TextSlot &slot)
+{
+    drawList_.clear();
+    buildPrimitives(scene_.annotations[slot.annotation], glm::dmat4(1.0), camera_, drawList_);
+    for (TextItem &item : drawList_.texts)
+        item.text.assign(slot.scratch); // the annotation holds the text with its tokens
+}
+
+void SceneRenderer::drawTextInto(TextSlot &slot, const FrameView &frame)
+{
+    buildText(slot);
+    slot.shown = slot.scratch;
+    slot.rendered = false; // once the string holds still, a layer is rendered for it again
+    slot.native.reset();
+    frameSink_.setFrame(frame);
+    rasterizer_.draw(drawList_, frameSink_, {0, 0}, frameClip());
+}
+
 // The text's box, widened to whole macropixels, becomes a layer of its own placed on the frame.
 Status SceneRenderer::renderText(TextSlot &slot)
 {
-    Annotation annotation = scene_.annotations[slot.annotation];
-    std::get<ScreenTextShape>(annotation.shape).text = slot.scratch;
-    drawList_.clear();
-    buildPrimitives(annotation, glm::dmat4(1.0), camera_, drawList_);
+    buildText(slot);
     slot.shown = slot.scratch;
     slot.rendered = true;
     slot.native.reset();
@@ -172,6 +187,11 @@ Status SceneRenderer::blendImages(const FrameView &frame)
             sprite.native->blendChecked(frame);
     }
     return Ok{};
+}
+
+LayerRect SceneRenderer::frameClip() const
+{
+    return scissor().intersect({0, 0, int(format_.width), int(format_.height)});
 }
 
 LayerRect SceneRenderer::macropixelBox(LayerRect box) const
@@ -285,7 +305,7 @@ std::optional<OverlayLayer> SceneRenderer::layerPixels(std::string_view name)
 void SceneRenderer::drawWorldInto(const FrameView &frame)
 {
     frameSink_.setFrame(frame);
-    const LayerRect clip = scissor().intersect({0, 0, int(format_.width), int(format_.height)});
+    const LayerRect clip = frameClip();
     for (const Layer &layer : layers_) {
         if (!layer.enabled)
             continue;
@@ -332,12 +352,20 @@ Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadat
 
 Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &metadata, double fps)
 {
+    textsDrawnDirectly_ = 0;
     for (TextSlot &slot : texts_) {
         if (!layers_[slot.layer].enabled)
             continue;
         expandTokens(std::get<ScreenTextShape>(scene_.annotations[slot.annotation].shape).text, metadata, fps,
                      slot.scratch, &slotTexts_);
-        if (!slot.rendered || slot.scratch != slot.shown) {
+        const bool changed = slot.scratch != slot.shown;
+        slot.changingFrames = changed ? slot.changingFrames + 1 : 0;
+        if (slot.changingFrames >= 2) {
+            drawTextInto(slot, frame);
+            ++textsDrawnDirectly_;
+            continue;
+        }
+        if (!slot.rendered || changed) {
             if (Status status = renderText(slot); !status)
                 return status;
         }

@@ -2,8 +2,9 @@
 // layer off costs nothing and re-projects nothing): the layer is drawn on a full-frame RGBA canvas that all layers
 // share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its
 // memory is proportional to what it draws. Plus one small layer per screen text with
-// tokens, re-rendered only when its expanded string changes; likewise one small layer per image, warped from its
-// pixels again only when the camera (or the viewport) changes.
+// tokens, re-rendered only when its expanded string changes (a string that changes on every frame, a frame counter,
+// is drawn straight into each frame from the glyph cache instead); likewise one small layer per image, warped from
+// its pixels again only when the camera (or the viewport) changes.
 //
 // A camera that keeps moving (setCamera before two blends in a row) is drawn straight into each frame instead:
 // a cached layer would be redrawn and converted every frame for one use. When the camera holds still for a frame,
@@ -41,6 +42,8 @@ public:
     Status renderWorld();
     // Whether the last blend drew the world straight into the frame (a moving camera), for tests and stats.
     bool drewDirectly() const { return drewDirectly_; }
+    // How many token texts the last blend drew straight into the frame (their string changes every frame).
+    unsigned textsDrawnDirectly() const { return textsDrawnDirectly_; }
     // The RGBA pixels of a named layer, drawn again for the current camera (the renderer keeps only their native
     // runs), for tests and previews; nothing for an unknown name.
     std::optional<OverlayLayer> layerPixels(std::string_view name);
@@ -64,9 +67,14 @@ private:
         std::string shown, scratch; // the expanded text on the layer, and the next frame's
         bool rendered = false;
         std::optional<NativeLayer> native;
+        unsigned changingFrames = 0; // consecutive blends, each with a new string (a frame counter: every one)
     };
 
     Status renderText(TextSlot &slot);
+    // The slot's primitives for its expanded string (in drawList_): no copy of the annotation.
+    void buildText(const TextSlot &slot);
+    // A text that changes every frame is drawn straight into the frame, like a moving camera's world.
+    void drawTextInto(TextSlot &slot, const FrameView &frame);
     Status renderImage(ImageSprite &sprite);
     Status blendImages(const FrameView &frame);
     // A frame-pixel box widened to whole macropixels and cut to the frame and the scissor.
@@ -78,6 +86,7 @@ private:
     void drawLayer(const Layer &layer, OverlayLayer &canvas);
     size_t layerIndex(const std::string &name);
     LayerRect scissor() const;
+    LayerRect frameClip() const; // the scissor cut to the frame: what a draw straight into it may touch
 
     OverlayScene scene_;
     SceneGraph graph_;
@@ -98,6 +107,7 @@ private:
     bool cameraChangedSinceBlend_ = false;
     unsigned movingFrames_ = 0; // consecutive blends, each preceded by a camera change
     bool drewDirectly_ = false;
+    unsigned textsDrawnDirectly_ = 0;
     DrawList drawList_; // scratch
 };
 

@@ -7,7 +7,7 @@ packages=(
     build-essential clang cmake ninja-build pkg-config
     libglm-dev
     libgtest-dev libgmock-dev libbenchmark-dev
-    libopencv-dev fonts-dejavu-core
+    libopencv-dev fonts-dejavu-core libfreetype-dev # text: FreeType renders each glyph once (the cache is ours)
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
     libpng-dev # PNG files (media/codec): images, replay, snapshots
     libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs

@@ -1,6 +1,6 @@
 // Items become coverage rows: fills are solid rows, strokes are dashed first and then rasterized analytically
 // (StrokeRasterizer: a full-frame OpenCV mask cost more than a whole frame copy per redraw), text rows come from
-// the glyph coverage TextRenderer caches per string.
+// the glyphs TextRenderer caches.
 #include "overlay/raster/rasterizer.h"
 
 #include <algorithm>
@@ -70,7 +70,7 @@ void Rasterizer::drawStroke(const StrokeItem &item, CoverageSink &sink, glm::ive
 
 LayerRect Rasterizer::textBox(const TextItem &item) const
 {
-    const TextRenderer::Box box = text_.measure(item.text, item.sizePx);
+    const TextRenderer::Box box = text_.measure(item.text, item.sizePx, item.antialias);
     const int x = int(std::lround(item.anchor.x));
     const int y = int(std::lround(item.anchor.y)) - (item.anchorAtBottom ? box.height() - 1 : 0);
     return {x, y, x + box.width, y + box.height()};

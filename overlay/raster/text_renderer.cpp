@@ -1,15 +1,26 @@
-// TextRenderer: OpenCV's FreeType2 (8-bit BGR targets only in OpenCV 4.6, so text is drawn white on black in a
-// scratch image and one channel is kept as coverage), with the Hershey font as the fallback.
+// TextRenderer: FreeType renders a glyph the first time a (size, anti-aliasing, code point) is asked for; a string
+// is then the copy of its cached glyphs into a scratch box. The placement and the composition are OpenCV's FreeType
+// module's (pen in whole pixels, bearings rounded down, each glyph blended over what is there), which the module's
+// own output checks in tests, but without its HarfBuzz pass: that pass only chose glyphs (OpenCV ignores the
+// positions it computes), and a code point's glyph from the font's character map is the same for the scripts a
+// label uses.
 #include "overlay/raster/text_renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <vector>
 
+#include <ft2build.h>
+#include FT_FREETYPE_H
 #include <opencv2/imgproc.hpp>
 
 namespace overlayd {
+
+struct TextRenderer::FaceHandle {
+    FT_Library library = nullptr;
+    FT_Face face = nullptr;
+};
 
 namespace {
 
@@ -33,67 +44,165 @@ void warnOnce(const std::string &fontPath)
                      fontPath.c_str());
 }
 
+// The next code point of UTF-8 text at `at` (advanced past it); a malformed sequence is one U+FFFD per byte.
+char32_t nextCodepoint(const std::string &text, size_t &at)
+{
+    const auto byte = [&](size_t i) {
+        return uint8_t(text[i]);
+    };
+    const uint8_t lead = byte(at++);
+    if (lead < 0x80)
+        return lead;
+    const int extra = lead >= 0xf0 && lead < 0xf5 ? 3 : lead >= 0xe0 ? 2 : lead >= 0xc2 && lead < 0xe0 ? 1 : -1;
+    if (extra < 0 || at + size_t(extra) > text.size())
+        return 0xfffd;
+    char32_t cp = lead & (0x3f >> extra);
+    for (int i = 0; i < extra; ++i) {
+        if ((byte(at + size_t(i)) & 0xc0) != 0x80)
+            return 0xfffd;
+        cp = (cp << 6) | (byte(at + size_t(i)) & 0x3f);
+    }
+    at += size_t(extra);
+    return cp;
+}
+
+// OpenCV's blend of a glyph's coverage c over d, white on black, in its own arithmetic (double, truncated).
+uint8_t over(uint8_t d, uint8_t c)
+{
+    const double alpha = double(c) / 255.0;
+    return uint8_t(255.0 * alpha + double(d) * (1.0 - alpha));
+}
+
 } // namespace
 
 TextRenderer::TextRenderer(const std::string &fontPath)
 {
-    try {
-        auto freeType = cv::freetype::createFreeType2();
-        freeType->loadFontData(fontPath, 0);
-        freeType_ = freeType;
-    } catch (const cv::Exception &) {
-        warnOnce(fontPath);
+    auto *handle = new FaceHandle;
+    if (FT_Init_FreeType(&handle->library) == 0 &&
+        FT_New_Face(handle->library, fontPath.c_str(), 0, &handle->face) == 0) {
+        face_ = handle;
+        return;
     }
+    if (handle->library)
+        FT_Done_FreeType(handle->library);
+    delete handle;
+    warnOnce(fontPath);
 }
 
-TextRenderer::Box TextRenderer::measure(const std::string &text, double sizePx) const
+TextRenderer::~TextRenderer()
 {
-    constexpr size_t kMaxCached = 64; // bounded like the coverage cache: token text makes new strings
-    auto key = std::make_pair(text, sizePx);
-    if (const auto it = boxes_.find(key); it != boxes_.end())
+    if (!face_)
+        return;
+    FT_Done_Face(face_->face);
+    FT_Done_FreeType(face_->library);
+    delete face_;
+}
+
+const TextRenderer::Glyph &TextRenderer::glyph(char32_t codepoint, int pixelHeight, bool antialias) const
+{
+    const uint64_t key = uint64_t(codepoint) | uint64_t(pixelHeight) << 32 | uint64_t(antialias) << 63;
+    if (const auto it = cache_.find(key); it != cache_.end())
         return it->second;
-    if (boxes_.size() >= kMaxCached)
-        boxes_.clear();
-    const Box box = measureUncached(text, sizePx);
-    boxes_.emplace(std::move(key), box);
-    return box;
+    Glyph &glyph = cache_[key];
+    FT_Face face = face_->face; // set to pixelHeight by layOut
+    // A code point the font lacks is its .notdef box (glyph 0), as OpenCV's module shows it.
+    if (FT_Load_Glyph(face, FT_Get_Char_Index(face, FT_ULong(codepoint)), FT_LOAD_DEFAULT) != 0 ||
+        FT_Render_Glyph(face->glyph, antialias ? FT_RENDER_MODE_NORMAL : FT_RENDER_MODE_MONO) != 0)
+        return glyph; // nothing to draw and no advance: a glyph FreeType cannot render is left out
+    const FT_GlyphSlot slot = face->glyph;
+    const FT_Bitmap &bitmap = slot->bitmap;
+    glyph.left = int(slot->metrics.horiBearingX >> 6);
+    glyph.top = int(slot->metrics.horiBearingY >> 6);
+    glyph.advance = int(slot->advance.x >> 6);
+    glyph.width = int(bitmap.width);
+    glyph.rows = int(bitmap.rows);
+    glyph.coverage.resize(size_t(glyph.width) * size_t(glyph.rows));
+    for (int y = 0; y < glyph.rows; ++y) {
+        const uint8_t *row = bitmap.buffer + ptrdiff_t(y) * bitmap.pitch;
+        uint8_t *out = glyph.coverage.data() + size_t(y) * size_t(glyph.width);
+        for (int x = 0; x < glyph.width; ++x)
+            out[x] = antialias ? row[x] : ((row[x >> 3] >> (7 - (x & 7))) & 1) * 255;
+    }
+    cachedBytes_ += glyph.coverage.size() + sizeof(Glyph);
+    return glyph;
 }
 
-TextRenderer::Box TextRenderer::measureUncached(const std::string &text, double sizePx) const
+TextRenderer::Layout TextRenderer::layOut(const std::string &text, int pixelHeight, bool antialias) const
 {
-    int baseline = 0;
-    cv::Size size;
-    if (freeType_)
-        size = freeType_->getTextSize(text, fontHeight(sizePx), -1, &baseline);
-    else
-        size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, hersheyScale(sizePx), 1, &baseline);
-    // One spare pixel on each side: anti-aliased edges spill slightly outside the box OpenCV reports.
-    return {size.width + 2, size.height + 1, baseline + 1};
+    if (cachedBytes_ > kMaxGlyphCacheBytes) { // here, never while glyphs_ holds pointers into the cache
+        cache_.clear();
+        cachedBytes_ = 0;
+    }
+    glyphs_.clear();
+    FT_Face face = face_->face;
+    if (faceHeight_ != pixelHeight) { // the metrics below are the size's, and so are new glyphs
+        if (FT_Set_Pixel_Sizes(face, FT_UInt(pixelHeight), FT_UInt(pixelHeight)) != 0)
+            return {};
+        faceHeight_ = pixelHeight;
+    }
+    int pen = 0, inkLeft = 0, inkRight = 0, top = 0, bottom = 0;
+    for (size_t at = 0; at < text.size();) {
+        const Glyph &g = glyph(nextCodepoint(text, at), pixelHeight, antialias);
+        glyphs_.push_back(&g);
+        if (g.width > 0 && g.rows > 0) {
+            inkLeft = std::min(inkLeft, pen + g.left);
+            inkRight = std::max(inkRight, pen + g.left + g.width);
+            top = std::max(top, g.top);
+            bottom = std::max(bottom, g.rows - g.top);
+        }
+        pen += g.advance;
+    }
+    if (glyphs_.empty())
+        return {};
+    const FT_Size_Metrics &metrics = face->size->metrics;
+    const int ascender = int(metrics.ascender >> 6), descender = int(-metrics.descender >> 6);
+    // One spare pixel on each side, as the box always had.
+    Layout layout;
+    layout.penX = 1 - inkLeft;
+    layout.box.width = layout.penX + std::max(inkRight, pen) + 1;
+    layout.box.ascent = std::max(ascender, top) + 1;
+    layout.box.descent = std::max(descender, bottom) + 1;
+    return layout;
+}
+
+TextRenderer::Box TextRenderer::measure(const std::string &text, double sizePx, bool antialias) const
+{
+    if (!face_) {
+        int baseline = 0;
+        const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, hersheyScale(sizePx), 1, &baseline);
+        return {size.width + 2, size.height + 1, baseline + 1};
+    }
+    return layOut(text, fontHeight(sizePx), antialias).box;
 }
 
 cv::Mat TextRenderer::render(const std::string &text, double sizePx, bool antialias) const
 {
-    // Bounded: token text (a timestamp) makes a new string every second.
-    constexpr size_t kMaxCached = 64;
-    const auto key = std::make_tuple(text, sizePx, antialias);
-    if (const auto it = cache_.find(key); it != cache_.end())
-        return it->second;
-    if (cache_.size() >= kMaxCached)
-        cache_.clear();
-    return cache_[key] = draw(text, sizePx, antialias);
+    if (!face_)
+        return renderHershey(text, sizePx, antialias);
+    const Layout layout = layOut(text, fontHeight(sizePx), antialias);
+    const int width = std::max(layout.box.width, 1), height = std::max(layout.box.height(), 1);
+    scratch_.assign(size_t(width) * size_t(height), 0);
+    int pen = layout.penX;
+    for (const Glyph *g : glyphs_) {
+        for (int y = 0; y < g->rows; ++y) {
+            uint8_t *out = scratch_.data() + size_t(layout.box.ascent - g->top + y) * size_t(width) + (pen + g->left);
+            const uint8_t *in = g->coverage.data() + size_t(y) * size_t(g->width);
+            for (int x = 0; x < g->width; ++x) {
+                if (in[x] != 0)
+                    out[x] = over(out[x], in[x]);
+            }
+        }
+        pen += g->advance;
+    }
+    return cv::Mat(height, width, CV_8UC1, scratch_.data());
 }
 
-cv::Mat TextRenderer::draw(const std::string &text, double sizePx, bool antialias) const
+cv::Mat TextRenderer::renderHershey(const std::string &text, double sizePx, bool antialias) const
 {
     const Box box = measure(text, sizePx);
     cv::Mat bgr = cv::Mat::zeros(std::max(box.height(), 1), std::max(box.width, 1), CV_8UC3);
-    const cv::Point baselineLeft(1, box.ascent);
-    const int lineType = antialias ? cv::LINE_AA : cv::LINE_8;
-    if (freeType_)
-        freeType_->putText(bgr, text, baselineLeft, fontHeight(sizePx), cv::Scalar::all(255), -1, lineType, true);
-    else
-        cv::putText(bgr, text, baselineLeft, cv::FONT_HERSHEY_SIMPLEX, hersheyScale(sizePx), cv::Scalar::all(255), 1,
-                    lineType);
+    cv::putText(bgr, text, cv::Point(1, box.ascent), cv::FONT_HERSHEY_SIMPLEX, hersheyScale(sizePx),
+                cv::Scalar::all(255), 1, antialias ? cv::LINE_AA : cv::LINE_8);
     cv::Mat coverage;
     cv::extractChannel(bgr, coverage, 0);
     return coverage;

@@ -1,45 +1,75 @@
-// Text coverage: DejaVu Sans through OpenCV's FreeType module, or OpenCV's Hershey font when the font is missing.
+// Text coverage from a glyph cache: DejaVu Sans through FreeType, each glyph rendered once per size and kept as
+// coverage, so a string that changes every frame (a frame counter, a timestamp) costs a copy of its glyphs, not a
+// FreeType rendering. OpenCV's Hershey font when the font is missing.
 #pragma once
 
-#include <map>
+#include <cstddef>
+#include <cstdint>
 #include <string>
-#include <tuple>
-#include <utility>
+#include <unordered_map>
+#include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/freetype.hpp>
 
 namespace overlayd {
 
 inline constexpr const char *kDefaultFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// The glyph cache's bound (coverage bytes of every size and glyph kept). A scene that asks for more (many sizes of
+// many scripts) starts the cache over, which costs time, not memory.
+inline constexpr size_t kMaxGlyphCacheBytes = size_t(16) << 20;
 
 class TextRenderer
 {
 public:
     // Falls back to the Hershey font, with a warning on stderr (once per process), when fontPath cannot be loaded.
     explicit TextRenderer(const std::string &fontPath = kDefaultFontPath);
+    ~TextRenderer();
+    TextRenderer(const TextRenderer &) = delete;
+    TextRenderer &operator=(const TextRenderer &) = delete;
 
-    // The text's box: width, and height split at the baseline into ascent and descent.
+    // The text's box: width, and height split at the baseline into ascent and descent. With FreeType the height is
+    // the font's (its ascender and descender at this size, widened only by glyphs that reach beyond them), so a
+    // box does not jump when the digits of a counter change.
     struct Box {
         int width = 0, ascent = 0, descent = 0;
         int height() const { return ascent + descent; }
     };
-    // Cached like render(): a label's box is asked for every frame while the camera moves.
-    Box measure(const std::string &text, double sizePx) const;
-    // The coverage (0..255) of the text drawn in its box, CV_8UC1 of the box's size. Cached: labels keep their text
-    // while the camera moves, and FreeType's rendering is the slow part of a redraw. Read-only.
+    // Anti-aliased and 1-bit glyphs can differ in width by a pixel: a box is measured for the way it is drawn.
+    Box measure(const std::string &text, double sizePx, bool antialias = true) const;
+    // The coverage (0..255) of the text drawn in its box, CV_8UC1 of the box's size, composed from cached glyphs the
+    // way OpenCV's FreeType module composes them (a glyph over the ones before it). The matrix shares the renderer's
+    // scratch: valid until the next call.
     cv::Mat render(const std::string &text, double sizePx, bool antialias) const;
 
-    bool usesFreeType() const { return !freeType_.empty(); }
+    bool usesFreeType() const { return face_ != nullptr; }
+    // The coverage bytes the glyph cache holds, for tests and footprint figures.
+    size_t cachedGlyphBytes() const { return cachedBytes_; }
 
 private:
-    cv::Mat draw(const std::string &text, double sizePx, bool antialias) const;
+    struct Glyph {
+        int left = 0, top = 0; // the bitmap's offset from the pen on the baseline (x right, y up)
+        int width = 0, rows = 0;
+        int advance = 0; // whole pixels, as OpenCV's FreeType module steps the pen
+        std::vector<uint8_t> coverage;
+    };
+    struct Layout {
+        Box box;
+        int penX = 0; // where the first glyph's pen starts in the box
+    };
 
-    cv::Ptr<cv::freetype::FreeType2> freeType_;
-    Box measureUncached(const std::string &text, double sizePx) const;
+    const Glyph &glyph(char32_t codepoint, int pixelHeight, bool antialias) const;
+    // Decodes UTF-8 into glyphs_ (pointers into the cache) and measures their box.
+    Layout layOut(const std::string &text, int pixelHeight, bool antialias) const;
+    cv::Mat renderHershey(const std::string &text, double sizePx, bool antialias) const;
 
-    mutable std::map<std::tuple<std::string, double, bool>, cv::Mat> cache_;
-    mutable std::map<std::pair<std::string, double>, Box> boxes_;
+    struct FaceHandle;
+    FaceHandle *face_ = nullptr; // FreeType's library and face; none when the font could not be loaded
+    mutable int faceHeight_ = 0; // the pixel size the face is set to
+    mutable std::unordered_map<uint64_t, Glyph> cache_;
+    mutable size_t cachedBytes_ = 0;
+    mutable std::vector<const Glyph *> glyphs_; // scratch: the glyphs of the string being laid out
+    mutable std::vector<uint8_t> scratch_;      // the coverage render() returns
 };
 
 } // namespace overlayd

@@ -15,7 +15,6 @@ namespace {
 
 using test::TestFrame;
 
-const Colorimetry kBt601Limited{YcbcrMatrix::Bt601, ColourRange::Limited};
 constexpr unsigned kWidth = 101, kHeight = 67, kPadding = 6;
 // The cached path averages the composite of all items over a macropixel, the direct path each item on its own:
 // they differ where two items of different colours share a macropixel (measured: a few per cent of the pixels, by
@@ -28,9 +27,7 @@ class MovingCamera : public testing::TestWithParam<std::string>
 
 TestFrame greyFrame(const std::string &format)
 {
-    TestFrame frame = test::makeFrame(format, kWidth, kHeight, kPadding);
-    test::fillRgb(frame, kBt601Limited, 110, 120, 130);
-    return frame;
+    return test::greyFrame(format, kWidth, kHeight, kPadding);
 }
 
 // Blends with `renderer` after moving it through two other cameras, so that the last blend draws directly.
@@ -142,20 +139,7 @@ TEST_P(MovingCamera, DisabledLayersAreNotDrawn)
     EXPECT_EQ(direct.bytes, before.bytes);
 }
 
-std::vector<std::string> formatNames()
-{
-    std::vector<std::string> names;
-    for (const PixelFormatInfo &info : pixelFormats())
-        names.emplace_back(info.name);
-    return names;
-}
-
-std::string formatName(const testing::TestParamInfo<std::string> &param)
-{
-    return param.param;
-}
-
-INSTANTIATE_TEST_SUITE_P(AllFormats, MovingCamera, testing::ValuesIn(formatNames()), formatName);
+INSTANTIATE_TEST_SUITE_P(AllFormats, MovingCamera, testing::ValuesIn(test::formatNames()), test::formatName);
 
 } // namespace
 } // namespace overlayd

@@ -17,19 +17,6 @@ constexpr int kYuvTolerance = 3; // one code of Y/Cb/Cr rounding moves a convert
                                  // blend_colour_test.cpp)
 const Colorimetry kBt601Limited{YcbcrMatrix::Bt601, ColourRange::Limited};
 
-std::vector<std::string> formatNames()
-{
-    std::vector<std::string> names;
-    for (const PixelFormatInfo &info : pixelFormats())
-        names.emplace_back(info.name);
-    return names;
-}
-
-std::string formatName(const testing::TestParamInfo<std::string> &info)
-{
-    return info.param;
-}
-
 class RendererFormat : public testing::TestWithParam<std::string>
 {};
 
@@ -104,7 +91,7 @@ TEST_P(RendererFormat, UntouchedOutsideCoverageWithStrideAndOddSize)
     EXPECT_GT(changed, 300u);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllFormats, RendererFormat, testing::ValuesIn(formatNames()), formatName);
+INSTANTIATE_TEST_SUITE_P(AllFormats, RendererFormat, testing::ValuesIn(test::formatNames()), test::formatName);
 
 // 50% white over black: a line's interior lands within one code of the exact blend in luma, chroma and RGB.
 TEST(RendererAlpha, HalfWhiteLineOverBlack)

@@ -87,4 +87,24 @@ cv::Mat layerAlpha(const OverlayLayer &layer)
     return alpha;
 }
 
+TestFrame greyFrame(const std::string &formatName, unsigned width, unsigned height, unsigned stridePadding)
+{
+    TestFrame frame = makeFrame(formatName, width, height, stridePadding);
+    fillRgb(frame, Colorimetry{YcbcrMatrix::Bt601, ColourRange::Limited}, 110, 120, 130);
+    return frame;
+}
+
+std::vector<std::string> formatNames()
+{
+    std::vector<std::string> names;
+    for (const PixelFormatInfo &info : pixelFormats())
+        names.emplace_back(info.name);
+    return names;
+}
+
+std::string formatName(const testing::TestParamInfo<std::string> &param)
+{
+    return param.param;
+}
+
 } // namespace overlayd::test

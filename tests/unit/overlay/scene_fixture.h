@@ -3,7 +3,9 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
+#include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
 #include "overlay/scene_renderer.h"
@@ -22,6 +24,13 @@ Camera groundCamera(unsigned width, unsigned height, Origin origin = Origin::Top
 OverlayScene demoScene(bool withText);
 
 StreamFormat streamFormat(const std::string &formatName, unsigned width, unsigned height);
+
+// A frame of one grey (RGB 110, 120, 130 in BT.601 limited range) with padded strides.
+TestFrame greyFrame(const std::string &formatName, unsigned width, unsigned height, unsigned stridePadding);
+
+// Every pixel format's name, and the test name a format parameter gets (for INSTANTIATE_TEST_SUITE_P).
+std::vector<std::string> formatNames();
+std::string formatName(const testing::TestParamInfo<std::string> &param);
 
 std::unique_ptr<SceneRenderer> makeRenderer(const OverlayScene &scene, const Camera &camera,
                                             const StreamFormat &format);

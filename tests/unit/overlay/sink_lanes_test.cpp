@@ -1,5 +1,5 @@
-// The frame sink's 16-bit lane arithmetic (overlay/blend/sink_lanes.h) against the chroma rule written in plain integer and
-// floating-point maths, for every four-pixel opacity sum and every code: the lanes may not overflow anywhere.
+// The frame sink's 16-bit lane arithmetic (overlay/blend/sink_lanes.h) against the chroma rule written in plain integer
+// and floating-point maths, for every four-pixel opacity sum and every code: the lanes may not overflow anywhere.
 #include "overlay/blend/sink_lanes.h"
 
 #include <cfenv>
