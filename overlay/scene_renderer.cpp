@@ -97,14 +97,49 @@ void SceneRenderer::buildText(const TextSlot &slot)
         item.text.assign(slot.scratch); // the annotation holds the text with its tokens
 }
 
-void SceneRenderer::drawTextInto(TextSlot &slot, const FrameView &frame)
+Status SceneRenderer::drawTextInto(TextSlot &slot, const FrameView &frame)
 {
     buildText(slot);
     slot.shown = slot.scratch;
     slot.rendered = false; // once the string holds still, a layer is rendered for it again
     slot.native.reset();
+    for (TextItem &item : drawList_.texts) { // one, a screen text's
+        if (!item.background)
+            continue;
+        const LayerRect box = rasterizer_.textBox(item);
+        if (Status status = renderTextBox(slot, FillItem{*item.background, box.x0, box.y0, box.x1, box.y1}); !status)
+            return status;
+        item.background.reset();
+    }
+    if (slot.box)
+        slot.box->blendChecked(frame);
     frameSink_.setFrame(frame);
     rasterizer_.draw(drawList_, frameSink_, {0, 0}, frameClip());
+    return Ok{};
+}
+
+Status SceneRenderer::renderTextBox(TextSlot &slot, const FillItem &fill)
+{
+    const FillItem &was = slot.boxFill;
+    if (slot.box && was.colour == fill.colour && was.x0 == fill.x0 && was.y0 == fill.y0 && was.x1 == fill.x1 &&
+        was.y1 == fill.y1)
+        return Ok{};
+    slot.box.reset();
+    slot.boxFill = fill;
+    const auto [x0, y0, x1, y1] = macropixelBox({fill.x0, fill.y0, fill.x1, fill.y1});
+    if (x0 >= x1 || y0 >= y1)
+        return Ok{};
+    DrawList boxList;
+    boxList.fills.push_back(fill);
+    OverlayLayer pixels(unsigned(x1 - x0), unsigned(y1 - y0));
+    rasterizer_.draw(boxList, pixels, {x0, y0}, scissor());
+    pixels.updateSpans();
+    auto native = NativeLayer::convert(pixels, *format_.format, colorimetry_,
+                                       {unsigned(x0), unsigned(y0), format_.width, format_.height});
+    if (!native)
+        return native.error();
+    slot.box = std::move(*native);
+    return Ok{};
 }
 
 // The text's box, widened to whole macropixels, becomes a layer of its own placed on the frame.
@@ -361,10 +396,12 @@ Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &me
         const bool changed = slot.scratch != slot.shown;
         slot.changingFrames = changed ? slot.changingFrames + 1 : 0;
         if (slot.changingFrames >= 2) {
-            drawTextInto(slot, frame);
+            if (Status status = drawTextInto(slot, frame); !status)
+                return status;
             ++textsDrawnDirectly_;
             continue;
         }
+        slot.box.reset();
         if (!slot.rendered || changed) {
             if (Status status = renderText(slot); !status)
                 return status;

@@ -68,13 +68,19 @@ private:
         bool rendered = false;
         std::optional<NativeLayer> native;
         unsigned changingFrames = 0; // consecutive blends, each with a new string (a frame counter: every one)
+        // While the string changes every frame: its background box as a layer (the bulk of its pixels, and the
+        // same from one number to the next), re-rendered only when the box moves or resizes.
+        std::optional<NativeLayer> box;
+        FillItem boxFill;
     };
 
     Status renderText(TextSlot &slot);
     // The slot's primitives for its expanded string (in drawList_): no copy of the annotation.
     void buildText(const TextSlot &slot);
     // A text that changes every frame is drawn straight into the frame, like a moving camera's world.
-    void drawTextInto(TextSlot &slot, const FrameView &frame);
+    Status drawTextInto(TextSlot &slot, const FrameView &frame);
+    // The layer of a background box `fill` (slot.box), kept while the box stays the same.
+    Status renderTextBox(TextSlot &slot, const FillItem &fill);
     Status renderImage(ImageSprite &sprite);
     Status blendImages(const FrameView &frame);
     // A frame-pixel box widened to whole macropixels and cut to the frame and the scissor.

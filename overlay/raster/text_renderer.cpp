@@ -7,6 +7,7 @@
 #include "overlay/raster/text_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -72,6 +73,17 @@ uint8_t over(uint8_t d, uint8_t c)
     const double alpha = double(c) / 255.0;
     return uint8_t(255.0 * alpha + double(d) * (1.0 - alpha));
 }
+
+// over(0, c) for every c: glyphs seldom overlap, so nearly every pixel is a look-up.
+struct OverBlack {
+    std::array<uint8_t, 256> table;
+    OverBlack()
+    {
+        for (int c = 0; c < 256; ++c)
+            table[size_t(c)] = over(0, uint8_t(c));
+    }
+};
+const OverBlack kOverBlack;
 
 } // namespace
 
@@ -189,7 +201,7 @@ cv::Mat TextRenderer::render(const std::string &text, double sizePx, bool antial
             const uint8_t *in = g->coverage.data() + size_t(y) * size_t(g->width);
             for (int x = 0; x < g->width; ++x) {
                 if (in[x] != 0)
-                    out[x] = over(out[x], in[x]);
+                    out[x] = out[x] == 0 ? kOverBlack.table[in[x]] : over(out[x], in[x]);
             }
         }
         pen += g->advance;
