@@ -124,22 +124,10 @@ Status SceneRenderer::renderTextBox(TextSlot &slot, const FillItem &fill)
     if (slot.box && was.colour == fill.colour && was.x0 == fill.x0 && was.y0 == fill.y0 && was.x1 == fill.x1 &&
         was.y1 == fill.y1)
         return Ok{};
-    slot.box.reset();
     slot.boxFill = fill;
-    const auto [x0, y0, x1, y1] = macropixelBox({fill.x0, fill.y0, fill.x1, fill.y1});
-    if (x0 >= x1 || y0 >= y1)
-        return Ok{};
     DrawList boxList;
     boxList.fills.push_back(fill);
-    OverlayLayer pixels(unsigned(x1 - x0), unsigned(y1 - y0));
-    rasterizer_.draw(boxList, pixels, {x0, y0}, scissor());
-    pixels.updateSpans();
-    auto native = NativeLayer::convert(pixels, *format_.format, colorimetry_,
-                                       {unsigned(x0), unsigned(y0), format_.width, format_.height});
-    if (!native)
-        return native.error();
-    slot.box = std::move(*native);
-    return Ok{};
+    return drawPlaced(boxList, {fill.x0, fill.y0, fill.x1, fill.y1}, slot.box);
 }
 
 // The text's box, widened to whole macropixels, becomes a layer of its own placed on the frame.
@@ -151,17 +139,23 @@ Status SceneRenderer::renderText(TextSlot &slot)
     slot.native.reset();
     if (drawList_.texts.empty())
         return Ok{};
-    const auto [x0, y0, x1, y1] = macropixelBox(rasterizer_.textBox(drawList_.texts.front()));
+    return drawPlaced(drawList_, rasterizer_.textBox(drawList_.texts.front()), slot.native);
+}
+
+Status SceneRenderer::drawPlaced(const DrawList &list, LayerRect box, std::optional<NativeLayer> &layer)
+{
+    layer.reset();
+    const auto [x0, y0, x1, y1] = macropixelBox(box);
     if (x0 >= x1 || y0 >= y1)
         return Ok{};
     OverlayLayer pixels(unsigned(x1 - x0), unsigned(y1 - y0));
-    rasterizer_.draw(drawList_, pixels, {x0, y0}, scissor());
+    rasterizer_.draw(list, pixels, {x0, y0}, scissor());
     pixels.updateSpans();
     auto native = NativeLayer::convert(pixels, *format_.format, colorimetry_,
                                        {unsigned(x0), unsigned(y0), format_.width, format_.height});
     if (!native)
         return native.error();
-    slot.native = std::move(*native);
+    layer = std::move(*native);
     return Ok{};
 }
 

@@ -81,6 +81,9 @@ private:
     Status drawTextInto(TextSlot &slot, const FrameView &frame);
     // The layer of a background box `fill` (slot.box), kept while the box stays the same.
     Status renderTextBox(TextSlot &slot, const FillItem &fill);
+    // `list` drawn on a layer of `box` (frame pixels) widened to whole macropixels, kept as native runs placed on
+    // the frame in `layer` (none when the box is off the frame or outside the scissor).
+    Status drawPlaced(const DrawList &list, LayerRect box, std::optional<NativeLayer> &layer);
     Status renderImage(ImageSprite &sprite);
     Status blendImages(const FrameView &frame);
     // A frame-pixel box widened to whole macropixels and cut to the frame and the scissor.
