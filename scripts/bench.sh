@@ -25,7 +25,7 @@ benches=(
     tests/bench_overlay/overlay_stroke_bench
 )
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
-    cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
+    cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOVERLAYD_BUILD_BENCHMARKS=ON
 fi
 build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
 [ "$build_type" = Release ] || echo "bench.sh: $build_dir is a $build_type build, not Release" >&2

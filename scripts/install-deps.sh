@@ -1,20 +1,47 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages overlayd needs to build and test, only those that are missing. On x86-64 and arm64
-# (a Raspberry Pi OS / Debian 12 board) alike.
+# Installs the Debian 12 packages overlayd needs, only those that are missing. On x86-64 and arm64 (a Raspberry Pi OS /
+# Debian 12 board) alike.
+#
+# Usage: scripts/install-deps.sh [--demo] [--arm64]
+#   (none)   everything the test suite needs: the daemon's build, GoogleTest, Google Benchmark and the independent
+#            clients the tests check our output with (scripts/test.sh)
+#   --demo   only what building and running the daemon needs (scripts/run.sh): about 60% of the download
+#   --arm64  adds what scripts/test-arm64.sh needs on the x86-64 host
 set -euo pipefail
 
+demo=false
+arm64=false
+for arg in "$@"; do
+    case "$arg" in
+    --demo) demo=true ;;
+    --arm64) arm64=true ;;
+    *)
+        echo "usage: $0 [--demo] [--arm64]" >&2
+        exit 2
+        ;;
+    esac
+done
+
+# The daemon: the compiler and build tools, and every library `overlayd` links, optional ones included (HTTP, GPIO,
+# libcamera, systemd notify), so that the demo's binary is the one scripts/test.sh tests, and its build is reused.
 packages=(
-    build-essential clang cmake ninja-build pkg-config
+    build-essential cmake ninja-build pkg-config
     libglm-dev
-    libgtest-dev libgmock-dev libbenchmark-dev
-    libopencv-dev fonts-dejavu-core libfreetype-dev # text: FreeType renders each glyph once (the cache is ours)
+    libopencv-dev fonts-dejavu-core # OpenCV's Debian package pulls in all its modules: most of the download
+    libfreetype-dev # text: FreeType renders each glyph once (the cache is ours)
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
     libpng-dev # PNG files (media/codec): images, replay, snapshots
     libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
     libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies
-    libgpiod-dev gpiod # GPIO lines (libgpiod 1.6, the v1 API); the tools are the independent client in tests/vm
-    # Independent clients the tests check our output with.
-    ffmpeg v4l-utils systemd
+    libgpiod-dev # GPIO lines (libgpiod 1.6, the v1 API)
+    systemd # on every booted Debian already; its systemd.pc says where the units install (systemd/CMakeLists.txt)
+)
+# The test suite: the test frameworks, and independent clients the tests check our output with.
+test_packages=(
+    clang # the second compiler, the sanitizers and libFuzzer (.ci/run)
+    libgtest-dev libgmock-dev libbenchmark-dev
+    gpiod # the gpiod tools: the independent GPIO client in tests/vm
+    ffmpeg v4l-utils
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3
 )
@@ -24,12 +51,15 @@ vm_packages=(
     qemu-system-x86 busybox-static cpio kmod xz-utils binutils make ustreamer
     can-utils # cansend and candump, the CAN check's other end of the bus
 )
-if [ "$(dpkg --print-architecture)" = amd64 ]; then
-    packages+=("${vm_packages[@]}")
+if ! $demo; then
+    packages+=("${test_packages[@]}")
+    if [ "$(dpkg --print-architecture)" = amd64 ]; then
+        packages+=("${vm_packages[@]}")
+    fi
 fi
 # --arm64: what scripts/test-arm64.sh needs on the x86-64 host (the cross compiler and qemu-user; its sysroot is
 # unpacked from Debian's arm64 packages into a cache folder, not installed).
-if [ "${1:-}" = "--arm64" ]; then
+if $arm64; then
     packages+=(crossbuild-essential-arm64 qemu-user)
 fi
 

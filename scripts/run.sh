@@ -4,7 +4,7 @@
 # by itself after 150 frames (5 s at 30 fps) and leaves out/demo.y4m and a PNG snapshot every 30 frames.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh
+scripts/install-deps.sh --demo # the daemon's build only; scripts/test.sh adds the test tools
 scripts/build.sh overlayd # only the daemon this runs (scripts/test.sh builds the rest)
 build_dir=${BUILD_DIR:-build}
 mkdir -p out

@@ -14,7 +14,8 @@ scripts/install-deps.sh --arm64
 sysroot=$(scripts/arm64/sysroot.sh "${OVERLAYD_ARM64_CACHE:-.cache/arm64}")
 echo "test-arm64: sysroot ready after $((SECONDS - start)) s"
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DOVERLAYD_ARM64_SYSROOT="$sysroot" >/dev/null
+    -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DOVERLAYD_ARM64_SYSROOT="$sysroot" \
+    -DOVERLAYD_BUILD_TESTS=ON -DOVERLAYD_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"
 echo "test-arm64: cross build done after $((SECONDS - start)) s"
 file "$build_dir/daemon/overlayd"

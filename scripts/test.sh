@@ -6,7 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh
+# ON, not AUTO: without GoogleTest or Google Benchmark this must fail, not quietly build no tests.
+scripts/build.sh -DOVERLAYD_BUILD_TESTS=ON -DOVERLAYD_BUILD_BENCHMARKS=ON
 build_dir=${BUILD_DIR:-build}
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
 "$build_dir/tests/bench/projection_bench" --benchmark_min_time=0.05 --benchmark_color=false 2>/dev/null |
