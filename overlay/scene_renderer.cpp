@@ -24,12 +24,15 @@ SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const 
         const Annotation &annotation = scene_.annotations[i];
         const size_t layer = layerIndex(annotation.style.layer);
         const auto *text = std::get_if<ScreenTextShape>(&annotation.shape);
-        if (text && hasTokens(text->text))
-            texts_.push_back(TextSlot{i, layer, {}, {}, false, std::nullopt});
-        else if (std::holds_alternative<ImageShape>(annotation.shape))
+        if (text && hasTokens(text->text)) {
+            TextSlot &slot = texts_.emplace_back();
+            slot.annotation = i;
+            slot.layer = layer;
+        } else if (std::holds_alternative<ImageShape>(annotation.shape)) {
             images_.push_back(ImageSprite{i, layer, false, std::nullopt});
-        else
+        } else {
             layers_[layer].annotations.push_back(i);
+        }
     }
     slotNames_ = textSlotNames(scene_);
 }
