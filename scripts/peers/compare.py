@@ -11,6 +11,7 @@ overlayd's own `project` command gives, so every tool draws the same pixels' wor
 import argparse
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -194,6 +195,14 @@ def cpu_seconds(argv):
     return usage.ru_utime + usage.ru_stime
 
 
+def blend_timer(tool, frames, out):
+    """What overlayd's render reports as its mean blend time per frame (its closing info line)."""
+    argv = tool.command(frames, out, True)
+    log = subprocess.run(argv[:-2] + ["--log-level", "info"], check=True, capture_output=True, text=True)
+    found = re.search(r" blend ([0-9.]+) ms", log.stdout + log.stderr)
+    return found.group(1) if found else "?"
+
+
 def changed_pixels(reference, frame):
     """Indices of the pixels whose luma differs from the reference's by more than 24 (a conversion's rounding
     changes many pixels by a few steps; a drawn line by much more over most of this picture)."""
@@ -277,23 +286,29 @@ def main():
     def ms(values):
         return 1000 * statistics.median(values)
 
-    ours_raw = ms(raw["overlayd"]) if "overlayd" in raw else None
-    ours_draw = ms(raw["overlayd"]) - ms(base["overlayd"]) if "overlayd" in raw else None
-    print(f"\n{args.frames} frames {WIDTH}x{HEIGHT} YUYV, CPU ms per frame (user + system, median of {args.runs} "
-          f"run(s)); {time.strftime('%Y-%m-%d')}, {os.uname().machine}\n")
-    print("| tool | what it does | with drawing | without (read + write) | drawing only | ratio to overlayd, "
-          "drawing only | ratio, with drawing |")
+    def drawing(name):  # each run's own difference, so that a slow spell between runs does not leak in
+        return [r - b for r, b in zip(raw[name], base[name])]
+
+    ours = "overlayd" in raw
+    print(f"\n{args.frames} frames {WIDTH}x{HEIGHT} YUYV, CPU ms per frame (user + system of the tool's process, "
+          f"start-up included), median of {args.runs} run(s); {time.strftime('%Y-%m-%d')}, {os.uname().machine}\n")
+    print("| tool | what it does | with drawing | without (read + write) | drawing only | x overlayd, with drawing "
+          "| x overlayd, drawing only |")
     print("|---|---|---|---|---|---|---|")
     for tool in tools:
-        r, b = ms(raw[tool.name]), ms(base[tool.name])
-        ratio = f"{(r - b) / ours_draw:.1f}x" if ours_draw and ours_draw > 0 else "-"
-        ratio_raw = f"{r / ours_raw:.1f}x" if ours_raw else "-"
-        print(f"| {tool.name} | {tool.what} | {r:.2f} | {b:.2f} | {r - b:.2f} | {ratio} | {ratio_raw} |")
+        r, b, d = ms(raw[tool.name]), ms(base[tool.name]), ms(drawing(tool.name))
+        ratio_raw = f"{r / ms(raw['overlayd']):.1f}x" if ours else "-"
+        ours_draw = ms(drawing("overlayd")) if ours else 0.0
+        ratio = f"{d / ours_draw:.0f}x" if ours_draw > 0 else "-"
+        print(f"| {tool.name} | {tool.what} | {r:.2f} | {b:.2f} | {d:.2f} | {ratio_raw} | {ratio} |")
+    if ours:
+        print(f"\noverlayd's own blend timer (wall clock around each frame's blend, in the process): "
+              f"{blend_timer(next(t for t in tools if t.name == 'overlayd'), args.frames, null)} ms per frame")
     if args.runs > 1:
-        print("\nranges over the runs (ms, with drawing / without): " + "; ".join(
+        print("\nranges over the runs, ms (with drawing / without / drawing only): " + "; ".join(
             f"{t.name} {1000 * min(raw[t.name]):.2f}-{1000 * max(raw[t.name]):.2f} / "
-            f"{1000 * min(base[t.name]):.2f}-{1000 * max(base[t.name]):.2f}" for t in tools))
-
+            f"{1000 * min(base[t.name]):.2f}-{1000 * max(base[t.name]):.2f} / "
+            f"{1000 * min(drawing(t.name)):.2f}-{1000 * max(drawing(t.name)):.2f}" for t in tools))
 
 if __name__ == "__main__":
     main()
