@@ -209,16 +209,17 @@ def changed_pixels(reference, frame):
     return {i for i, (a, b) in enumerate(zip(reference[0::2], frame[0::2])) if abs(a - b) > 24}
 
 
-def check_drawings(tools, work):
+def check_drawings(overlayd, tools, work):
     """Each tool draws one frame into a file: its changed pixels must be about as many as overlayd's, and mostly
-    the same ones, else it drew something else (or nothing) and its time would mean nothing."""
+    the same ones, else it drew something else (or nothing) and its time would mean nothing. overlayd draws first
+    (the reference), whether or not it is timed."""
     check = os.path.join(work, "check")
     os.makedirs(check, exist_ok=True)
     with open(os.path.join(work, "frames.yuv"), "rb") as f:
         reference = f.read(WIDTH * HEIGHT * 2)
     ours = None
     problems = []
-    for tool in tools:
+    for tool in [overlayd] + [t for t in tools if t is not overlayd]:
         out = os.path.join(check, f"{tool.name}.yuv")
         cpu_seconds(tool.command(1, out, True))
         with open(out, "rb") as f:
@@ -268,8 +269,9 @@ def main():
     subprocess.run([args.opencv_peer, "png", os.path.join(work, "scene.txt"), os.path.join(work, "scene.png"),
                     str(WIDTH), str(HEIGHT)], check=True)
     wanted = args.tools.split(",")
-    tools = [t for t in make_tools(args, work, texts) if t.name in wanted]
-    check_drawings(tools, work)
+    everything = make_tools(args, work, texts)
+    tools = [t for t in everything if t.name in wanted]
+    check_drawings(everything[0], tools, work)
 
     # overlayd's render picks its output's format by the extension; /dev/null under a .yuv name.
     null = os.path.join(work, "null.yuv")
