@@ -120,8 +120,11 @@ Status SinkFile::close()
         return closeFile();
     if (std::fflush(file_.get()) == 0)
         return Ok{};
-    if (errno == EPIPE)
-        readerGone();
+    const int error = errno;
+    // Any other failure lost bytes of the reader's stream: reported as a failed write() is.
+    if (error != EPIPE)
+        return makeError(ErrorCode::Io, path_ + ": write failed on close: " + std::strerror(error));
+    readerGone();
     return Ok{}; // a FIFO's reader that left is no failure of the stream
 }
 

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "base/unique_fd.h"
 #include "drivers/files/sink_file.h"
 
 namespace overlayd {
@@ -33,6 +34,24 @@ struct Scratch {
     ~Scratch() { fs::remove_all(dir); }
     std::string operator/(const std::string &file) const { return (dir / file).string(); }
     fs::path dir;
+};
+
+// A FIFO in a fresh folder, a SinkFile opened on it with a header, and a reader that came after the open. The
+// reader is declared before the file so that it outlives it (a writer closing after its reader left gets SIGPIPE).
+struct ReadFifo {
+    explicit ReadFifo(const std::string &name) : scratch(name), path(scratch / "out.y4m"), file(path)
+    {
+        EXPECT_EQ(mkfifo(path.c_str(), 0644), 0);
+        EXPECT_TRUE(file.open(false, "HEADER\n"));
+        readerFd = UniqueFd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+        reader = readerFd.get();
+    }
+
+    const Scratch scratch;
+    const std::string path;
+    UniqueFd readerFd;
+    SinkFile file;
+    int reader = -1;
 };
 
 TEST(SinkFile, AFifoWithoutAReaderOpensOnceOneComes)
@@ -101,12 +120,9 @@ TEST(SinkFile, TheNextReaderOfAFifoGetsTheHeaderFirst)
 // reader end of file (ffplay quits), and re-opening would give a reader that came meanwhile no header.
 TEST(SinkFile, AReopenForTheSameStreamKeepsTheFifosReader)
 {
-    const Scratch scratch("fifo-reopen");
-    const std::string path = scratch / "out.y4m";
-    ASSERT_EQ(mkfifo(path.c_str(), 0644), 0);
-    SinkFile file(path);
-    ASSERT_TRUE(file.open(false, "HEADER\n"));
-    const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+    ReadFifo fifo("fifo-reopen");
+    SinkFile &file = fifo.file;
+    const int reader = fifo.reader;
     ASSERT_GE(reader, 0);
     ASSERT_TRUE(file.write("one\n", 4));
     ASSERT_TRUE(file.close());
@@ -123,7 +139,26 @@ TEST(SinkFile, AReopenForTheSameStreamKeepsTheFifosReader)
     std::fill(std::begin(text), std::end(text), 0);
     EXPECT_EQ(::read(reader, text, sizeof text), 4);
     EXPECT_STREQ(text, "two\n");
-    ::close(reader);
+}
+
+// Parking a FIFO flushes it; a flush that fails for any reason but a reader gone (EPIPE) lost bytes of the stream and
+// must be reported like a failed write. The failure is made by putting a read-only descriptor under the FILE.
+TEST(SinkFile, AParkedFifosFailedFlushIsReported)
+{
+    ReadFifo fifo("fifo-flush");
+    SinkFile &file = fifo.file;
+    ASSERT_GE(fifo.reader, 0);
+    ASSERT_TRUE(file.write("one\n", 4)); // stays in stdio's buffer
+    const auto out = file.get();
+    ASSERT_TRUE(out);
+    const int readOnly = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    ASSERT_GE(readOnly, 0);
+    ASSERT_GE(::dup2(readOnly, ::fileno(*out)), 0); // the flush's write(2) now fails with EBADF
+    ::close(readOnly);
+    const Status closed = file.close();
+    ASSERT_FALSE(closed) << "a lost write must not pass as a parked FIFO";
+    EXPECT_NE(closed.error().message.find("write failed on close"), std::string::npos) << closed.error().message;
+    EXPECT_NE(closed.error().message.find(fifo.path), std::string::npos) << closed.error().message;
 }
 
 // Two writers on one file (here in one process; another daemon alike): the second is refused naming the holder,
