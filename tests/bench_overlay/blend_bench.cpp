@@ -85,14 +85,6 @@ int main(int argc, char **argv)
         bench::registerCase(kFamily, bench::kMemcpyCold, memcpyBench, c);
         bench::registerCase(kFamily, "convert", convertBench, c);
     }
-    // blend / memcpy per case, from the same run: runs drift, only a same-run ratio means much.
-    const auto reporter = bench::runAll();
-    for (const bench::FrameCase &c : bench::kFrameCases) {
-        const auto blend = reporter->cpuSeconds(bench::caseName(kFamily, "blend", c));
-        const auto copy = reporter->cpuSeconds(bench::caseName(kFamily, bench::kMemcpyCold, c));
-        if (blend && copy)
-            std::fprintf(reporter->ratioStream(), "ratio %-16s blend / memcpy_cold = %.3f (CPU time)\n",
-                         c.name().c_str(), *blend / *copy);
-    }
+    bench::printRatiosToMemcpy(*bench::runAll(), kFamily, {"blend"});
     return 0;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -65,6 +66,24 @@ inline constexpr const char *kMemcpyCold = "memcpy_cold";
 inline std::string caseName(const char *family, const std::string &kind, const FrameCase &c)
 {
     return std::string(family) + "/" + kind + "/" + c.name();
+}
+
+// The tail of every overlay bench: one line per case and kind that both ran, its time over the cold memcpy of the
+// same frame from the same run (runs drift: only a same-run ratio means much). CPU time first (the steadier figure
+// on a shared machine), then wall time (where the two differ, other processes held the core):
+// "ratio YUYV/1280x720     blend / memcpy_cold = 0.412 (CPU time; wall 0.430)".
+inline void printRatiosToMemcpy(const SameRunReporter &reporter, const char *family,
+                                const std::vector<std::string> &kinds)
+{
+    for (const FrameCase &c : kFrameCases)
+        for (const std::string &kind : kinds) {
+            const std::string name = caseName(family, kind, c), copy = caseName(family, kMemcpyCold, c);
+            const auto cpu = reporter.cpuSeconds(name), copyCpu = reporter.cpuSeconds(copy);
+            const auto wall = reporter.wallSeconds(name), copyWall = reporter.wallSeconds(copy);
+            if (cpu && copyCpu && wall && copyWall)
+                std::fprintf(reporter.ratioStream(), "ratio %-16s %s / %s = %.3f (CPU time; wall %.3f)\n",
+                             c.name().c_str(), kind.c_str(), kMemcpyCold, *cpu / *copyCpu, *wall / *copyWall);
+        }
 }
 
 // Registers bench for one case as caseName(family, kind, c), timed in milliseconds.

@@ -172,18 +172,6 @@ int main(int argc, char **argv)
         bench::registerCase(kFamily, "cached", cachedBench, c);
         bench::registerCase(kFamily, bench::kMemcpyCold, memcpyBench, c);
     }
-    const auto reporter = bench::runAll();
-    // Every case over the memcpy of its frame, from the same run: runs drift, only same-run ratios mean much;
-    // wall and CPU time (other processes on the machine disturb the latter less).
-    for (const bench::FrameCase &c : bench::kFrameCases)
-        for (const char *kind : {"sink", "cached"}) {
-            const std::string name = bench::caseName(kFamily, kind, c),
-                              copy = bench::caseName(kFamily, bench::kMemcpyCold, c);
-            const auto wall = reporter->wallSeconds(name), cpu = reporter->cpuSeconds(name);
-            const auto copyWall = reporter->wallSeconds(copy), copyCpu = reporter->cpuSeconds(copy);
-            if (wall && cpu && copyWall && copyCpu)
-                std::fprintf(reporter->ratioStream(), "ratio %-16s %s / memcpy_cold = %.2f (CPU time: %.2f)\n",
-                             c.name().c_str(), kind, *wall / *copyWall, *cpu / *copyCpu);
-        }
+    bench::printRatiosToMemcpy(*bench::runAll(), kFamily, {"sink", "cached"});
     return 0;
 }

@@ -96,16 +96,10 @@ int main(int argc, char **argv)
             ->Unit(benchmark::kMillisecond)
             ->MeasureProcessCPUTime();
     }
-    // Each sink's pipeline against one cold frame copy, from the same run (runs drift: only a same-run ratio means
-    // much), in process CPU time (the sink's thread included).
-    const auto reporter = bench::runAll();
-    for (const bench::FrameCase &c : bench::kFrameCases)
-        for (const char *sink : kSinks) {
-            const auto ours = reporter->cpuSeconds(bench::caseName(kFamily, std::string("no_overlay/") + sink, c));
-            const auto copy = reporter->cpuSeconds(bench::caseName(kFamily, bench::kMemcpyCold, c));
-            if (ours && copy)
-                std::fprintf(reporter->ratioStream(), "ratio %-16s no_overlay/%s / memcpy_cold = %.3f (CPU time)\n",
-                             c.name().c_str(), sink, *ours / *copy);
-        }
+    // Each sink's pipeline against one cold frame copy, in process CPU time (the sink's thread included).
+    std::vector<std::string> kinds;
+    for (const char *sink : kSinks)
+        kinds.push_back(std::string("no_overlay/") + sink);
+    bench::printRatiosToMemcpy(*bench::runAll(), kFamily, kinds);
     return 0;
 }

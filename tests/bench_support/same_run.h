@@ -32,7 +32,12 @@ public:
         for (const Run &run : runs) {
             if (run.error_occurred)
                 continue;
-            Times &times = times_[run.run_name.str()];
+            // Keyed without the "/process_time" or "/real_time" that MeasureProcessCPUTime() and UseRealTime()
+            // append: a bench asks for its case by the name it registered (pipeline_bench printed no ratio at all
+            // while the lookup carried the suffix).
+            benchmark::BenchmarkName name = run.run_name;
+            name.time_type.clear();
+            Times &times = times_[name.str()];
             const double toSeconds = 1.0 / benchmark::GetTimeUnitMultiplier(run.time_unit);
             if (run.run_type == Run::RT_Iteration) {
                 times.wall.push_back(run.GetAdjustedRealTime() * toSeconds);
