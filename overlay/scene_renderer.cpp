@@ -116,8 +116,18 @@ Status SceneRenderer::drawTextInto(TextSlot &slot, const FrameView &frame)
     }
     if (slot.box)
         slot.box->blendChecked(frame);
-    frameSink_.setFrame(frame);
-    rasterizer_.draw(drawList_, frameSink_, {0, 0}, frameClip());
+    if (!text_.usesFreeType()) { // the Hershey fallback has no glyphs of its own: drawn into the frame
+        frameSink_.setFrame(frame);
+        rasterizer_.draw(drawList_, frameSink_, {0, 0}, frameClip());
+        return Ok{};
+    }
+    if (!slot.stamps)
+        slot.stamps.emplace(format_, colorimetry_);
+    for (const TextItem &item : drawList_.texts) {
+        const LayerRect box = rasterizer_.textBox(item);
+        if (Status status = slot.stamps->blend(text_, item, {box.x0, box.y0}, frameClip(), frame); !status)
+            return status;
+    }
     return Ok{};
 }
 
@@ -228,13 +238,7 @@ LayerRect SceneRenderer::frameClip() const
 
 LayerRect SceneRenderer::macropixelBox(LayerRect box) const
 {
-    box = box.intersect(scissor());
-    const int h = format_.format->hSubSampling, v = format_.format->vSubSampling;
-    const int width = int(format_.width), height = int(format_.height);
-    const int x0 = std::max(box.x0, 0) / h * h, y0 = std::max(box.y0, 0) / v * v;
-    const int x1 = std::min((std::min(box.x1, width) + h - 1) / h * h, width);
-    const int y1 = std::min((std::min(box.y1, height) + v - 1) / v * v, height);
-    return {x0, y0, x1, y1};
+    return macropixelAligned(box.intersect(scissor()), *format_.format, format_.width, format_.height);
 }
 
 Status SceneRenderer::setCamera(const Camera &camera)
@@ -246,8 +250,10 @@ Status SceneRenderer::setCamera(const Camera &camera)
     camera_ = camera;
     worldStale_ = true;
     cameraChangedSinceBlend_ = true;
-    for (TextSlot &slot : texts_)
-        slot.rendered = false; // the viewport may have moved them
+    for (TextSlot &slot : texts_) {
+        slot.rendered = false; // the viewport may have moved them, and its scissor cut stamps differently
+        slot.stamps.reset();
+    }
     for (ImageSprite &sprite : images_)
         sprite.rendered = false;
     return Ok{};
@@ -399,6 +405,7 @@ Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &me
             continue;
         }
         slot.box.reset();
+        slot.stamps.reset();
         if (!slot.rendered || changed) {
             if (Status status = renderText(slot); !status)
                 return status;

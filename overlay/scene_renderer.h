@@ -3,8 +3,8 @@
 // share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its
 // memory is proportional to what it draws. Plus one small layer per screen text with
 // tokens, re-rendered only when its expanded string changes (a string that changes on every frame, a frame counter,
-// is drawn straight into each frame from the glyph cache instead); likewise one small layer per image, warped from
-// its pixels again only when the camera (or the viewport) changes.
+// is blended glyph by glyph instead, each glyph a small layer kept where it was drawn: GlyphStamps); likewise one small
+// layer per image, warped from its pixels again only when the camera (or the viewport) changes.
 //
 // A camera that keeps moving (setCamera before two blends in a row) is drawn straight into each frame instead:
 // a cached layer would be redrawn and converted every frame for one use. When the camera holds still for a frame,
@@ -18,6 +18,7 @@
 
 #include "overlay/blend/frame_coverage_sink.h"
 #include "overlay/blend/native_layer.h"
+#include "overlay/glyph_stamps.h"
 #include "overlay/overlay_renderer.h"
 #include "overlay/raster/rasterizer.h"
 #include "overlay/raster/text_renderer.h"
@@ -72,6 +73,7 @@ private:
         // same from one number to the next), re-rendered only when the box moves or resizes.
         std::optional<NativeLayer> box;
         FillItem boxFill;
+        std::optional<GlyphStamps> stamps; // and its glyphs, each where it was drawn
     };
 
     Status renderText(TextSlot &slot);

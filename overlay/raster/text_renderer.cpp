@@ -146,6 +146,7 @@ TextRenderer::Layout TextRenderer::layOut(const std::string &text, int pixelHeig
         cachedBytes_ = 0;
     }
     glyphs_.clear();
+    codepoints_.clear();
     FT_Face face = face_->face;
     if (faceHeight_ != pixelHeight) { // the metrics below are the size's, and so are new glyphs
         if (FT_Set_Pixel_Sizes(face, FT_UInt(pixelHeight), FT_UInt(pixelHeight)) != 0)
@@ -154,8 +155,10 @@ TextRenderer::Layout TextRenderer::layOut(const std::string &text, int pixelHeig
     }
     int pen = 0, inkLeft = 0, inkRight = 0, top = 0, bottom = 0;
     for (size_t at = 0; at < text.size();) {
-        const Glyph &g = glyph(nextCodepoint(text, at), pixelHeight, antialias);
+        const char32_t codepoint = nextCodepoint(text, at);
+        const Glyph &g = glyph(codepoint, pixelHeight, antialias);
         glyphs_.push_back(&g);
+        codepoints_.push_back(codepoint);
         if (g.width > 0 && g.rows > 0) {
             inkLeft = std::min(inkLeft, pen + g.left);
             inkRight = std::max(inkRight, pen + g.left + g.width);
@@ -191,22 +194,44 @@ cv::Mat TextRenderer::render(const std::string &text, double sizePx, bool antial
 {
     if (!face_)
         return renderHershey(text, sizePx, antialias);
-    const Layout layout = layOut(text, fontHeight(sizePx), antialias);
-    const int width = std::max(layout.box.width, 1), height = std::max(layout.box.height(), 1);
+    const Box box = place(text, sizePx, antialias);
+    const int width = std::max(box.width, 1), height = std::max(box.height(), 1);
     scratch_.assign(size_t(width) * size_t(height), 0);
-    int pen = layout.penX;
-    for (const Glyph *g : glyphs_) {
-        for (int y = 0; y < g->rows; ++y) {
-            uint8_t *out = scratch_.data() + size_t(layout.box.ascent - g->top + y) * size_t(width) + (pen + g->left);
-            const uint8_t *in = g->coverage.data() + size_t(y) * size_t(g->width);
-            for (int x = 0; x < g->width; ++x) {
+    for (const PlacedGlyph &g : placed_) {
+        for (int y = 0; y < g.rows; ++y) {
+            uint8_t *out = scratch_.data() + size_t(g.y + y) * size_t(width) + g.x;
+            const uint8_t *in = g.coverage + size_t(y) * size_t(g.width);
+            for (int x = 0; x < g.width; ++x) {
                 if (in[x] != 0)
                     out[x] = out[x] == 0 ? kOverBlack.table[in[x]] : over(out[x], in[x]);
             }
         }
-        pen += g->advance;
     }
     return cv::Mat(height, width, CV_8UC1, scratch_.data());
+}
+
+const std::vector<TextRenderer::PlacedGlyph> &TextRenderer::placeGlyphs(const std::string &text, double sizePx,
+                                                                        bool antialias) const
+{
+    placed_.clear();
+    if (face_)
+        place(text, sizePx, antialias);
+    return placed_;
+}
+
+TextRenderer::Box TextRenderer::place(const std::string &text, double sizePx, bool antialias) const
+{
+    const Layout layout = layOut(text, fontHeight(sizePx), antialias);
+    placed_.clear();
+    int pen = layout.penX;
+    for (size_t i = 0; i < glyphs_.size(); ++i) {
+        const Glyph &g = *glyphs_[i];
+        if (g.width > 0 && g.rows > 0)
+            placed_.push_back(
+                {codepoints_[i], pen + g.left, layout.box.ascent - g.top, g.width, g.rows, g.coverage.data()});
+        pen += g.advance;
+    }
+    return layout.box;
 }
 
 cv::Mat TextRenderer::renderHershey(const std::string &text, double sizePx, bool antialias) const

@@ -42,6 +42,16 @@ public:
     // scratch: valid until the next call.
     cv::Mat render(const std::string &text, double sizePx, bool antialias) const;
 
+    // One glyph of a string as render() places it: its coverage's top-left corner in the string's box (x right,
+    // y down), and the code point it shows.
+    struct PlacedGlyph {
+        char32_t codepoint = 0;
+        int x = 0, y = 0, width = 0, rows = 0;
+        const uint8_t *coverage = nullptr; // rows x width, in the glyph cache
+    };
+    // The glyphs of `text` with ink, in drawing order; valid until the next call. Empty without FreeType.
+    const std::vector<PlacedGlyph> &placeGlyphs(const std::string &text, double sizePx, bool antialias) const;
+
     bool usesFreeType() const { return face_ != nullptr; }
     // The coverage bytes the glyph cache holds, for tests and footprint figures.
     size_t cachedGlyphBytes() const { return cachedBytes_; }
@@ -61,6 +71,8 @@ private:
     const Glyph &glyph(char32_t codepoint, int pixelHeight, bool antialias) const;
     // Decodes UTF-8 into glyphs_ (pointers into the cache) and measures their box.
     Layout layOut(const std::string &text, int pixelHeight, bool antialias) const;
+    // Lays out `text` and fills placed_ with its glyphs; returns its box.
+    Box place(const std::string &text, double sizePx, bool antialias) const;
     cv::Mat renderHershey(const std::string &text, double sizePx, bool antialias) const;
 
     struct FaceHandle;
@@ -69,6 +81,8 @@ private:
     mutable std::unordered_map<uint64_t, Glyph> cache_;
     mutable size_t cachedBytes_ = 0;
     mutable std::vector<const Glyph *> glyphs_; // scratch: the glyphs of the string being laid out
+    mutable std::vector<char32_t> codepoints_;  // and their code points
+    mutable std::vector<PlacedGlyph> placed_;   // scratch: what placeGlyphs() returns
     mutable std::vector<uint8_t> scratch_;      // the coverage render() returns
 };
 

@@ -2,12 +2,14 @@
 // glyph cache; one that holds still goes back to a cached layer. Both must show the same text: a counter's frame is
 // compared with a fresh renderer's cached frame for the same frame number, in every format, at an odd size with
 // padded strides.
+#include <algorithm>
 #include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
+#include "overlay/glyph_stamps.h"
 #include "scene_fixture.h"
 
 namespace overlayd {
@@ -52,12 +54,12 @@ struct CounterScene {
 };
 
 // Pixels that differ by more than kCloseCodes in any channel, read back as BGR.
-int farPixels(const TestFrame &a, const TestFrame &b)
+int farPixels(const TestFrame &a, const TestFrame &b, unsigned width = kWidth, unsigned height = kHeight)
 {
     cv::Mat diff;
     cv::absdiff(test::toBgr(a), test::toBgr(b), diff);
     cv::Mat worst;
-    cv::reduce(diff.reshape(1, int(kWidth * kHeight)), worst, 1, cv::REDUCE_MAX);
+    cv::reduce(diff.reshape(1, int(width * height)), worst, 1, cv::REDUCE_MAX);
     return cv::countNonZero(worst > kCloseCodes);
 }
 
@@ -95,6 +97,30 @@ TEST_P(ChangingText, ATextThatHoldsStillReturnsToItsLayer)
         EXPECT_EQ(counting->textsDrawnDirectly(), 0u);
         EXPECT_EQ(again.bytes, cached.bytes) << scene.format << " frame " << i;
     }
+}
+
+// A text whose glyphs keep landing on new places (a message set at run time, every frame another) keeps at most
+// kMaxGlyphStamps stamps, and still draws every glyph.
+TEST(GlyphStamps, AreBoundedAndDrawEveryGlyph)
+{
+    const StreamFormat stream = test::streamFormat("NV12", 640, 360);
+    GlyphStamps stamps(stream, Colorimetry{YcbcrMatrix::Bt601, ColourRange::Limited});
+    TextRenderer text;
+    TextItem item;
+    item.sizePx = 20.0;
+    item.colour = kWhite;
+    size_t most = 0;
+    for (int i = 0; i < 60; ++i) {
+        item.text.clear();
+        for (int k = 0; k < 40; ++k)
+            item.text += char(33 + (i * 7 + k * 13) % 94); // printable ASCII, a different mix each time
+        TestFrame frame = test::greyFrame("NV12", 640, 360, 0), before = frame;
+        ASSERT_TRUE(stamps.blend(text, item, {4, 4 + 5 * i}, {0, 0, 640, 360}, frame.view()));
+        most = std::max(most, stamps.size());
+        EXPECT_GT(farPixels(frame, before, 640, 360), 40 * 10) << i; // every one of the 40 glyphs shows
+    }
+    EXPECT_LE(most, kMaxGlyphStamps);
+    EXPECT_GT(most, kMaxGlyphStamps / 2) << "the texts above did not make enough stamps: the test checks nothing";
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFormats, ChangingText, testing::ValuesIn(test::formatNames()), test::formatName);
