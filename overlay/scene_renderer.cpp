@@ -86,27 +86,27 @@ Status SceneRenderer::renderWorld()
         layer.native = std::move(*native);
     }
     for (TextSlot &slot : texts_)
-        slot.rendered = false; // the viewport may have moved them
+        slot.built = false; // the viewport may have moved them
     for (ImageSprite &sprite : images_)
         sprite.rendered = false;
     return Ok{};
 }
 
-void SceneRenderer::buildText(const TextSlot &slot)
+// The slot's primitives for its new string, kept in the slot (reused until the string or the camera changes, so a
+// long string is not copied every frame); the background becomes the slot's box layer.
+Status SceneRenderer::buildText(TextSlot &slot)
 {
     drawList_.clear();
     buildPrimitives(scene_.annotations[slot.annotation], glm::dmat4(1.0), camera_, drawList_);
-    for (TextItem &item : drawList_.texts)
-        item.text.assign(slot.scratch); // the annotation holds the text with its tokens
-}
-
-Status SceneRenderer::drawTextInto(TextSlot &slot, const FrameView &frame)
-{
-    buildText(slot);
+    slot.items.resize(drawList_.texts.size());
     slot.shown = slot.scratch;
-    slot.rendered = false; // once the string holds still, a layer is rendered for it again
-    slot.native.reset();
-    for (TextItem &item : drawList_.texts) { // one, a screen text's
+    slot.built = true;
+    for (size_t i = 0; i < slot.items.size(); ++i) { // one, a screen text's
+        TextItem &item = slot.items[i];
+        std::string text = std::move(item.text);
+        item = std::move(drawList_.texts[i]);
+        item.text = std::move(text);
+        item.text.assign(slot.shown); // the annotation holds the text with its tokens
         if (!item.background)
             continue;
         const LayerRect box = rasterizer_.textBox(item);
@@ -114,16 +114,26 @@ Status SceneRenderer::drawTextInto(TextSlot &slot, const FrameView &frame)
             return status;
         item.background.reset();
     }
+    return Ok{};
+}
+
+Status SceneRenderer::blendText(TextSlot &slot, const FrameView &frame)
+{
+    if (!slot.built || slot.scratch != slot.shown)
+        if (Status status = buildText(slot); !status)
+            return status;
     if (slot.box)
         slot.box->blendChecked(frame);
     if (!text_.usesFreeType()) { // the Hershey fallback has no glyphs of its own: drawn into the frame
+        drawList_.clear();
+        drawList_.texts = slot.items;
         frameSink_.setFrame(frame);
         rasterizer_.draw(drawList_, frameSink_, {0, 0}, frameClip());
         return Ok{};
     }
     if (!slot.stamps)
         slot.stamps.emplace(format_, colorimetry_);
-    for (const TextItem &item : drawList_.texts) {
+    for (const TextItem &item : slot.items) {
         const LayerRect box = rasterizer_.textBox(item);
         if (Status status = slot.stamps->blend(text_, item, {box.x0, box.y0}, frameClip(), frame); !status)
             return status;
@@ -141,18 +151,6 @@ Status SceneRenderer::renderTextBox(TextSlot &slot, const FillItem &fill)
     DrawList boxList;
     boxList.fills.push_back(fill);
     return drawPlaced(boxList, {fill.x0, fill.y0, fill.x1, fill.y1}, slot.box);
-}
-
-// The text's box, widened to whole macropixels, becomes a layer of its own placed on the frame.
-Status SceneRenderer::renderText(TextSlot &slot)
-{
-    buildText(slot);
-    slot.shown = slot.scratch;
-    slot.rendered = true;
-    slot.native.reset();
-    if (drawList_.texts.empty())
-        return Ok{};
-    return drawPlaced(drawList_, rasterizer_.textBox(drawList_.texts.front()), slot.native);
 }
 
 Status SceneRenderer::drawPlaced(const DrawList &list, LayerRect box, std::optional<NativeLayer> &layer)
@@ -251,7 +249,7 @@ Status SceneRenderer::setCamera(const Camera &camera)
     worldStale_ = true;
     cameraChangedSinceBlend_ = true;
     for (TextSlot &slot : texts_) {
-        slot.rendered = false; // the viewport may have moved them, and its scissor cut stamps differently
+        slot.built = false; // the viewport may have moved them, and its scissor cut stamps differently
         slot.stamps.reset();
     }
     for (ImageSprite &sprite : images_)
@@ -390,28 +388,13 @@ Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadat
 
 Status SceneRenderer::blendTexts(const FrameView &frame, const FrameMetadata &metadata, double fps)
 {
-    textsDrawnDirectly_ = 0;
     for (TextSlot &slot : texts_) {
         if (!layers_[slot.layer].enabled)
             continue;
         expandTokens(std::get<ScreenTextShape>(scene_.annotations[slot.annotation].shape).text, metadata, fps,
                      slot.scratch, &slotTexts_);
-        const bool changed = slot.scratch != slot.shown;
-        slot.changingFrames = changed ? slot.changingFrames + 1 : 0;
-        if (slot.changingFrames >= 2) {
-            if (Status status = drawTextInto(slot, frame); !status)
-                return status;
-            ++textsDrawnDirectly_;
-            continue;
-        }
-        slot.box.reset();
-        slot.stamps.reset();
-        if (!slot.rendered || changed) {
-            if (Status status = renderText(slot); !status)
-                return status;
-        }
-        if (slot.native)
-            slot.native->blendChecked(frame);
+        if (Status status = blendText(slot, frame); !status)
+            return status;
     }
     return Ok{};
 }

@@ -1,10 +1,10 @@
 // SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One NativeLayer per named layer (so switching a
 // layer off costs nothing and re-projects nothing): the layer is drawn on a full-frame RGBA canvas that all layers
 // share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its
-// memory is proportional to what it draws. Plus one small layer per screen text with
-// tokens, re-rendered only when its expanded string changes (a string that changes on every frame, a frame counter,
-// is blended glyph by glyph instead, each glyph a small layer kept where it was drawn: GlyphStamps); likewise one small
-// layer per image, warped from its pixels again only when the camera (or the viewport) changes.
+// memory is proportional to what it draws. A screen text with tokens (a frame counter, a clock, a slot) keeps its
+// background box as a small layer and its glyphs as stamps (GlyphStamps: each glyph a small layer kept where it was
+// drawn, so a new string re-blends cached glyphs and makes only a glyph at a new place). One small layer per image,
+// warped from its pixels again only when the camera (or the viewport) changes.
 //
 // A camera that keeps moving (setCamera before two blends in a row) is drawn straight into each frame instead:
 // a cached layer would be redrawn and converted every frame for one use. When the camera holds still for a frame,
@@ -43,8 +43,6 @@ public:
     Status renderWorld();
     // Whether the last blend drew the world straight into the frame (a moving camera), for tests and stats.
     bool drewDirectly() const { return drewDirectly_; }
-    // How many token texts the last blend drew straight into the frame (their string changes every frame).
-    unsigned textsDrawnDirectly() const { return textsDrawnDirectly_; }
     // The RGBA pixels of a named layer, drawn again for the current camera (the renderer keeps only their native
     // runs), for tests and previews; nothing for an unknown name.
     std::optional<OverlayLayer> layerPixels(std::string_view name);
@@ -62,25 +60,21 @@ private:
         bool rendered = false;
         std::optional<NativeLayer> native;
     };
+    // A screen text with tokens: its background box as a layer (the same from one string to the next, re-rendered
+    // only when the box moves or resizes) and its glyphs as stamps, each kept where it was drawn.
     struct TextSlot {
         size_t annotation = 0;
         size_t layer = 0;
-        std::string shown, scratch; // the expanded text on the layer, and the next frame's
-        bool rendered = false;
-        std::optional<NativeLayer> native;
-        unsigned changingFrames = 0; // consecutive blends, each with a new string (a frame counter: every one)
-        // While the string changes every frame: its background box as a layer (the bulk of its pixels, and the
-        // same from one number to the next), re-rendered only when the box moves or resizes.
+        std::string shown, scratch;  // the expanded text drawn, and the next frame's
+        bool built = false;          // items hold the primitives of `shown` for the current camera
+        std::vector<TextItem> items; // without their background, which is `box`
         std::optional<NativeLayer> box;
         FillItem boxFill;
-        std::optional<GlyphStamps> stamps; // and its glyphs, each where it was drawn
+        std::optional<GlyphStamps> stamps;
     };
 
-    Status renderText(TextSlot &slot);
-    // The slot's primitives for its expanded string (in drawList_): no copy of the annotation.
-    void buildText(const TextSlot &slot);
-    // A text that changes every frame is drawn straight into the frame, like a moving camera's world.
-    Status drawTextInto(TextSlot &slot, const FrameView &frame);
+    Status buildText(TextSlot &slot);
+    Status blendText(TextSlot &slot, const FrameView &frame);
     // The layer of a background box `fill` (slot.box), kept while the box stays the same.
     Status renderTextBox(TextSlot &slot, const FillItem &fill);
     // `list` drawn on a layer of `box` (frame pixels) widened to whole macropixels, kept as native runs placed on
@@ -118,7 +112,6 @@ private:
     bool cameraChangedSinceBlend_ = false;
     unsigned movingFrames_ = 0; // consecutive blends, each preceded by a camera change
     bool drewDirectly_ = false;
-    unsigned textsDrawnDirectly_ = 0;
     DrawList drawList_; // scratch
 };
 
