@@ -126,14 +126,18 @@ Result<std::vector<Correspondence>> parsePointsJson(const std::string &text, con
                          name + ":1: expected an array [{\"world\": [x, y, z], \"pixel\": [u, v]}, ...]");
     std::vector<Correspondence> points;
     for (size_t i = 0; i < document.size(); ++i) {
-        const size_t start = i < layout.elementStarts.size() ? layout.elementStarts[i] : 0;
-        const std::string where = name + ":" + lineOf(text, start) + ": element " + std::to_string(i) + ": ";
+        // Only for a message: counting lines up to every element was quadratic (10000 points: 1.3 s, 100 s under
+        // ASan).
+        const auto where = [&] {
+            const size_t start = i < layout.elementStarts.size() ? layout.elementStarts[i] : 0;
+            return name + ":" + lineOf(text, start) + ": element " + std::to_string(i) + ": ";
+        };
         if (points.size() == kMaxCorrespondences)
             return makeError(ErrorCode::Malformed,
-                             where + "more than " + std::to_string(kMaxCorrespondences) + " points");
+                             where() + "more than " + std::to_string(kMaxCorrespondences) + " points");
         auto point = correspondence(document[i]);
         if (!point)
-            return makeError(ErrorCode::Malformed, where + point.error().message);
+            return makeError(ErrorCode::Malformed, where() + point.error().message);
         points.push_back(*point);
     }
     return points;
