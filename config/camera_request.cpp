@@ -80,7 +80,8 @@ Result<CameraSpec> cameraFromJson(std::string_view json, const CameraSpec &live,
     nlohmann::json body;
     try {
         body = nlohmann::json::parse(json);
-    } catch (const nlohmann::json::parse_error &error) {
+    } catch (
+        const nlohmann::json::exception &error) { // parse_error, and out_of_range for a number beyond double (fuzzer)
         return makeError(ErrorCode::Malformed, std::string("the body is not JSON: ") + error.what());
     }
     if (!body.is_object() || body.empty())

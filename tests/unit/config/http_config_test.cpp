@@ -153,6 +153,7 @@ TEST(CameraRequest, RefusalsNameTheKeyInTheConfigFilesWords)
         return result.ok() ? std::string() : result.error().message;
     };
     EXPECT_NE(refused("{").find("not JSON"), std::string::npos);
+    EXPECT_NE(refused(R"({"position": [8E88885, 0, 1]})").find("not JSON"), std::string::npos); // beyond double
     EXPECT_NE(refused("{}").find("JSON object"), std::string::npos);
     EXPECT_NE(refused(R"({"eye": [0,0,1], "gaze": [0,0,1], "up": [0,0,1]})").find("camera.up"), std::string::npos);
     EXPECT_NE(refused(R"({"position": [0,0,1], "yaw": 1, "pitch": "x"})").find("camera.pitch"), std::string::npos);
