@@ -99,6 +99,7 @@ Status SceneRenderer::buildText(TextSlot &slot)
     drawList_.clear();
     buildPrimitives(scene_.annotations[slot.annotation], glm::dmat4(1.0), camera_, drawList_);
     slot.items.resize(drawList_.texts.size());
+    slot.origins.resize(slot.items.size());
     slot.shown = slot.scratch;
     slot.built = true;
     for (size_t i = 0; i < slot.items.size(); ++i) { // one, a screen text's
@@ -107,9 +108,10 @@ Status SceneRenderer::buildText(TextSlot &slot)
         item = std::move(drawList_.texts[i]);
         item.text = std::move(text);
         item.text.assign(slot.shown); // the annotation holds the text with its tokens
+        const LayerRect box = rasterizer_.textBox(item);
+        slot.origins[i] = {box.x0, box.y0};
         if (!item.background)
             continue;
-        const LayerRect box = rasterizer_.textBox(item);
         if (Status status = renderTextBox(slot, FillItem{*item.background, box.x0, box.y0, box.x1, box.y1}); !status)
             return status;
         item.background.reset();
@@ -133,11 +135,9 @@ Status SceneRenderer::blendText(TextSlot &slot, const FrameView &frame)
     }
     if (!slot.stamps)
         slot.stamps.emplace(format_, colorimetry_);
-    for (const TextItem &item : slot.items) {
-        const LayerRect box = rasterizer_.textBox(item);
-        if (Status status = slot.stamps->blend(text_, item, {box.x0, box.y0}, frameClip(), frame); !status)
+    for (size_t i = 0; i < slot.items.size(); ++i)
+        if (Status status = slot.stamps->blend(text_, slot.items[i], slot.origins[i], frameClip(), frame); !status)
             return status;
-    }
     return Ok{};
 }
 

@@ -65,9 +65,10 @@ private:
     struct TextSlot {
         size_t annotation = 0;
         size_t layer = 0;
-        std::string shown, scratch;  // the expanded text drawn, and the next frame's
-        bool built = false;          // items hold the primitives of `shown` for the current camera
-        std::vector<TextItem> items; // without their background, which is `box`
+        std::string shown, scratch;      // the expanded text drawn, and the next frame's
+        bool built = false;              // items hold the primitives of `shown` for the current camera
+        std::vector<TextItem> items;     // without their background, which is `box`
+        std::vector<glm::ivec2> origins; // each item's box corner, laid out once per string
         std::optional<NativeLayer> box;
         FillItem boxFill;
         std::optional<GlyphStamps> stamps;
