@@ -1,4 +1,4 @@
-// Calibration import: OpenCV calibration files (YAML/XML through cv::FileStorage) and ROS camera_info YAML.
+// Calibration import: OpenCV calibration files (XML through tinyxml2, YAML through yaml-cpp) and ROS camera_info YAML.
 #pragma once
 
 #include <array>
@@ -24,7 +24,7 @@ inline constexpr size_t kMaxCalibrationFileBytes = 1u << 20;
 inline constexpr size_t kOpenCvCoefficientCounts[] = {4, 5, 8, 12, 14};
 inline constexpr size_t kMaxCoefficients = 14;
 
-// Reads `path`: .xml, or YAML starting with OpenCV's "%YAML:1.0" header, through cv::FileStorage (camera_matrix,
+// Reads `path`: .xml, or YAML starting with OpenCV's "%YAML:1.0" header, as OpenCV writes them (camera_matrix,
 // distortion_coefficients, image_width, image_height, optional distortion_model); other YAML as ROS camera_info
 // (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients). The file must be a regular
 // file of at most kMaxCalibrationFileBytes, nest at most config::kMaxNestingDepth levels and name no key twice in a
@@ -43,9 +43,9 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
                                     int height);
 
 namespace detail {
-// `text` is the file's content, already checked for size and depth. OpenCV's XML goes through cv::FileStorage;
-// YAML, OpenCV's (%YAML:1.0) and ROS's, through yaml-cpp, whose marks give every refusal its line (and which, unlike
-// cv::FileStorage's YAML parser, does not loop forever on some malformed files).
+// `text` is the file's content, already checked for size and depth. OpenCV's XML goes through tinyxml2, YAML
+// (OpenCV's %YAML:1.0 and ROS's) through yaml-cpp: both give every refusal its line, and neither loops forever
+// or crashes on malformed files as cv::FileStorage's parsers did (found by tests/fuzz/calibration_fuzz).
 Result<Calibration> loadOpenCvXmlCalibration(const std::string &path, const std::string &text);
 Result<Calibration> loadYamlCalibration(const std::string &path, const std::string &text, bool openCv);
 

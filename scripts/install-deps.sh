@@ -30,6 +30,7 @@ packages=(
     libopencv-dev fonts-dejavu-core # OpenCV's Debian package pulls in all its modules: most of the download
     libfreetype-dev # text: FreeType renders each glyph once (the cache is ours)
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
+    libtinyxml2-dev # OpenCV's XML calibration files
     libpng-dev # PNG files (media/codec): images, replay, snapshots
     libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
     libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies

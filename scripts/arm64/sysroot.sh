@@ -12,7 +12,7 @@ cache=$(realpath -m "${1:-.cache/arm64}")
 
 packages=(
     libc6-dev libstdc++-12-dev
-    libglm-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev
+    libglm-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libtinyxml2-dev
     libgtest-dev libgmock-dev libbenchmark-dev libpng-dev libfreetype-dev
     libopencv-dev libopencv-contrib-dev # OpenCVConfig.cmake is in libopencv-dev (which costs no more: contrib needs every module)
     libsystemd-dev libturbojpeg0-dev libcamera-dev libmicrohttpd-dev libgpiod-dev

@@ -14,7 +14,7 @@ mkdir -p "$work" && cd "$work"
 
 # The rootfs: minbase + systemd + the daemon's runtime libraries, cached (about 5 min and 600 MB the first time).
 packages=systemd-sysv,libopencv-imgcodecs406,libopencv-contrib406,libopencv-imgproc406,libtomlplusplus3
-packages+=,libturbojpeg0,libyaml-cpp0.7
+packages+=,libturbojpeg0,libyaml-cpp0.7,libtinyxml2-9
 rootfs=$cache/systemd-rootfs-$(echo "$packages" | md5sum | cut -c1-8).tar
 if [ ! -s "$rootfs" ]; then
     mmdebstrap --variant=minbase --include="$packages" --dpkgopt='path-exclude=/usr/share/doc/*' \

@@ -65,6 +65,26 @@ std::string openCv(const std::string &distortionHeader, const std::string &data 
            distortionHeader + "   data: " + data + "\n";
 }
 
+// The same as OpenCV writes it in XML (the distortion matrix's rows, cols and dt on lines 12-14).
+std::string openCvXml(const std::string &distortionHeader, const std::string &data = "-0.28 0.09 0.0008 0. 0.",
+                      const std::string &tail = "")
+{
+    return "<?xml version=\"1.0\"?>\n"
+           "<opencv_storage>\n"
+           "<image_width>1280</image_width>\n"
+           "<image_height>720</image_height>\n"
+           "<camera_matrix type_id=\"opencv-matrix\">\n"
+           "  <rows>3</rows>\n"
+           "  <cols>3</cols>\n"
+           "  <dt>d</dt>\n"
+           "  <data>\n"
+           "    820. 0. 641.5 0. 818. 358.5 0. 0. 1.</data></camera_matrix>\n"
+           "<distortion_coefficients type_id=\"opencv-matrix\">\n" +
+           distortionHeader + "  <data>\n    " + data + "</data></distortion_coefficients>\n" + tail +
+           "</opencv_storage>\n";
+}
+const std::string kXmlFive = "  <rows>1</rows>\n  <cols>5</cols>\n  <dt>d</dt>\n";
+
 const std::string kRosHead = "image_width: 640\n"
                              "image_height: 480\n"
                              "camera_matrix:\n"
@@ -80,6 +100,42 @@ TEST_F(CalibrationLimitsTest, TheValidFilesTheseAreMadeFromLoad)
                                                             "  data: [-0.1, 0.02, 0.001, 0.002, 0]\n"));
     ASSERT_TRUE(ros.ok()) << ros.error().message;
     EXPECT_DOUBLE_EQ(ros->distortion.coeffs[1], 0.02);
+    auto xml = loadCalibration(write("ok.xml", openCvXml(kXmlFive, "-0.28 0.09 0.0008 0. 0.",
+                                                         "<distortion_model>"
+                                                         "plumb_bob</distortion_model>\n")));
+    ASSERT_TRUE(xml.ok()) << xml.error().message;
+    EXPECT_DOUBLE_EQ(xml->distortion.coeffs[1], 0.09);
+    EXPECT_DOUBLE_EQ(xml->pinhole.cx, 641.5);
+}
+
+// OpenCV's XML read with tinyxml2: each refusal at the element's line.
+TEST_F(CalibrationLimitsTest, OpenCvXmlRefusalsNameTheElementsLine)
+{
+    std::string message = refusal(write("huge.xml", openCvXml("  <rows>100000</rows>\n  <cols>100000</cols>\n  "
+                                                              "<dt>d</dt>\n")));
+    EXPECT_NE(message.find("huge.xml:11: distortion_coefficients: 100000x100000; it must be 1xN or Nx1"),
+              std::string::npos)
+        << message;
+    message = refusal(write("short.xml", openCvXml(kXmlFive, "1 2 3")));
+    EXPECT_NE(message.find("short.xml:11: distortion_coefficients: data must hold rows x cols = 5 numbers, got 3"),
+              std::string::npos)
+        << message;
+    message = refusal(write("word.xml", openCvXml(kXmlFive, "-0.28 0.09 x 0. 0.")));
+    EXPECT_NE(message.find("word.xml:15: distortion_coefficients: data holds 'x', not a number"), std::string::npos)
+        << message;
+    message =
+        refusal(write("dup.xml", openCvXml(kXmlFive, "-0.28 0.09 0.0008 0. 0.", "<image_width>640</image_width>\n")));
+    EXPECT_NE(message.find("dup.xml:17: 'image_width' given twice (first on line 3)"), std::string::npos) << message;
+    std::string wide = openCvXml(kXmlFive);
+    wide.replace(wide.find("1280"), 4, "wide");
+    message = refusal(write("width.xml", wide));
+    EXPECT_NE(message.find("width.xml:3: image_width must be an integer"), std::string::npos) << message;
+    message =
+        refusal(write("root.xml", "<?xml version=\"1.0\"?>\n\n<storage><image_width>1</image_width></storage>\n"));
+    EXPECT_NE(message.find("root.xml:3: not an OpenCV XML file"), std::string::npos) << message;
+    message = refusal(write("open.xml", "<?xml version=\"1.0\"?>\n<opencv_storage>\n<image_width>1280\n"));
+    EXPECT_NE(message.find("open.xml:"), std::string::npos) << message;
+    EXPECT_NE(message.find("does not parse as XML"), std::string::npos) << message;
 }
 
 TEST_F(CalibrationLimitsTest, ADirectoryIsCalledADirectory)
@@ -201,8 +257,8 @@ TEST_F(CalibrationLimitsTest, AKeyGivenTwiceIsRefusedAtItsSecondLine)
 }
 
 // Found by tests/fuzz/calibration_fuzz (kept there as seeds): cv::FileStorage crashed (SIGSEGV) on a NUL byte in an
-// XML file, threw std::length_error, which escaped the loader (std::terminate), on an empty key in a YAML mapping,
-// and looped forever on a 23-byte YAML file (OpenCV YAML is now read with yaml-cpp).
+// XML file and on a broken XML declaration, threw std::length_error, which escaped the loader (std::terminate), on an
+// empty key in a YAML mapping, and looped forever on a 23-byte YAML file (OpenCV YAML is now read with yaml-cpp).
 TEST_F(CalibrationLimitsTest, InputsThatCrashedOpenCvAreRefused)
 {
     const char nul[] = "<?xml version=\"1.0\"?>\n<opencv_storage>\n<a>\0\0\0</a>\n</opencv_storage>\n";
@@ -216,6 +272,9 @@ TEST_F(CalibrationLimitsTest, InputsThatCrashedOpenCvAreRefused)
     EXPECT_NE(message.find("empty_key.yaml:"), std::string::npos) << message;
     message = refusal(write("loop.yaml", "%YAML:1.0\n---w:3\nide-\nxr"));
     EXPECT_NE(message.find("loop.yaml:"), std::string::npos) << message;
+    // cv::FileStorage dereferenced a null pointer on this one (XML is now read with tinyxml2).
+    message = refusal(write("declaration.xml", "<?xml versioimagn="));
+    EXPECT_NE(message.find("declaration.xml:1: does not parse as XML"), std::string::npos) << message;
 }
 
 } // namespace
