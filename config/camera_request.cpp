@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config_sections.h"
+#include "config/json_body.h"
 #include "projection/pose.h"
 
 namespace overlayd {
@@ -77,13 +78,10 @@ std::string vectorText(const glm::dvec3 &v)
 
 Result<CameraSpec> cameraFromJson(std::string_view json, const CameraSpec &live, unsigned width, unsigned height)
 {
-    nlohmann::json body;
-    try {
-        body = nlohmann::json::parse(json);
-    } catch (
-        const nlohmann::json::exception &error) { // parse_error, and out_of_range for a number beyond double (fuzzer)
-        return makeError(ErrorCode::Malformed, std::string("the body is not JSON: ") + error.what());
-    }
+    auto parsed = parseJsonBody(json);
+    if (!parsed)
+        return parsed.error();
+    const nlohmann::json &body = *parsed;
     if (!body.is_object() || body.empty())
         return makeError(ErrorCode::InvalidArgument, "the body must be a JSON object of [camera] keys");
     std::string why;

@@ -46,6 +46,14 @@ std::optional<Number> number(std::string_view token)
     return value;
 }
 
+// An element's text as an integer, nullopt when it is not one (or has child elements).
+template<typename Integer>
+std::optional<Integer> integer(const XMLElement *element)
+{
+    const auto text = scalar(element);
+    return text ? number<Integer>(*text) : std::nullopt;
+}
+
 // OpenCV writes a string in double quotes when it holds a space or a character XML would mistake.
 std::string unquoted(std::string_view text)
 {
@@ -99,9 +107,8 @@ public:
         declared.isMap = node->FirstChildElement() != nullptr;
         std::vector<std::string_view> values;
         if (declared.isMap) {
-            const auto rows = scalar(node->FirstChildElement("rows")), cols = scalar(node->FirstChildElement("cols"));
-            if (rows && cols && number<long long>(*rows) && number<long long>(*cols))
-                declared.rows = *number<long long>(*rows), declared.cols = *number<long long>(*cols);
+            declared.rows = integer<long long>(node->FirstChildElement("rows"));
+            declared.cols = integer<long long>(node->FirstChildElement("cols"));
             if (const auto dt = scalar(node->FirstChildElement("dt")))
                 declared.dt = unquoted(*dt);
             if (const auto data = scalar(node->FirstChildElement("data"))) {
@@ -127,8 +134,7 @@ public:
         const XMLElement *node = root.FirstChildElement(key);
         if (!node)
             return error(&root, std::string(key) + " is required");
-        const auto text = scalar(node);
-        const auto value = text ? number<int>(*text) : std::nullopt;
+        const auto value = integer<int>(node);
         if (!value)
             return error(node, std::string(key) + " must be an integer");
         return *value;

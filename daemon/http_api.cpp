@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/camera_request.h"
+#include "config/json_body.h"
 #include "daemon/commands.h"
 #include "daemon/daemon.h"
 #include "overlay/shapes/scene_checks.h"
@@ -107,16 +108,6 @@ std::optional<std::vector<double>> numberList(const std::string &text)
         p = next;
     }
     return out;
-}
-
-std::optional<json> parseBody(const std::string &body, std::string &why)
-{
-    try {
-        return json::parse(body);
-    } catch (const json::exception &error) { // parse_error, and out_of_range for a number beyond double (fuzzer)
-        why = std::string("the body is not JSON: ") + error.what();
-        return std::nullopt;
-    }
 }
 
 } // namespace
@@ -329,10 +320,9 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
     const auto names = scene.layerNames();
     if (std::find(names.begin(), names.end(), layer) == names.end())
         return HttpResponse::error(404, "no layer '" + layer + "' in the scene");
-    std::string why;
-    const auto body = parseBody(request.body, why);
+    const auto body = parseJsonBody(request.body);
     if (!body)
-        return HttpResponse::error(400, why);
+        return HttpResponse::error(400, body.error().message);
     if (!body->is_object() || !body->contains("visible") || !(*body)["visible"].is_boolean() || body->size() != 1)
         return HttpResponse::error(400, "visible: expected {\"visible\": true|false}");
     const bool visible = (*body)["visible"].get<bool>();
@@ -346,10 +336,9 @@ HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &
     const auto slots = textSlotNames(daemon_.scene().scene());
     if (std::find(slots.begin(), slots.end(), slot) == slots.end())
         return HttpResponse::error(404, "no text in the scene shows the slot '" + slot + "' ({slot:" + slot + "})");
-    std::string why;
-    const auto body = parseBody(request.body, why);
+    const auto body = parseJsonBody(request.body);
     if (!body)
-        return HttpResponse::error(400, why);
+        return HttpResponse::error(400, body.error().message);
     if (!body->is_object() || !body->contains("text") || !(*body)["text"].is_string() || body->size() != 1)
         return HttpResponse::error(400, "text: expected {\"text\": \"...\"}");
     const std::string text = (*body)["text"].get<std::string>();
@@ -377,10 +366,9 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
 
 HttpResponse HttpApi::unproject(const http::HttpRequest &request)
 {
-    std::string why;
-    const auto body = parseBody(request.body, why);
+    const auto body = parseJsonBody(request.body);
     if (!body)
-        return HttpResponse::error(400, why);
+        return HttpResponse::error(400, body.error().message);
     const json *pixels = body->is_object() && body->contains("pixels") ? &(*body)["pixels"] : nullptr;
     if (!pixels || !pixels->is_array() || pixels->empty() || pixels->size() > kMaxApiPoints)
         return HttpResponse::error(400, "pixels: expected {\"pixels\": [[u, v], ...]} with 1 to " +
