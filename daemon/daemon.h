@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
 #include "daemon/can_inputs.h"
-#include "daemon/event_loop.h"
 #include "daemon/gpio_control.h"
 #include "daemon/health_reporter.h"
 #include "daemon/http_front.h"

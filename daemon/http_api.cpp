@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "alignment/point_queries.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
-#include "daemon/commands.h"
 #include "daemon/daemon.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"

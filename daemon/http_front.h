@@ -7,7 +7,7 @@
 #include <memory>
 #include <optional>
 
-#include "daemon/event_loop.h"
+#include "base/event_loop.h"
 #include "daemon/http_api.h"
 #include "daemon/http_frames.h"
 #include "daemon/sink_worker.h"

@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "daemon/event_loop.h"
+#include "base/event_loop.h"
 #include "inputs/text_file_watch.h"
 
 namespace overlayd {

@@ -1,5 +1,5 @@
 // The `project --json` format (hand-written expected text) and render's choice of sink from the output path.
-#include "daemon/commands.h"
+#include "tools/commands.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); UTF-8 passes through.
-#include "daemon/json_text.h"
+#include "base/json_text.h"
 
 #include <charconv>
 #include <cmath>

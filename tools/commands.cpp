@@ -1,11 +1,11 @@
 // `overlayd check-config` and `overlayd run`, and config loading with every problem reported.
-#include "daemon/commands.h"
+#include "tools/commands.h"
 
 #include <cstdio>
 
-#include "daemon/startup_guard.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame.h"
+#include "tools/startup_guard.h"
 
 namespace overlayd {
 

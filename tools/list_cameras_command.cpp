@@ -2,9 +2,9 @@
 #include <cstdio>
 #include <string>
 
-#include "daemon/commands.h"
-#include "daemon/json_text.h"
+#include "base/json_text.h"
 #include "drivers/camera_list.h"
+#include "tools/commands.h"
 
 namespace overlayd {
 
