@@ -18,7 +18,7 @@ namespace overlayd {
 class HttpFront
 {
 public:
-    HttpFront(Logger &logger, Daemon &daemon);
+    HttpFront(Logger &logger, SceneControl &scene, const DaemonStatus &status);
     ~HttpFront();
 
     // Starts the server, restarts it when the options changed, or stops it (options.enabled false). A server that
