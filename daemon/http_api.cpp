@@ -10,6 +10,7 @@
 #include "alignment/point_queries.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
+#include "drivers/source_kind_names.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
 
@@ -21,21 +22,6 @@ using http::HttpResponse;
 using nlohmann::json;
 
 constexpr size_t kMaxApiPoints = 4096; // /api/project and /api/unproject, per request
-
-const char *sourceKindName(SourceKind kind)
-{
-    switch (kind) {
-    case SourceKind::Synthetic:
-        return "synthetic";
-    case SourceKind::Replay:
-        return "replay";
-    case SourceKind::V4l2:
-        return "v4l2";
-    case SourceKind::Libcamera:
-        return "libcamera";
-    }
-    return "?";
-}
 
 const char *stateName(DaemonStatus::State state)
 {
@@ -159,7 +145,7 @@ HttpResponse HttpApi::state()
     const DaemonConfig &config = status_.config();
     const StreamFormat &format = status_.pipeline().format();
     SceneControl &scene = scene_;
-    json source = {{"kind", sourceKindName(config.source.kind)},
+    json source = {{"kind", std::string(sourceKindName(config.source.kind))},
                    {"state", stateName(status_.state())},
                    {"frames", status_.pipeline().framesIn()},
                    {"fps_measured", measuredFps()}};
