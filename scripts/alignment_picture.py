@@ -25,7 +25,7 @@ def main():
         port = daemon_fixture.free_port()
         config = os.path.join(workdir, "demo.toml")
         with open(config, "w", encoding="utf-8") as file:
-            file.write(daemon_fixture.demo_without_sinks() + daemon_fixture.http_section(port))
+            file.write(daemon_fixture.demo_without_sinks() + daemon_fixture.http_section(port, control="open"))
         daemon = daemon_fixture.Daemon(os.path.abspath(args.overlayd), config, workdir, port, cwd=workdir)
         browser = None
         try:
