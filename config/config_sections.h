@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "config/daemon_config.h"
@@ -14,6 +15,14 @@ struct CameraKeys {
     std::string intrinsics = "fov"; // the key of the intrinsics form in [camera]
     bool hasDistortion = false;
 };
+
+// Every key of the pose forms, and of the intrinsics forms: the drop-in's pose or intrinsics form replaces all of
+// the main file's (config_loader.cpp), a request with any pose key is a new pose (camera_request.cpp).
+inline constexpr std::string_view kPoseKeys[] = {"eye",  "target",   "gaze",        "up",   "prp", "vpn",
+                                                 "vup",  "position", "orientation", "axes", "yaw", "pitch",
+                                                 "roll", "rvec",     "tvec",        "rmat"};
+inline constexpr std::string_view kIntrinsicsFormKeys[] = {"fov",     "fov_axis", "frustum",
+                                                           "pinhole", "window",   "orthographic"};
 
 // A relative path resolved against the config file's folder.
 std::string resolvePath(const std::string &baseDirectory, const std::string &path);

@@ -33,7 +33,7 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
 int unprojectCommand(const std::string &configPath, bool json, const std::vector<double> &plane,
                      const std::vector<double> &coordinates, Logger &logger);
 // `overlayd solve-pose --points FILE`: the camera pose from world points and their pixels, as config keys.
-// --write: also into the config's live drop-in (NAME.live.toml), which the loader merges over [camera]'s pose.
+// --write: also into the config's live drop-in (NAME.live.toml, config/live_drop_in.h) with the whole camera.
 // solver: "sqpnp", "iterative" or "ippe" (alignment::PnpSolver).
 int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, const std::string &solver,
                      bool write, Logger &logger);

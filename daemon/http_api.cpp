@@ -9,6 +9,7 @@
 
 #include "config/camera_request.h"
 #include "config/json_body.h"
+#include "config/live_drop_in.h"
 #include "daemon/commands.h"
 #include "daemon/daemon.h"
 #include "overlay/shapes/scene_checks.h"
@@ -304,13 +305,8 @@ HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
     auto spec = cameraFromJson(request.body, scene.camera(), width, height);
     if (!spec)
         return HttpResponse::error(400, spec.error().message);
-    // Anything but the pose changed: save writes the intrinsics too.
-    CameraSpec samePose = *spec;
-    samePose.pose = scene.camera().pose;
-    const bool intrinsicsChange = !(samePose == scene.camera());
     if (auto applied = scene.apply(CameraChange{*spec}); !applied)
         return HttpResponse::error(400, "camera: " + applied.error().message);
-    intrinsicsChanged_ = intrinsicsChanged_ || intrinsicsChange;
     return HttpResponse::json(200, cameraJson(scene.camera(), scene.cameraFor(width, height)).dump());
 }
 
@@ -388,9 +384,11 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
 
 HttpResponse HttpApi::save()
 {
-    auto written = writeLiveDropIn(daemon_.config().path, daemon_.scene().camera(), intrinsicsChanged_);
+    // The whole live camera, merged into what the drop-in holds: a save after a restart keeps what an earlier save
+    // wrote, and the saved config projects as the live camera does.
+    auto written = writeLiveDropIn(daemon_.config().path, daemon_.scene().camera(), "POST /api/save");
     if (!written)
-        return HttpResponse::error(written.error().code == ErrorCode::Io ? 500 : 400, written.error().message);
+        return HttpResponse::error(500, written.error().message);
     return HttpResponse::json(200, json({{"saved", *written}}).dump());
 }
 
