@@ -38,7 +38,7 @@ std::string randomSuffix()
     return text;
 }
 
-Status writeWhole(int fd, std::string_view text, const std::string &name)
+Status writeWhole(int fd, std::string_view text, const std::string &name, Durability durability)
 {
     while (!text.empty()) {
         const ssize_t written = ::write(fd, text.data(), text.size());
@@ -48,14 +48,14 @@ Status writeWhole(int fd, std::string_view text, const std::string &name)
             return ioError("cannot write", name, written < 0 ? errno : EIO);
         text.remove_prefix(size_t(written));
     }
-    if (::fsync(fd) != 0)
+    if (durability == Durability::Synced && ::fsync(fd) != 0)
         return ioError("cannot sync", name, errno);
     return Ok{};
 }
 
 } // namespace
 
-Status replaceFileContents(const std::string &path, std::string_view text)
+Status replaceFileContents(const std::string &path, std::string_view text, Durability durability)
 {
     const std::filesystem::path target(path);
     const std::string folderName = target.has_parent_path() ? target.parent_path().string() : ".";
@@ -75,7 +75,7 @@ Status replaceFileContents(const std::string &path, std::string_view text)
     const std::string temporaryPath = (std::filesystem::path(folderName) / temporary).string();
     if (file.get() < 0)
         return ioError("cannot create", temporaryPath, errno);
-    Status status = writeWhole(file.get(), text, temporaryPath);
+    Status status = writeWhole(file.get(), text, temporaryPath, durability);
     if (status && ::close(file.release()) != 0)
         status = ioError("cannot write", temporaryPath, errno);
     if (status && ::renameat(folder.get(), temporary.c_str(), folder.get(), fileName.c_str()) != 0)
@@ -85,7 +85,7 @@ Status replaceFileContents(const std::string &path, std::string_view text)
         return status;
     }
     // The rename is durable once the folder's entry is: without this a crash may bring back the old file.
-    if (::fsync(folder.get()) != 0)
+    if (durability == Durability::Synced && ::fsync(folder.get()) != 0)
         return ioError("cannot sync the folder", folderName, errno);
     return Ok{};
 }
