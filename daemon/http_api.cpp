@@ -100,10 +100,10 @@ std::string utcTime(std::chrono::system_clock::time_point time)
     const std::time_t seconds = std::time_t(ms / 1000);
     std::tm utc{};
     ::gmtime_r(&seconds, &utc);
-    char text[40];
-    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900, utc.tm_mon + 1,
-                  utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, int(ms % 1000));
-    return text;
+    char text[32], millis[8];
+    const size_t length = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+    std::snprintf(millis, sizeof millis, ".%03dZ", int(ms % 1000));
+    return std::string(text, length) + millis;
 }
 
 // One input's health, the same fields for every kind of input.
