@@ -173,6 +173,10 @@ ip link set vcan0 down
 await 5 is_connected false
 down=$?
 down_entry=$E
+sleep 2 # two retries: a down interface is not opened (its health waits)
+E=$(can_entry)
+is_connected false || down=1
+[ "$(curl -s --max-time 5 "$URL/metrics" | sed -n 's/^overlayd_input_following{kind="can",[^}]*} //p')" = 0.0 ] || down=1
 ip link set vcan0 up
 await 10 is_connected true
 up=$?
