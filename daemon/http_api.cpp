@@ -109,15 +109,14 @@ std::string utcTime(std::chrono::system_clock::time_point time)
 // One input's health, the same fields for every kind of input.
 json inputHealthJson(const inputs::InputHealth &input, std::chrono::steady_clock::time_point now)
 {
-    json out = {{"kind", input.kind},
-                {"name", input.name},
-                {"source", input.source},
-                {"state", inputs::inputStateName(input.state)},
-                {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
-                {"errors", input.errors},
-                {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
-                {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}};
-    return out;
+    return {{"kind", input.kind},
+            {"name", input.name},
+            {"source", input.source},
+            {"state", inputs::inputStateName(input.state)},
+            {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
+            {"errors", input.errors},
+            {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
+            {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}};
 }
 
 // Numbers separated by ',' ';' or spaces: "x,y,z;x,y,z".
