@@ -45,9 +45,9 @@ void CanInputs::configure(const std::vector<inputs::CanInputOptions> &options)
             next.push_back(std::move(*same));
             same->options.name.clear(); // taken
         } else {
-            next.push_back(Input{option, std::nullopt, {}, {}, std::nullopt, false,
-                                 {"can", option.name, option.interface, inputs::InputHealth::State::Waiting,
-                                  inputs::InputHealth::Clock::now()}});
+            inputs::InputHealth health("can", option.name, option.interface, inputs::InputHealth::State::Waiting,
+                                       Clock::now());
+            next.push_back(Input{option, std::nullopt, {}, {}, std::nullopt, false, std::move(health)});
         }
     }
     inputs_ = std::move(next);

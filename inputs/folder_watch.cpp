@@ -100,8 +100,8 @@ bool FolderWatch::waitInAncestor(int folderErrno)
         const int error = errno;
         if (!isFolder(ancestor))
             return false; // removed meanwhile: look further up
-        problem_ = "the folder " + folder_ + " is gone, and " + ancestor.string() + " cannot be watched for it: " +
-                   std::strerror(error);
+        problem_ = "the folder " + folder_ + " is gone, and " + ancestor.string() +
+                   " cannot be watched for it: " + std::strerror(error);
         return true;
     }
     problem_ = "the folder " + folder_ + " is gone (" + std::strerror(folderErrno) + "): waiting for it in " +

@@ -24,7 +24,9 @@ struct WatchedFilesTest : ::testing::Test {
     std::vector<std::string> logged;
     std::vector<size_t> changed;
     Logger logger{[this](std::string_view line) { logged.emplace_back(line); }, true};
-    WatchedFiles files{logger, "text", [this](size_t input) { changed.push_back(input); }};
+    WatchedFiles files{logger, "text", [this](size_t input) {
+                           changed.push_back(input);
+                       }};
 
     void SetUp() override { std::filesystem::create_directories(dir); }
     void TearDown() override { std::filesystem::remove_all(dir.parent_path()); }

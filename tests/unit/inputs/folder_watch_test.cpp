@@ -22,10 +22,9 @@ namespace {
 // One folder per test and process: CTest runs the tests of this file in parallel.
 fs::path scratch()
 {
-    const fs::path dir = fs::temp_directory_path() /
-                         (std::string("overlayd-folder-watch-") +
-                          ::testing::UnitTest::GetInstance()->current_test_info()->name() + "-" +
-                          std::to_string(::getpid()));
+    const fs::path dir = fs::temp_directory_path() / (std::string("overlayd-folder-watch-") +
+                                                      ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                                                      "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -160,8 +159,8 @@ TEST(FolderWatch, SaysWhatItWaitsForWhileTheFolderIsGone)
     ASSERT_EQ(::poll(&p, 1, 1000), 1);
     EXPECT_TRUE(watch->consume("status.txt")); // the file it held is gone with it
     EXPECT_FALSE(watch->following());
-    EXPECT_EQ(watch->problem(),
-              "the folder " + dir.string() + " is gone (No such file or directory): waiting for it in " + base.string());
+    EXPECT_EQ(watch->problem(), "the folder " + dir.string() +
+                                    " is gone (No such file or directory): waiting for it in " + base.string());
 
     fs::create_directories(dir);
     ASSERT_EQ(::poll(&p, 1, 1000), 1);
