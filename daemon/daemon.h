@@ -73,6 +73,8 @@ public:
     const PathInputs &pathInputs() const { return pathInputs_; }
     const CanInputs &canInputs() const { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
+    // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
+    std::vector<inputs::InputHealth> inputHealth() const;
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }

@@ -3,6 +3,8 @@
 #include "daemon/http_api.h"
 
 #include <charconv>
+#include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,6 +14,7 @@
 #include "config/live_drop_in.h"
 #include "daemon/commands.h"
 #include "daemon/daemon.h"
+#include "inputs/input_health.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
 
@@ -89,6 +92,32 @@ json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
                              {"vfov", glm::degrees(2.0 * std::atan(height / (2.0 * fy)))}};
     }
     return out;
+}
+
+// A wall-clock time as ISO 8601 UTC with milliseconds: "2026-11-27T11:43:25.123Z".
+std::string utcTime(std::chrono::system_clock::time_point time)
+{
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(time.time_since_epoch()).count();
+    const std::time_t seconds = std::time_t(ms / 1000);
+    std::tm utc{};
+    ::gmtime_r(&seconds, &utc);
+    char text[32], millis[8];
+    const size_t length = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+    std::snprintf(millis, sizeof millis, ".%03dZ", int(ms % 1000));
+    return std::string(text, length) + millis;
+}
+
+// One input's health, the same fields for every kind of input.
+json inputHealthJson(const inputs::InputHealth &input, std::chrono::steady_clock::time_point now)
+{
+    return {{"kind", input.kind},
+            {"name", input.name},
+            {"source", input.source},
+            {"state", inputs::inputStateName(input.state)},
+            {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
+            {"errors", input.errors},
+            {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
+            {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}};
 }
 
 // Numbers separated by ',' ';' or spaces: "x,y,z;x,y,z".
@@ -247,6 +276,11 @@ HttpResponse HttpApi::state()
     }
     if (!inputs.empty())
         out["inputs"] = inputs;
+    json health = json::array();
+    for (const inputs::InputHealth &input : daemon_.inputHealth())
+        health.push_back(inputHealthJson(input, now));
+    if (!health.empty())
+        out["input_health"] = health;
     return HttpResponse::json(200, out.dump());
 }
 
@@ -286,6 +320,18 @@ HttpResponse HttpApi::metrics()
         metric("overlayd_can_value_valid", "gauge", "1 while the signal's value is fresh and in range.",
                reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
     }
+    // One loop per metric: a family's samples stay together, as the text format wants.
+    const std::vector<inputs::InputHealth> inputHealth = daemon_.inputHealth();
+    const auto inputLabel = [](const inputs::InputHealth &input) {
+        return "kind=" + json(input.kind).dump() + ",input=" + json(input.name).dump();
+    };
+    for (const inputs::InputHealth &input : inputHealth)
+        metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
+               input.state == inputs::InputHealth::State::Following ? 1.0 : 0.0, inputLabel(input));
+    for (const inputs::InputHealth &input : inputHealth)
+        metric("overlayd_input_errors_total", "counter",
+               "Errors an input met (its folder or interface gone, a version refused).", double(input.errors),
+               inputLabel(input));
     metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
     metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
     metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));

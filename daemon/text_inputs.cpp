@@ -6,14 +6,16 @@ Status TextInputs::configure(const std::vector<inputs::TextInputOptions> &option
 {
     std::vector<inputs::TextFileWatch> watches;
     std::vector<Reading> readings;
+    std::vector<std::string> names;
     for (const inputs::TextInputOptions &input : options) {
         auto watch = inputs::TextFileWatch::open(input.file, input.maxBytes);
         if (!watch)
             return makeError(watch.error().code, "input.text '" + input.slot + "': " + watch.error().message);
         watches.push_back(std::move(*watch));
+        names.push_back(input.slot);
         readings.push_back({input.slot, input.file, {}, {}});
     }
-    files_.replace(std::move(watches));
+    files_.replace(std::move(watches), names);
     readings_ = std::move(readings);
     showAll();
     return Ok{};
@@ -33,6 +35,7 @@ void TextInputs::show(size_t input)
         return; // a write that changed nothing the slot shows
     if (auto applied = scene_.apply(TextChange{reading.slot, text}); !applied) {
         logger_.warning(cat("input.text '", reading.slot, "' (", reading.file, "): ", applied.error().message));
+        files_.fail(input, applied.error().message);
         return;
     }
     reading.text = std::move(text);
