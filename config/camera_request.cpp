@@ -2,6 +2,7 @@
 // config-file user would recognise. The drop-in is plain TOML written here and read back by the loader.
 #include "config/camera_request.h"
 
+#include "base/number_text.h"
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -64,9 +65,7 @@ bool toToml(const nlohmann::json &value, size_t depth, std::string &why, std::un
 
 std::string numberText(double value)
 {
-    char text[40];
-    std::snprintf(text, sizeof(text), "%.17g", value);
-    return text;
+    return shortNumber(value, 17);
 }
 
 std::string vectorText(const glm::dvec3 &v)
