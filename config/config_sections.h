@@ -10,6 +10,8 @@
 
 namespace overlayd::config {
 
+class SceneImages;
+
 // Where the camera's parts came from, so that errors found when composing the Camera land on the right key.
 struct CameraKeys {
     std::string intrinsics = "fov"; // the key of the intrinsics form in [camera]
@@ -49,10 +51,11 @@ std::optional<glm::dquat> readRotation(TableReader &table, std::string_view quat
 
 void readFrames(TableReader &root, std::vector<FrameSpec> &out);
 void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out);
-void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, Shape &out);
+void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, SceneImages &images,
+               Shape &out);
 Shape readFrustumShape(TableReader &table, const std::string &baseDirectory);
-// type = "image": decodes the file (relative to the config's folder).
-Shape readImageShape(TableReader &table, const std::string &baseDirectory);
+// type = "image": the file (relative to the config's folder), decoded once per scene by `images`.
+Shape readImageShape(TableReader &table, const std::string &baseDirectory, SceneImages &images);
 std::optional<Style> readStyle(TableReader &style, const Style &base);
 
 } // namespace overlayd::config

@@ -3,27 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 namespace overlayd::config {
-
-namespace {
-
-// Limits print short (1e+06); a value given prints with every digit a user may have typed (2147483000).
-std::string show(double value, int precision = 6)
-{
-    std::ostringstream out;
-    out << std::setprecision(precision) << value;
-    return out.str();
-}
-
-} // namespace
-
-std::string Range::describe() const
-{
-    return (minOpen ? "(" : "[") + show(min) + ", " + show(max) + "]";
-}
 
 const char *typeName(const toml::node &node)
 {
@@ -116,7 +97,7 @@ std::optional<double> TableReader::numberFrom(const toml::node &n, const std::st
     }
     // A large finite value is out of range like inf is: the message gives the range either way.
     if (!range.contains(*value)) {
-        problemAt(n, path, "out of range: must be in " + range.describe() + " (got " + show(*value, 15) + ")");
+        problemAt(n, path, range.refusal(*value));
         return std::nullopt;
     }
     return value;

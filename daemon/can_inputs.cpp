@@ -1,5 +1,6 @@
 #include "daemon/can_inputs.h"
 
+#include "base/number_text.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,9 +11,8 @@ namespace {
 
 std::string formatValue(double value, int decimals, const std::string &unit)
 {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*f", decimals, value);
-    return unit.empty() ? std::string(text) : std::string(text) + " " + unit;
+    const std::string text = formatted("%.*f", decimals, value);
+    return unit.empty() ? text : text + " " + unit;
 }
 
 } // namespace

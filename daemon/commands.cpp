@@ -9,6 +9,15 @@
 
 namespace overlayd {
 
+std::string numbersRefusal(const std::vector<double> &values, const std::vector<std::string> &names,
+                           const std::string &group, const Range &range)
+{
+    for (size_t i = 0; i < values.size(); ++i)
+        if (const std::string why = range.refusal(values[i]); !why.empty())
+            return names[i % names.size()] + " of " + group + " " + std::to_string(i / names.size() + 1) + ": " + why;
+    return {};
+}
+
 Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger)
 {
     std::vector<ConfigProblem> problems;

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "base/logger.h"
+#include "base/number_range.h"
 #include "config/daemon_config.h"
 #include "daemon/daemon.h"
 #include "projection/camera.h"
@@ -19,7 +20,7 @@ namespace overlayd {
 // Exit statuses (CLI11 uses its own codes, 100 and up, for command-line errors).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;     // a runtime failure: source, sink, I/O
-inline constexpr int kExitConfigError = 2; // the config file does not validate
+inline constexpr int kExitConfigError = 2; // the config file, or a number given, does not validate
 
 int checkConfigCommand(const std::string &path);
 // `overlayd list-cameras [--json]`: every camera a source could open, with its formats, sizes and frame rates.
@@ -41,6 +42,11 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
 int renderCommand(const std::string &configPath, uint64_t frames, const std::string &output,
                   std::optional<LogLevel> logLevel, Logger &logger);
 int runCommand(const DaemonOptions &options, Logger &logger);
+
+// Numbers from the command line, checked before use: "" when each lies in `range`, else the first one out named by
+// its place ("X of point 2", cycling `names` over groups of names.size() called `group`) and the range.
+std::string numbersRefusal(const std::vector<double> &values, const std::vector<std::string> &names,
+                           const std::string &group, const Range &range);
 
 // Loads a config, logging every problem as "file:line:column: key: message".
 Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger);

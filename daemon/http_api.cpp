@@ -396,6 +396,8 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
     if (!numbers || numbers->empty() || numbers->size() % 3 != 0 || numbers->size() / 3 > kMaxApiPoints)
         return HttpResponse::error(400, "points: expected x,y,z;x,y,z;... (at most " + std::to_string(kMaxApiPoints) +
                                             " finite points)");
+    if (const std::string why = numbersRefusal(*numbers, {"x", "y", "z"}, "point", kAnyMagnitude); !why.empty())
+        return HttpResponse::error(400, "points: " + why);
     const StreamFormat &format = daemon_.pipeline().format();
     auto camera = daemon_.scene().cameraFor(format.width, format.height);
     if (!format.format || !camera)
@@ -415,12 +417,17 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
     if (!pixels || !pixels->is_array() || pixels->empty() || pixels->size() > kMaxApiPoints)
         return HttpResponse::error(400, "pixels: expected {\"pixels\": [[u, v], ...]} with 1 to " +
                                             std::to_string(kMaxApiPoints) + " pixels");
-    std::vector<glm::dvec2> uv;
+    std::vector<double> numbers;
     for (const json &pixel : *pixels) {
         if (!pixel.is_array() || pixel.size() != 2 || !pixel[0].is_number() || !pixel[1].is_number())
             return HttpResponse::error(400, "pixels: each pixel is [u, v], two numbers");
-        uv.emplace_back(pixel[0].get<double>(), pixel[1].get<double>());
+        numbers.insert(numbers.end(), {pixel[0].get<double>(), pixel[1].get<double>()});
     }
+    if (const std::string why = numbersRefusal(numbers, {"u", "v"}, "pixel", kAnyMagnitude); !why.empty())
+        return HttpResponse::error(400, "pixels: " + why);
+    std::vector<glm::dvec2> uv;
+    for (size_t i = 0; i < numbers.size(); i += 2)
+        uv.emplace_back(numbers[i], numbers[i + 1]);
     const StreamFormat &format = daemon_.pipeline().format();
     auto camera = daemon_.scene().cameraFor(format.width, format.height);
     if (!format.format || !camera)

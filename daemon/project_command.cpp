@@ -1,5 +1,7 @@
 // `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
 #include "daemon/commands.h"
+
+#include "base/number_text.h"
 #include "daemon/json_text.h"
 #include "inputs/point_list.h"
 
@@ -95,14 +97,12 @@ std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vec
         const ProjectedPoint &p = points[i];
         const PointReport &r = reports[i];
         text += "(" + triple(world[i], ", ") + ") -> ";
-        char line[200];
         if (p.status == PointStatus::Clipped)
-            std::snprintf(line, sizeof(line), "no pixel: %s (%.3f m %s the camera)\n", r.reason, std::abs(r.distance),
-                          r.distance < 0.0 ? "behind" : "in front of");
+            text += formatted("no pixel: %s (%.3f m %s the camera)\n", r.reason, std::abs(r.distance),
+                              r.distance < 0.0 ? "behind" : "in front of");
         else
-            std::snprintf(line, sizeof(line), "pixel (%.3f, %.3f), depth %.6f, %.3f m in front, %s\n", p.pixel.x,
-                          p.pixel.y, p.depth, r.distance, r.reason ? r.reason : "visible");
-        text += line;
+            text += formatted("pixel (%.3f, %.3f), depth %.6f, %.3f m in front, %s\n", p.pixel.x, p.pixel.y, p.depth,
+                              r.distance, r.reason ? r.reason : "visible");
     }
     return text;
 }
@@ -163,6 +163,11 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
             logger.error(
                 cat("project: expected X Y Z triples (or --points FILE), got ", coordinates.size(), " numbers"));
             return kExitFailure;
+        }
+        if (const std::string why = numbersRefusal(coordinates, {"X", "Y", "Z"}, "point", kAnyMagnitude);
+            !why.empty()) {
+            logger.error("project: " + why);
+            return kExitConfigError;
         }
         for (size_t i = 0; i < coordinates.size(); i += 3)
             world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);

@@ -12,6 +12,7 @@
 #include <sys/socket.h>
 
 #include "http/page_files.h"
+#include "http/percent_decoding.h"
 
 namespace overlayd::http {
 
@@ -187,6 +188,9 @@ struct MhdCallbacks {
         delete stream;
     }
 
+    // The URL and the query stay as sent: access() decodes them (http/percent_decoding.h says why).
+    static size_t keepEscaped(void *, MHD_Connection *, char *text) { return std::strlen(text); }
+
     static void log(void *self, const char *format, va_list arguments)
     {
         char text[512];
@@ -225,7 +229,7 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
         MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutSec, MHD_OPTION_CONNECTION_MEMORY_LIMIT, kConnectionMemoryBytes,
         MHD_OPTION_NOTIFY_COMPLETED, &MhdCallbacks::completed, server.get(), MHD_OPTION_NOTIFY_CONNECTION,
         &MhdCallbacks::connection, server.get(), MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(),
-        MHD_OPTION_END);
+        MHD_OPTION_UNESCAPE_CALLBACK, &MhdCallbacks::keepEscaped, nullptr, MHD_OPTION_END);
     if (!server->daemon_)
         return makeError(ErrorCode::Io, "http: libmicrohttpd could not start on " + address->describe());
     [[maybe_unused]] const int owned = socket->release(); // libmicrohttpd closes it when it stops
@@ -378,7 +382,7 @@ std::optional<HttpResponse> HttpServer::refuseControl(MHD_Connection *connection
     return refused;
 }
 
-int HttpServer::access(MHD_Connection *connection, const std::string &url, const std::string &method,
+int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, const std::string &method,
                        Exchange &exchange)
 {
     if (exchange.tooLarge)
@@ -386,14 +390,27 @@ int HttpServer::access(MHD_Connection *connection, const std::string &url, const
                       HttpResponse::error(413, "the body is over " + std::to_string(kMaxBodyBytes) + " bytes"));
     HttpRequest request;
     request.method = method;
-    request.path = url;
-    MHD_get_connection_values(connection, MHD_GET_ARGUMENT_KIND, &collectQuery, &request.query);
-    size_t urlBytes = url.size();
-    for (const auto &[key, value] : request.query)
+    std::map<std::string, std::string> query; // as sent: keepEscaped left the %-escapes
+    MHD_get_connection_values(connection, MHD_GET_ARGUMENT_KIND, &collectQuery, &query);
+    size_t urlBytes = rawUrl.size();
+    for (const auto &[key, value] : query)
         urlBytes += key.size() + value.size() + 2;
     if (urlBytes > kMaxUrlBytes)
         return answer(connection,
                       HttpResponse::error(414, "the URL is over " + std::to_string(kMaxUrlBytes) + " bytes"));
+    auto path = percentDecoded(rawUrl);
+    if (!path)
+        return answer(connection, HttpResponse::error(400, "the path: " + path.error().message));
+    request.path = std::move(*path);
+    for (const auto &[key, value] : query) {
+        auto decodedKey = percentDecoded(key), decodedValue = percentDecoded(value);
+        if (!decodedKey || !decodedValue)
+            return answer(connection,
+                          HttpResponse::error(400, "the query's '" + key + "': " +
+                                                       (decodedKey ? decodedValue : decodedKey).error().message));
+        request.query[*decodedKey] = std::move(*decodedValue);
+    }
+    const std::string &url = request.path;
     const bool reading = method == "GET" || method == "HEAD";
     if (!reading && method != "PUT" && method != "POST")
         return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));

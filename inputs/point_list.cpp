@@ -2,6 +2,8 @@
 // scientific notation, an optional sign).
 #include "inputs/point_list.h"
 
+#include "base/number_range.h"
+
 #include <charconv>
 #include <cmath>
 
@@ -50,6 +52,8 @@ Result<std::vector<glm::dvec3>> parsePointList(std::string_view text, const std:
             if (error != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value))
                 return makeError(ErrorCode::Malformed,
                                  where() + "'" + std::string(token.substr(0, 32)) + "' is not a finite number");
+            if (const std::string why = kAnyMagnitude.refusal(value); !why.empty())
+                return makeError(ErrorCode::Malformed, where() + "xyz"[count] + ": " + why);
             values[count++] = value;
             at = stop;
         }

@@ -130,7 +130,9 @@ void expandTokens(std::string_view text, const FrameMetadata &metadata, double f
                   const SlotTexts *slots)
 {
     out.clear();
-    char number[32];
+    // Room for any number printed here, whole: "%.2f" of the largest double is 313 characters (a camera's gain is
+    // its driver's float). On the stack, as nothing on the frame path allocates once the text has grown.
+    char number[320];
     scan(
         text, [&](std::string_view literal) { out.append(literal); },
         [&](std::string_view name) {
