@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "base/number_text.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
@@ -101,10 +102,9 @@ std::string utcTime(std::chrono::system_clock::time_point time)
     const std::time_t seconds = std::time_t(ms / 1000);
     std::tm utc{};
     ::gmtime_r(&seconds, &utc);
-    char text[32], millis[8];
+    char text[32]; // "YYYY-MM-DDTHH:MM:SS" is 19 characters for any year strftime can print in 4 digits
     const size_t length = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-    std::snprintf(millis, sizeof millis, ".%03dZ", int(ms % 1000));
-    return std::string(text, length) + millis;
+    return std::string(text, length) + formatted(".%03dZ", int(ms % 1000));
 }
 
 // One input's health, the same fields for every kind of input.
