@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/utf8.h"
+
 namespace overlayd::config {
 
 const char *typeName(const toml::node &node)
@@ -151,12 +153,18 @@ std::optional<std::string> TableReader::string(std::string_view key, size_t maxB
     if (!n)
         return std::nullopt;
     if (const auto *s = n->as_string()) {
-        if (s->get().size() <= maxBytes)
-            return s->get();
-        problemAt(*n, keyPath(key),
-                  "too long: at most " + std::to_string(maxBytes) + " bytes (got " + std::to_string(s->get().size()) +
-                      ")");
-        return std::nullopt;
+        if (s->get().size() > maxBytes) {
+            problemAt(*n, keyPath(key),
+                      "too long: at most " + std::to_string(maxBytes) + " bytes (got " +
+                          std::to_string(s->get().size()) + ")");
+            return std::nullopt;
+        }
+        // toml++ has checked the UTF-8; an escape such as "\u0007" still makes a control character.
+        if (const auto problem = outsideTextProblem(s->get(), kConfigStringControls)) {
+            problemAt(*n, keyPath(key), *problem);
+            return std::nullopt;
+        }
+        return s->get();
     }
     problemAt(*n, keyPath(key), std::string("expected a string, got ") + typeName(*n));
     return std::nullopt;

@@ -23,6 +23,8 @@ namespace overlayd::config {
 
 // The longest string without a narrower limit (paths: Linux's PATH_MAX).
 inline constexpr size_t kMaxStringBytes = 4096;
+// The control characters a config string may hold (a multi-line text); any other is refused.
+inline constexpr std::string_view kConfigStringControls = "\t\n\r";
 
 class TableReader
 {

@@ -70,7 +70,9 @@ public:
     const GpioControl &gpio() const { return gpio_; }
     GpioControl &gpio() { return gpio_; }
     const TextInputs &textInputs() const { return textInputs_; }
+    TextInputs &textInputs() { return textInputs_; }
     const PathInputs &pathInputs() const { return pathInputs_; }
+    PathInputs &pathInputs() { return pathInputs_; }
     const CanInputs &canInputs() const { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
     // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).

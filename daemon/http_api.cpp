@@ -234,12 +234,16 @@ HttpResponse HttpApi::state()
         out["gpio"] = daemon_.gpio().describe();
     json inputs = json::array();
     const auto now = std::chrono::steady_clock::now();
-    for (const TextInputs::Reading &reading : daemon_.textInputs().readings())
-        inputs.push_back({{"kind", "text"},
-                          {"slot", reading.slot},
-                          {"file", reading.file},
-                          {"value", reading.text},
-                          {"age_s", std::chrono::duration<double>(now - reading.changed).count()}});
+    for (const TextInputs::Reading &reading : daemon_.textInputs().readings()) {
+        json entry = {{"kind", "text"},
+                      {"slot", reading.slot},
+                      {"file", reading.file},
+                      {"value", reading.text},
+                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
+        if (!reading.error.empty())
+            entry["error"] = reading.error;
+        inputs.push_back(std::move(entry));
+    }
     for (const PathInputs::Reading &reading : daemon_.pathInputs().readings()) {
         json entry = {{"kind", "path"},
                       {"annotation", reading.annotation},
@@ -281,7 +285,7 @@ HttpResponse HttpApi::state()
         health.push_back(inputHealthJson(input, now));
     if (!health.empty())
         out["input_health"] = health;
-    return HttpResponse::json(200, out.dump());
+    return HttpResponse::json(200, writeJson(out));
 }
 
 HttpResponse HttpApi::metrics()
@@ -292,7 +296,7 @@ HttpResponse HttpApi::metrics()
                                 const std::string &labels = {}) {
         if (labels.empty() || text.find(std::string("# TYPE ") + name + " ") == std::string::npos)
             text += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
-        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + json(value).dump() + "\n";
+        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + writeJson(json(value)) + "\n";
     };
     metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
@@ -303,7 +307,7 @@ HttpResponse HttpApi::metrics()
            daemon_.state() == Daemon::State::Streaming ? 1.0 : 0.0);
     for (const auto &sink : daemon_.pipeline().sinks()) {
         const SinkCounters counters = sink->counters();
-        std::string label = "sink=" + json(sink->describe()).dump();
+        std::string label = "sink=" + writeJson(json(sink->describe()));
         metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
         metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
                label);
@@ -312,7 +316,7 @@ HttpResponse HttpApi::metrics()
     }
     const CanInputs &can = daemon_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
-        const std::string label = "input=" + json(can.options(i).name).dump();
+        const std::string label = "input=" + writeJson(json(can.options(i).name));
         const CanInputs::Reading &reading = can.reading(i);
         metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames), label);
         metric("overlayd_can_malformed_total", "counter", "CAN frames too short for the signal (ignored).",
@@ -323,7 +327,7 @@ HttpResponse HttpApi::metrics()
     // One loop per metric: a family's samples stay together, as the text format wants.
     const std::vector<inputs::InputHealth> inputHealth = daemon_.inputHealth();
     const auto inputLabel = [](const inputs::InputHealth &input) {
-        return "kind=" + json(input.kind).dump() + ",input=" + json(input.name).dump();
+        return "kind=" + writeJson(json(input.kind)) + ",input=" + writeJson(json(input.name));
     };
     for (const inputs::InputHealth &input : inputHealth)
         metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
@@ -353,7 +357,7 @@ HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
         return HttpResponse::error(400, spec.error().message);
     if (auto applied = scene.apply(CameraChange{*spec}); !applied)
         return HttpResponse::error(400, "camera: " + applied.error().message);
-    return HttpResponse::json(200, cameraJson(scene.camera(), scene.cameraFor(width, height)).dump());
+    return HttpResponse::json(200, writeJson(cameraJson(scene.camera(), scene.cameraFor(width, height))));
 }
 
 HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest &request)
@@ -370,7 +374,7 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
     const bool visible = (*body)["visible"].get<bool>();
     if (auto applied = scene.apply(LayerChange{layer, visible}); !applied)
         return HttpResponse::error(400, applied.error().message);
-    return HttpResponse::json(200, json({{"name", layer}, {"visible", visible}}).dump());
+    return HttpResponse::json(200, writeJson(json({{"name", layer}, {"visible", visible}})));
 }
 
 HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &request)
@@ -386,7 +390,7 @@ HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &
     const std::string text = (*body)["text"].get<std::string>();
     if (auto applied = daemon_.scene().apply(TextChange{slot, text}); !applied)
         return HttpResponse::error(400, "text: " + applied.error().message);
-    return HttpResponse::json(200, json({{"slot", slot}, {"text", text}}).dump());
+    return HttpResponse::json(200, writeJson(json({{"slot", slot}, {"text", text}})));
 }
 
 HttpResponse HttpApi::project(const http::HttpRequest &request)
@@ -442,7 +446,7 @@ HttpResponse HttpApi::save()
     auto written = writeLiveDropIn(daemon_.config().path, daemon_.scene().camera(), "POST /api/save");
     if (!written)
         return HttpResponse::error(500, written.error().message);
-    return HttpResponse::json(200, json({{"saved", *written}}).dump());
+    return HttpResponse::json(200, writeJson(json({{"saved", *written}})));
 }
 
 } // namespace overlayd

@@ -31,6 +31,7 @@ public:
 
     struct Reading {
         std::string slot, file, text;
+        std::string error; // why the file's last line was refused ("" when it is shown); the text shown stays
         std::chrono::steady_clock::time_point changed; // when the text last changed
     };
     const std::vector<Reading> &readings() const { return readings_; }

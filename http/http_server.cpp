@@ -5,6 +5,7 @@
 #include <arpa/inet.h>
 #include <cstdarg>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <microhttpd.h>
 #include <netinet/in.h>
@@ -110,10 +111,37 @@ struct HttpServer::StreamClient {
 };
 
 struct MhdCallbacks {
-    static MHD_Result access(void *self, MHD_Connection *connection, const char *url, const char *method, const char *,
-                             const char *uploadData, size_t *uploadSize, void **state)
+    // An exception must not unwind through libmicrohttpd's C frames (that ends the process): a handler's bug is a
+    // 500 answer with a JSON body, and a log line (identical ones within the logger's window are counted, not
+    // printed).
+    static MHD_Result access(void *self, MHD_Connection *connection, const char *url, const char *method,
+                             const char *version, const char *uploadData, size_t *uploadSize, void **state)
     {
         auto &server = *static_cast<HttpServer *>(self);
+        try {
+            return accessUnguarded(server, connection, url, method, version, uploadData, uploadSize, state);
+        } catch (const std::exception &error) {
+            return failed(server, connection, error.what());
+        } catch (...) {
+            return failed(server, connection, "an exception that is not a std::exception");
+        }
+    }
+
+    static MHD_Result failed(HttpServer &server, MHD_Connection *connection, const char *what) noexcept
+    {
+        try {
+            server.logger_.error(std::string("http: a request failed (answered 500): ") + what);
+            return MHD_Result(
+                server.answer(connection, HttpResponse::error(500, std::string("internal error: ") + what)));
+        } catch (...) {
+            return MHD_NO; // out of memory even for the answer: libmicrohttpd closes the connection
+        }
+    }
+
+    static MHD_Result accessUnguarded(HttpServer &server, MHD_Connection *connection, const char *url,
+                                      const char *method, const char *, const char *uploadData, size_t *uploadSize,
+                                      void **state)
+    {
         if (!*state) {
             *state = new HttpServer::Exchange;
             if (const MHD_ConnectionInfo *info =
@@ -176,7 +204,11 @@ struct MhdCallbacks {
     static ssize_t readStream(void *client, uint64_t, char *buffer, size_t max)
     {
         auto &stream = *static_cast<HttpServer::StreamClient *>(client);
-        return stream.server->fillStream(stream, buffer, max);
+        try {
+            return stream.server->fillStream(stream, buffer, max);
+        } catch (...) {
+            return MHD_CONTENT_READER_END_WITH_ERROR; // this stream ends, the others go on
+        }
     }
 
     static void freeStream(void *client)

@@ -5,6 +5,8 @@
 #include <sys/inotify.h>
 #include <unistd.h>
 
+#include "base/utf8.h"
+
 namespace overlayd::inputs {
 
 namespace {
@@ -25,12 +27,7 @@ std::string slotLine(std::string_view content, size_t maxBytes)
         if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f)
             line += c;
     }
-    if (line.size() > maxBytes) {
-        size_t cut = maxBytes;
-        while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80)
-            --cut; // not inside a UTF-8 sequence
-        line.resize(cut);
-    }
+    line.resize(utf8Cut(line, maxBytes));
     return line;
 }
 

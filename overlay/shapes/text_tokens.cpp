@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <ctime>
 
+#include "base/utf8.h"
+
 namespace overlayd {
 
 namespace {
@@ -120,9 +122,9 @@ Status checkSlotText(std::string_view text)
     if (text.size() > kMaxSlotTextBytes)
         return makeError(ErrorCode::InvalidArgument, "slot text of " + std::to_string(text.size()) +
                                                          " bytes: at most " + std::to_string(kMaxSlotTextBytes));
-    for (const char c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            return makeError(ErrorCode::InvalidArgument, "slot text holds a control character (one line of text)");
+    // Slot text comes from outside (files, the API, CAN): /state quotes it as JSON, the renderer draws it.
+    if (const auto problem = outsideTextProblem(text))
+        return makeError(ErrorCode::InvalidArgument, "slot text is not one line of UTF-8 text: " + *problem);
     return Ok{};
 }
 
