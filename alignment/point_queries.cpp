@@ -2,12 +2,12 @@
 #include "alignment/point_queries.h"
 
 #include <cmath>
-#include <cstdio>
 #include <optional>
 
 #include <glm/geometric.hpp>
 
 #include "base/json_text.h"
+#include "base/number_text.h"
 
 namespace overlayd {
 
@@ -94,14 +94,12 @@ std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vec
         const ProjectedPoint &p = points[i];
         const PointReport &r = reports[i];
         text += "(" + triple(world[i], ", ") + ") -> ";
-        char line[200];
         if (p.status == PointStatus::Clipped)
-            std::snprintf(line, sizeof(line), "no pixel: %s (%.3f m %s the camera)\n", r.reason, std::abs(r.distance),
-                          r.distance < 0.0 ? "behind" : "in front of");
+            text += formatted("no pixel: %s (%.3f m %s the camera)\n", r.reason, std::abs(r.distance),
+                              r.distance < 0.0 ? "behind" : "in front of");
         else
-            std::snprintf(line, sizeof(line), "pixel (%.3f, %.3f), depth %.6f, %.3f m in front, %s\n", p.pixel.x,
-                          p.pixel.y, p.depth, r.distance, r.reason ? r.reason : "visible");
-        text += line;
+            text += formatted("pixel (%.3f, %.3f), depth %.6f, %.3f m in front, %s\n", p.pixel.x, p.pixel.y, p.depth,
+                              r.distance, r.reason ? r.reason : "visible");
     }
     return text;
 }
@@ -127,9 +125,7 @@ std::string vec(const glm::dvec3 &v)
 
 std::string fixed(double value)
 {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.6f", value);
-    return text;
+    return formatted("%.6f", value);
 }
 
 std::string readable(const glm::dvec3 &v)

@@ -1,6 +1,7 @@
-// readPointsFile: five finite numbers per non-empty line, every problem at file:line.
+// readPointsFile: five finite numbers (each within kAnyMagnitude) per non-empty line, every problem at file:line.
 #include "alignment/points_file.h"
 #include "alignment/points_json.h"
+#include "base/number_range.h"
 
 #include <algorithm>
 #include <charconv>
@@ -24,9 +25,11 @@ Result<std::vector<double>> numbersOf(const std::string &line)
         }
         double value = 0.0;
         const auto [next, error] = std::from_chars(p, end, value);
-        if (error != std::errc() || !std::isfinite(value)) {
+        const std::string why =
+            error != std::errc() || !std::isfinite(value) ? "is not a finite number" : kAnyMagnitude.refusal(value);
+        if (!why.empty()) {
             const std::string word(p, std::find_if(p, end, [](char c) { return c == ' ' || c == ',' || c == '\t'; }));
-            return makeError(ErrorCode::Malformed, "'" + word + "' is not a finite number");
+            return makeError(ErrorCode::Malformed, "'" + word + "' " + why);
         }
         numbers.push_back(value);
         p = next;

@@ -2,6 +2,8 @@
 // file:line in errors, which the parser does not keep) and refuses deep nesting.
 #include "alignment/points_json.h"
 
+#include "base/number_range.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -69,6 +71,8 @@ Result<std::vector<double>> numbers(const nlohmann::json &value, const char *key
         if (!v.is_number() || !std::isfinite(v.get<double>()))
             return makeError(ErrorCode::Malformed, what + " must be an array of " + std::to_string(count) +
                                                        " finite numbers, got " + v.dump());
+        if (const std::string why = kAnyMagnitude.refusal(v.get<double>()); !why.empty())
+            return makeError(ErrorCode::Malformed, what + ": " + why);
         out.push_back(v.get<double>());
     }
     return out;

@@ -49,6 +49,33 @@ Spread spread(const std::vector<Correspondence> &points)
     return out;
 }
 
+// The pose in our internal camera frame from OpenCV's solvePnP and its Levenberg-Marquardt refinement. OpenCV
+// throws (cv::Exception) on values its assertions refuse; it stays inside this adapter as an error.
+Result<Pose> solvePnp(const std::vector<cv::Point3d> &world, const std::vector<cv::Point2d> &normalized,
+                      PnpSolver solver)
+{
+    const cv::Matx33d identity = cv::Matx33d::eye();
+    cv::Mat rvec, tvec;
+    const int flags = solver == PnpSolver::Iterative ? cv::SOLVEPNP_ITERATIVE
+                      : solver == PnpSolver::Ippe    ? cv::SOLVEPNP_IPPE
+                                                     : cv::SOLVEPNP_SQPNP;
+    cv::Matx33d r;
+    try {
+        if (!cv::solvePnP(world, normalized, identity, cv::noArray(), rvec, tvec, false, flags))
+            return makeError(ErrorCode::NoConvergence, "OpenCV's solvePnP found no pose for these points");
+        cv::solvePnPRefineLM(world, normalized, identity, cv::noArray(), rvec, tvec);
+        cv::Rodrigues(rvec, r);
+    } catch (const cv::Exception &error) {
+        return makeError(ErrorCode::NoConvergence, "OpenCV found no pose for these points (" + error.err + ")");
+    }
+    glm::dmat3 rotation;
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            rotation[col][row] = r(row, col);
+    const glm::dvec3 translation(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+    return Pose{kFlipYZ * rotation, kFlipYZ * translation};
+}
+
 } // namespace
 
 Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortion,
@@ -90,24 +117,11 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
         normalized.emplace_back(optical.x / optical.z, optical.y / optical.z);
     }
 
-    const cv::Matx33d identity = cv::Matx33d::eye();
-    cv::Mat rvec, tvec;
-    const int flags = solver == PnpSolver::Iterative ? cv::SOLVEPNP_ITERATIVE
-                      : solver == PnpSolver::Ippe    ? cv::SOLVEPNP_IPPE
-                                                     : cv::SOLVEPNP_SQPNP;
-    if (!cv::solvePnP(world, normalized, identity, cv::noArray(), rvec, tvec, false, flags))
-        return makeError(ErrorCode::NoConvergence, "OpenCV's solvePnP found no pose for these points");
-    cv::solvePnPRefineLM(world, normalized, identity, cv::noArray(), rvec, tvec);
-
-    cv::Matx33d r;
-    cv::Rodrigues(rvec, r);
-    glm::dmat3 rotation;
-    for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col)
-            rotation[col][row] = r(row, col);
-    const glm::dvec3 translation(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+    auto pose = solvePnp(world, normalized, solver);
+    if (!pose)
+        return pose.error();
     PoseSolution solution;
-    solution.pose = Pose{kFlipYZ * rotation, kFlipYZ * translation};
+    solution.pose = *pose;
 
     auto solved = Camera::create(solution.pose, camera.projection(), distortion, camera.viewport());
     if (!solved)

@@ -3,6 +3,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <exception>
 #include <string>
 
 #include <sys/epoll.h>
@@ -118,9 +119,30 @@ Status EventLoop::runOnce(int timeoutMs)
         if (found == handlers_.end())
             continue;
         Handler handler = found->second; // a copy: the handler may remove itself
-        handler();
+        dispatch(handler);
     }
     return Ok{};
+}
+
+void EventLoop::dispatch(const Handler &handler)
+{
+    try {
+        handler();
+    } catch (const std::exception &error) {
+        reportFailure(error.what());
+    } catch (...) {
+        reportFailure("an exception that is not a std::exception");
+    }
+}
+
+void EventLoop::reportFailure(const char *what) noexcept
+{
+    try {
+        if (failureLog_)
+            failureLog_(what);
+    } catch (...) {
+        // Out of memory even for the log line: the loop goes on regardless.
+    }
 }
 
 Status EventLoop::run()

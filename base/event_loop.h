@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "base/result.h"
@@ -60,13 +61,19 @@ public:
     Status runOnce(int timeoutMs = -1);
     // Runs until stop() is called from a handler.
     Status run();
+    // Where a handler's exception is reported: it is caught in the loop (a bug in one callback must not end the
+    // daemon), the loop goes on with the next event.
+    void setFailureLog(std::function<void(const std::string &what)> log) { failureLog_ = std::move(log); }
     void stop() { stopped_ = true; }
     bool stopped() const { return stopped_; }
 
 private:
     explicit EventLoop(UniqueFd epoll) : epoll_(std::move(epoll)) {}
+    void dispatch(const Handler &handler);
+    void reportFailure(const char *what) noexcept;
     UniqueFd epoll_;
     std::map<int, Handler> handlers_;
+    std::function<void(const std::string &)> failureLog_;
     bool stopped_ = false;
 };
 

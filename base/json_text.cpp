@@ -1,6 +1,8 @@
 // jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); UTF-8 passes through.
 #include "base/json_text.h"
 
+#include "base/number_text.h"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -15,9 +17,7 @@ std::string jsonString(const std::string &text)
             out += '\\';
             out += c;
         } else if (static_cast<unsigned char>(c) < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof(escaped), "\\u%04x", unsigned(c));
-            out += escaped;
+            out += formatted("\\u%04x", unsigned(c));
         } else {
             out += c;
         }
@@ -29,7 +29,7 @@ std::string jsonNumber(double value)
 {
     if (!std::isfinite(value))
         return "null";
-    char text[32];
+    char text[32]; // the shortest round-trip form of any double is at most 24 characters (-2.2250738585072014e-308)
     const auto result = std::to_chars(text, text + sizeof(text), value);
     return std::string(text, result.ptr);
 }

@@ -1,5 +1,4 @@
-// Camera changes from outside the config file (the HTTP API) read by [camera]'s own readers, and the drop-in file
-// that keeps the live pose across restarts without rewriting the user's file.
+// Camera changes from outside the config file (the HTTP API) read by [camera]'s own readers.
 #pragma once
 
 #include <string>
@@ -18,16 +17,5 @@ inline constexpr size_t kMaxCameraRequestDepth = 8;
 // Refused with "camera.KEY: reason; ..." (every problem, in the config loader's words) when anything is wrong;
 // `calibration` and `frame` are not accepted (they name files and frames of the config file).
 Result<CameraSpec> cameraFromJson(std::string_view json, const CameraSpec &live, unsigned width, unsigned height);
-
-// The drop-in beside a config file that `POST /api/save` writes: "dir/name.toml" -> "dir/name.live.toml". The
-// loader reads its [camera] after the main file: its pose replaces the main file's pose, and its intrinsics (when
-// it has any) the main file's intrinsics form.
-std::string liveDropInPath(const std::string &configPath);
-// The drop-in's text: the pose (position + orientation, exact; yaw/pitch/roll in a comment) and, when
-// withIntrinsics, the fov or pinhole intrinsics (other forms are refused).
-Result<std::string> liveDropInText(const CameraSpec &camera, bool withIntrinsics);
-// Writes that text to liveDropInPath(configPath), whole or not at all (a temporary renamed over it); the path written.
-// An Io error when the file cannot be written.
-Result<std::string> writeLiveDropIn(const std::string &configPath, const CameraSpec &camera, bool withIntrinsics);
 
 } // namespace overlayd

@@ -1,6 +1,7 @@
 // CameraSpec::build: the configured camera, composed through projection/ for one stream size.
 #include "config/camera_spec.h"
 
+#include "base/number_text.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -54,9 +55,7 @@ PinholeIntrinsics calibrated(const PinholeIntrinsics &pinhole, const Viewport &v
 
 std::string number(double value)
 {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
+    return shortNumber(value);
 }
 
 } // namespace

@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "base/regular_file.h"
-#include "config/camera_request.h"
 #include "config/config_sections.h"
 #include "config/limits.h"
+#include "config/live_drop_in.h"
 #include "config/nesting_depth.h"
 
 namespace overlayd {
@@ -163,13 +163,9 @@ Result<DaemonConfig> readRoot(const toml::table &root, const std::string &name, 
     return result;
 }
 
-constexpr std::string_view kIntrinsicsFormKeys[] = {"fov", "fov_axis", "frustum", "pinhole", "window", "orthographic"};
-constexpr std::string_view kPoseFormKeys[] = {"eye",  "target",   "gaze",        "up",   "prp", "vpn",
-                                              "vup",  "position", "orientation", "axes", "yaw", "pitch",
-                                              "roll", "rvec",     "tvec",        "rmat"};
-
 // The drop-in's [camera] over the main file's: its pose replaces every pose key, its intrinsics form (if any)
-// every intrinsics form key; anything else in it is read as given (and judged by the same readers).
+// every intrinsics form key (and a calibration file, unless the form is pinhole, whose keys are read over the
+// calibration's); anything else in it is read as given (and judged by the same readers).
 void mergeDropIn(toml::table &root, toml::table &dropIn)
 {
     toml::table *from = dropIn["camera"].as_table();
@@ -190,8 +186,11 @@ void mergeDropIn(toml::table &root, toml::table &dropIn)
                 return;
             }
     };
-    replaces(kPoseFormKeys);
+    replaces(kPoseKeys);
     replaces(kIntrinsicsFormKeys);
+    for (std::string_view key : kIntrinsicsFormKeys)
+        if (key != "pinhole" && key != "fov_axis" && from->contains(key))
+            into->erase("calibration");
     for (auto &&[key, value] : *from)
         into->insert_or_assign(key, std::move(value));
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "config/daemon_config.h"
@@ -9,11 +10,21 @@
 
 namespace overlayd::config {
 
+class SceneImages;
+
 // Where the camera's parts came from, so that errors found when composing the Camera land on the right key.
 struct CameraKeys {
     std::string intrinsics = "fov"; // the key of the intrinsics form in [camera]
     bool hasDistortion = false;
 };
+
+// Every key of the pose forms, and of the intrinsics forms: the drop-in's pose or intrinsics form replaces all of
+// the main file's (config_loader.cpp), a request with any pose key is a new pose (camera_request.cpp).
+inline constexpr std::string_view kPoseKeys[] = {"eye",  "target",   "gaze",        "up",   "prp", "vpn",
+                                                 "vup",  "position", "orientation", "axes", "yaw", "pitch",
+                                                 "roll", "rvec",     "tvec",        "rmat"};
+inline constexpr std::string_view kIntrinsicsFormKeys[] = {"fov",     "fov_axis", "frustum",
+                                                           "pinhole", "window",   "orthographic"};
 
 // A relative path resolved against the config file's folder.
 std::string resolvePath(const std::string &baseDirectory, const std::string &path);
@@ -40,10 +51,11 @@ std::optional<glm::dquat> readRotation(TableReader &table, std::string_view quat
 
 void readFrames(TableReader &root, std::vector<FrameSpec> &out);
 void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out);
-void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, Shape &out);
+void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, SceneImages &images,
+               Shape &out);
 Shape readFrustumShape(TableReader &table, const std::string &baseDirectory);
-// type = "image": decodes the file (relative to the config's folder).
-Shape readImageShape(TableReader &table, const std::string &baseDirectory);
+// type = "image": the file (relative to the config's folder), decoded once per scene by `images`.
+Shape readImageShape(TableReader &table, const std::string &baseDirectory, SceneImages &images);
 std::optional<Style> readStyle(TableReader &style, const Style &base);
 
 } // namespace overlayd::config

@@ -1,86 +1,18 @@
-// type = "image": the file is decoded here, at load time (check-config decodes it too, so a file run would refuse
-// is refused there), by media/codec (libpng, libjpeg-turbo): grey, palette, RGB or RGBA, 1 to 16 bits per channel,
-// into premultiplied RGBA. The file's size is checked before it is read and the header's image size before any pixel
-// is decoded.
+// type = "image": the file is decoded at load time by SceneImages (check-config decodes it too, so a file run would
+// refuse is refused there); here, where and how large it is drawn.
 #include "config/config_sections.h"
 
-#include <memory>
-#include <optional>
 #include <string>
-#include <vector>
 
-#include "base/regular_file.h"
-#include "media/codec/image_codec.h"
+#include "config/scene_images.h"
 
 namespace overlayd::config {
 
-namespace {
-
-constexpr size_t kMaxImageFileBytes = 16u << 20;
-constexpr unsigned kMaxImageSide = 4096;
-
-// The file's bytes, after its kind and size were checked; nullopt (with the problem recorded) when it cannot be read.
-std::optional<std::vector<uint8_t>> readImageFile(TableReader &table, const std::string &path)
-{
-    auto file = readRegularFileBytes(path, kMaxImageFileBytes);
-    if (!file) {
-        table.problem("path", "the image " + path + " " + file.error().message);
-        return std::nullopt;
-    }
-    return std::move(*file);
-}
-
-// Straight RGBA to premultiplied, each colour times alpha / 255, rounded.
-std::shared_ptr<const ImagePixels> premultiplied(const DecodedImage &decoded)
-{
-    auto image = std::make_shared<ImagePixels>();
-    image->width = decoded.width;
-    image->height = decoded.height;
-    image->rgba.resize(decoded.pixels.size());
-    const uint8_t *in = decoded.pixels.data();
-    uint8_t *out = image->rgba.data();
-    for (size_t i = 0; i < decoded.pixels.size(); i += 4) {
-        const unsigned a = in[i + 3];
-        for (size_t c = 0; c < 3; ++c)
-            out[i + c] = uint8_t((in[i + c] * a + 127) / 255);
-        out[i + 3] = uint8_t(a);
-    }
-    return image;
-}
-
-std::shared_ptr<const ImagePixels> loadImage(TableReader &table, const std::string &path)
-{
-    const auto file = readImageFile(table, path);
-    if (!file)
-        return nullptr;
-    const auto undecodable = [&](const Error &error) {
-        table.problem("path",
-                      "the image " + path + " is not a PNG or JPEG that can be decoded (" + error.message + ")");
-        return nullptr;
-    };
-    // The header first: an image too large is refused before its pixels are allocated.
-    const auto info = readImageInfo(*file);
-    if (!info)
-        return undecodable(info.error());
-    if (info->width > kMaxImageSide || info->height > kMaxImageSide) {
-        table.problem("path", "the image " + path + " is " + std::to_string(info->width) + "x" +
-                                  std::to_string(info->height) + "; at most " + std::to_string(kMaxImageSide) +
-                                  " pixels a side");
-        return nullptr;
-    }
-    const auto decoded = decodeImage(*file, ImageChannels::Rgba, kMaxImageSide);
-    if (!decoded)
-        return undecodable(decoded.error());
-    return premultiplied(*decoded);
-}
-
-} // namespace
-
-Shape readImageShape(TableReader &table, const std::string &baseDirectory)
+Shape readImageShape(TableReader &table, const std::string &baseDirectory, SceneImages &images)
 {
     ImageShape s;
     if (auto path = table.string("path"); path && !path->empty())
-        s.image = loadImage(table, resolvePath(baseDirectory, *path));
+        s.image = images.load(table, resolvePath(baseDirectory, *path));
     else if (path)
         table.problem("path", "an empty path");
     else

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "base/utf8.h"
 #include "config/limits.h"
 #include "overlay/shapes/scene_checks.h"
 
@@ -159,6 +160,8 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
         if (const std::string problem = inputs::canLayoutProblem(layout); !problem.empty())
             table.problem("start_bit", problem);
     out.unit = table.string("unit").value_or("");
+    if (const auto problem = outsideTextProblem(out.unit))
+        table.problem("unit", *problem + " (the unit is shown on one line)");
     out.min = table.number("min", -kMaxCanValue, kMaxCanValue).value_or(out.min);
     out.max = table.number("max", -kMaxCanValue, kMaxCanValue).value_or(out.max);
     if (out.min >= out.max)
@@ -169,6 +172,8 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
     out.staleText = table.string("stale_text").value_or(out.staleText);
     if (out.staleText.size() > inputs::kMaxTextBytes)
         table.problem("stale_text", "at most " + std::to_string(inputs::kMaxTextBytes) + " bytes");
+    else if (const auto problem = outsideTextProblem(out.staleText))
+        table.problem("stale_text", *problem + " (the text is shown on one line)");
     readCanTarget(table, scene, slots, fed, out.target);
     if (out.name.empty())
         out.name = out.interface + ":" + std::to_string(out.id.id);

@@ -118,7 +118,7 @@ void readCalibrationCrop(TableReader &camera, CameraSpec &out)
 void readForm(TableReader &camera, std::string_view key, CameraSpec &out)
 {
     if (key == "fov") {
-        if (auto fov = camera.positive("fov", 180.0))
+        if (auto fov = camera.number("fov", kMinFovDeg, 180.0))
             out.fovDeg = *fov;
         if (auto axis = camera.choice<FovAxis>("fov_axis",
                                                {{"vertical", FovAxis::Vertical}, {"horizontal", FovAxis::Horizontal}}))

@@ -1,4 +1,4 @@
-// parseJsonBody: nlohmann's exceptions become a Malformed error.
+// parseJsonBody: nlohmann's exceptions become a Malformed error; writeJson: nlohmann never throws for bad text.
 #include "config/json_body.h"
 
 namespace overlayd {
@@ -10,6 +10,11 @@ Result<nlohmann::json> parseJsonBody(std::string_view text)
     } catch (const nlohmann::json::exception &error) {
         return makeError(ErrorCode::Malformed, std::string("the body is not JSON: ") + error.what());
     }
+}
+
+std::string writeJson(const nlohmann::json &value)
+{
+    return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 } // namespace overlayd

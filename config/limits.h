@@ -19,8 +19,16 @@ inline constexpr size_t kMaxCoefficients = 16;  // lists of numbers with a fixed
 inline constexpr size_t kMaxTextBytes = 1024; // a label's or a text annotation's text
 inline constexpr size_t kMaxNameBytes = 256;  // names of annotations, frames, layers
 
-// Numbers with a range of their own (every other number: kMaxMagnitude in toml_reader.h).
+// Image annotations: each file, and what all of a scene's image annotations decode to together (4 images of 4096 x
+// 4096 RGBA; a file named by several annotations is decoded once but counts for each, as each is drawn from it).
+inline constexpr size_t kMaxImageFileBytes = 16u << 20; // an image annotation's file
+inline constexpr unsigned kMaxImageSide = 4096;         // its width and height, from the header
+inline constexpr size_t kMaxSceneImageBytes = 256u << 20;
+
+// Numbers with a range of their own (every other number: kMaxMagnitude in base/number_range.h).
 inline constexpr double kMaxFar = 1e9;                  // camera.far, metres ("inf" where the model allows it)
+inline constexpr double kMinFovDeg = 0.01;              // camera.fov, degrees: the narrowest telescope; below, the
+                                                        // focal length is no longer a number (inf at 1e-300)
 inline constexpr double kMinScale = 1e-6;               // |frame.scale| per axis
 inline constexpr double kMaxViewportCoordinate = 65536; // viewport window/scissor x, y, width, height (pixels)
 inline constexpr double kMaxCanValue = 1e15;        // input.can scale, offset, min, max, step: a 64-bit signal's values

@@ -30,10 +30,6 @@ constexpr PoseFormInfo kPoseForms[] = {
     {PoseForm::Rt, "rmat/tvec", {"rmat"}, {"rmat", "tvec"}},
 };
 
-constexpr std::string_view kAllPoseKeys[] = {"eye",  "target",   "gaze",        "up",   "prp", "vpn",
-                                             "vup",  "position", "orientation", "axes", "yaw", "pitch",
-                                             "roll", "rvec",     "tvec",        "rmat"};
-
 bool uses(const PoseFormInfo &info, std::string_view key)
 {
     return std::find(info.keys.begin(), info.keys.end(), key) != info.keys.end();
@@ -182,7 +178,7 @@ std::string_view blamedKey(TableReader &camera, const PoseFormInfo &info, const 
 bool readPose(TableReader &camera, Pose &out)
 {
     const PoseFormInfo *info = chooseForm(camera);
-    for (std::string_view key : kAllPoseKeys)
+    for (std::string_view key : kPoseKeys)
         if (camera.has(key) && info && !uses(*info, key))
             camera.problem(key, std::string("does not belong to the ") + info->name + " pose form in use");
     if (!info)

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "config/limits.h"
+#include "config/scene_images.h"
 #include "overlay/shapes/scene_checks.h"
 
 namespace overlayd::config {
@@ -89,6 +90,7 @@ std::optional<Style> readStyle(TableReader &style, const Style &base)
 void readAnnotations(TableReader &root, const std::string &baseDirectory, std::vector<Annotation> &out)
 {
     size_t index = 0;
+    SceneImages images;
     for (TableReader &table : root.tables("annotation", kMaxAnnotations)) {
         const size_t before = table.problems().size();
         Annotation annotation;
@@ -99,14 +101,16 @@ void readAnnotations(TableReader &root, const std::string &baseDirectory, std::v
             annotation.style = readStyle(*style, Style{}).value_or(Style{});
         const auto type = table.string("type");
         if (type)
-            readShape(table, *type, baseDirectory, annotation.shape);
+            readShape(table, *type, baseDirectory, images, annotation.shape);
         else if (!table.has("type"))
             table.problem("type", "missing: axes | grid | polyline | markers | box | arc | label | horizon | "
                                   "guide-lines | frustum | text | crosshair | rect");
         table.finish();
         // The renderer's own rules, run here so that check-config refuses what run would, at the key; only for an
-        // annotation read without problems (a refused value was left at its default, and one report is enough).
-        if (table.problems().size() == before)
+        // annotation read without problems (a refused value was left at its default, and one report is enough), and
+        // not for an image after the one that took the scene past its images' total (that one was reported).
+        const auto *image = std::get_if<ImageShape>(&annotation.shape);
+        if (table.problems().size() == before && !(image && images.full()))
             if (const auto problem = checkAnnotation(annotation))
                 table.problemAtPath(problem->key, problem->message);
         out.push_back(std::move(annotation));

@@ -169,7 +169,8 @@ struct ShapeReader {
 
 } // namespace
 
-void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, Shape &out)
+void readShape(TableReader &table, const std::string &type, const std::string &baseDirectory, SceneImages &images,
+               Shape &out)
 {
     if (type == "frustum") { // its camera may name a calibration file, relative to the config's folder
         requireKeys(table, {"camera"}, type);
@@ -177,7 +178,7 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
         return;
     }
     if (type == "image") {
-        out = readImageShape(table, baseDirectory);
+        out = readImageShape(table, baseDirectory, images);
         return;
     }
     static const ShapeReader kReaders[] = {

@@ -3,27 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
+
+#include "base/utf8.h"
 
 namespace overlayd::config {
-
-namespace {
-
-// Limits print short (1e+06); a value given prints with every digit a user may have typed (2147483000).
-std::string show(double value, int precision = 6)
-{
-    std::ostringstream out;
-    out << std::setprecision(precision) << value;
-    return out.str();
-}
-
-} // namespace
-
-std::string Range::describe() const
-{
-    return (minOpen ? "(" : "[") + show(min) + ", " + show(max) + "]";
-}
 
 const char *typeName(const toml::node &node)
 {
@@ -116,7 +99,7 @@ std::optional<double> TableReader::numberFrom(const toml::node &n, const std::st
     }
     // A large finite value is out of range like inf is: the message gives the range either way.
     if (!range.contains(*value)) {
-        problemAt(n, path, "out of range: must be in " + range.describe() + " (got " + show(*value, 15) + ")");
+        problemAt(n, path, range.refusal(*value));
         return std::nullopt;
     }
     return value;
@@ -170,12 +153,18 @@ std::optional<std::string> TableReader::string(std::string_view key, size_t maxB
     if (!n)
         return std::nullopt;
     if (const auto *s = n->as_string()) {
-        if (s->get().size() <= maxBytes)
-            return s->get();
-        problemAt(*n, keyPath(key),
-                  "too long: at most " + std::to_string(maxBytes) + " bytes (got " + std::to_string(s->get().size()) +
-                      ")");
-        return std::nullopt;
+        if (s->get().size() > maxBytes) {
+            problemAt(*n, keyPath(key),
+                      "too long: at most " + std::to_string(maxBytes) + " bytes (got " +
+                          std::to_string(s->get().size()) + ")");
+            return std::nullopt;
+        }
+        // toml++ has checked the UTF-8; an escape such as "\u0007" still makes a control character.
+        if (const auto problem = outsideTextProblem(s->get(), kConfigStringControls)) {
+            problemAt(*n, keyPath(key), *problem);
+            return std::nullopt;
+        }
+        return s->get();
     }
     problemAt(*n, keyPath(key), std::string("expected a string, got ") + typeName(*n));
     return std::nullopt;

@@ -16,27 +16,16 @@
 #include <glm/vec3.hpp>
 #include <toml++/toml.h>
 
+#include "base/number_range.h"
 #include "config/problems.h"
 #include "media/rgba.h"
 
 namespace overlayd::config {
 
-// Every number a config gives must lie in a range; without a narrower one, this (metres of a position or a size,
-// pixels, coefficients): 1000 km. Beyond it a value is a typing mistake, and products of such values (a frame
-// chain, a projection) lose every digit or overflow to inf.
-inline constexpr double kMaxMagnitude = 1e6;
-
-// [min, max], or (min, max] when minOpen (sizes, fps, focal lengths: > 0).
-struct Range {
-    double min = -kMaxMagnitude;
-    double max = kMaxMagnitude;
-    bool minOpen = false;
-    bool contains(double value) const { return (minOpen ? value > min : value >= min) && value <= max; }
-    std::string describe() const;
-};
-inline constexpr Range kAnyMagnitude{};
 // The longest string without a narrower limit (paths: Linux's PATH_MAX).
 inline constexpr size_t kMaxStringBytes = 4096;
+// The control characters a config string may hold (a multi-line text); any other is refused.
+inline constexpr std::string_view kConfigStringControls = "\t\n\r";
 
 class TableReader
 {

@@ -1,5 +1,6 @@
 #include "daemon/can_inputs.h"
 
+#include "base/number_text.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,9 +11,8 @@ namespace {
 
 std::string formatValue(double value, int decimals, const std::string &unit)
 {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*f", decimals, value);
-    return unit.empty() ? std::string(text) : std::string(text) + " " + unit;
+    const std::string text = formatted("%.*f", decimals, value);
+    return unit.empty() ? text : text + " " + unit;
 }
 
 } // namespace
@@ -45,7 +45,9 @@ void CanInputs::configure(const std::vector<inputs::CanInputOptions> &options)
             next.push_back(std::move(*same));
             same->options.name.clear(); // taken
         } else {
-            next.push_back(Input{option, std::nullopt, {}, {}, std::nullopt, false});
+            inputs::InputHealth health("can", option.name, option.interface, inputs::InputHealth::State::Waiting,
+                                       Clock::now());
+            next.push_back(Input{option, std::nullopt, {}, {}, std::nullopt, false, std::move(health)});
         }
     }
     inputs_ = std::move(next);
@@ -108,14 +110,17 @@ void CanInputs::open(size_t input, Clock::time_point now)
     in.nextOpen = now + kRetry;
     auto socket = inputs::CanSocket::open(in.options.interface, in.options.id);
     if (!socket) {
-        if (socket.error().message != in.reading.error) // once per new reason, not every second
+        if (socket.error().message != in.reading.error) { // once per new reason, not every second
             logger_.warning(cat("input.can '", in.options.name, "': ", socket.error().message, " (retrying)"));
+            in.health.fail(socket.error().message);
+        }
         in.reading.error = socket.error().message;
         return;
     }
     in.socket = std::move(*socket);
     in.reading.connected = true;
     in.reading.error.clear();
+    in.health.enter(inputs::InputHealth::State::Following, now);
     logger_.info(cat("input.can '", in.options.name, "': reading ", in.options.interface));
     wire(input, true);
 }
@@ -127,6 +132,8 @@ void CanInputs::close(size_t input, const std::string &why, Clock::time_point no
     in.socket.reset();
     in.reading.connected = false;
     in.reading.error = why;
+    in.health.enter(inputs::InputHealth::State::Waiting, now);
+    in.health.fail(why);
     in.nextOpen = now + kRetry;
     logger_.warning(cat("input.can '", in.options.name, "': ", why, " (retrying)"));
 }
@@ -205,6 +212,14 @@ void CanInputs::show(size_t input, bool force)
         logger_.info(cat("input.can '", in.options.name, "': ", stateName(in.reading.state)));
     in.shown = value;
     in.everShown = true;
+}
+
+std::vector<inputs::InputHealth> CanInputs::health() const
+{
+    std::vector<inputs::InputHealth> out;
+    for (const Input &in : inputs_)
+        out.push_back(in.health);
+    return out;
 }
 
 std::string CanInputs::describe(Clock::time_point now) const

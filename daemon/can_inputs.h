@@ -13,6 +13,7 @@
 #include "base/logger.h"
 #include "daemon/scene_control.h"
 #include "inputs/can_socket.h"
+#include "inputs/input_health.h"
 #include "inputs/input_options.h"
 
 namespace overlayd {
@@ -53,6 +54,8 @@ public:
     const inputs::CanInputOptions &options(size_t input) const { return inputs_[input].options; }
     const Reading &reading(size_t input) const { return inputs_[input].reading; }
     static const char *stateName(State state);
+    // Each input's health: following while its socket is open, waiting while the interface is missing or down.
+    std::vector<inputs::InputHealth> health() const;
     // "steering=40.0 deg ok, ..." for the stats log line.
     std::string describe(Clock::time_point now) const;
 
@@ -64,6 +67,7 @@ private:
         Clock::time_point nextOpen;
         std::optional<double> shown; // what the target shows (nullopt: unknown); unset before the first show
         bool everShown = false;
+        inputs::InputHealth health;
     };
     void open(size_t input, Clock::time_point now);
     void close(size_t input, const std::string &why, Clock::time_point now);

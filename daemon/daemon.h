@@ -69,9 +69,13 @@ public:
     const GpioControl &gpio() const override { return gpio_; }
     GpioControl &gpio() { return gpio_; }
     const TextInputs &textInputs() const override { return textInputs_; }
+    TextInputs &textInputs() { return textInputs_; }
     const PathInputs &pathInputs() const override { return pathInputs_; }
+    PathInputs &pathInputs() { return pathInputs_; }
     const CanInputs &canInputs() const override { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
+    // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
+    std::vector<inputs::InputHealth> inputHealth() const override;
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }

@@ -15,6 +15,8 @@ int Daemon::run()
         return 1;
     }
     loop_ = &*loop;
+    loop->setFailureLog(
+        [this](const std::string &what) { logger_.error("event loop: a handler failed and was skipped: " + what); });
     (void)loop->add(signals_->fd(), [this] {
         while (const int signal = signals_->read()) {
             if (signal == SIGHUP) {

@@ -2,6 +2,8 @@
 // daemon. Daemon implements it; the API changes the scene only through SceneControl.
 #pragma once
 
+#include <vector>
+
 #include "config/daemon_config.h"
 #include "daemon/can_inputs.h"
 #include "daemon/gpio_control.h"
@@ -9,6 +11,7 @@
 #include "daemon/pipeline.h"
 #include "daemon/source_supervisor.h"
 #include "daemon/text_inputs.h"
+#include "inputs/input_health.h"
 
 namespace overlayd {
 
@@ -24,6 +27,8 @@ public:
     virtual const TextInputs &textInputs() const = 0;
     virtual const PathInputs &pathInputs() const = 0;
     virtual const CanInputs &canInputs() const = 0;
+    // Every live input's health, whatever its kind: what /state and /metrics report of the inputs.
+    virtual std::vector<inputs::InputHealth> inputHealth() const = 0;
 
 protected:
     ~DaemonStatus() = default;

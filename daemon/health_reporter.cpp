@@ -1,6 +1,7 @@
 // HealthReporter: the readiness, watchdog and STATUS= rules, and the stats line.
 #include "daemon/health_reporter.h"
 
+#include "base/number_text.h"
 #include <cstdio>
 
 namespace overlayd {
@@ -54,9 +55,7 @@ void HealthReporter::onWatchdog(bool streaming, bool reconnecting, const StreamF
     ++idleWatchdogTicks_;
     const auto interval = notifier_.watchdogInterval().value_or(std::chrono::microseconds(0));
     const double idleSec = double(idleWatchdogTicks_) * double(interval.count()) * 1e-6;
-    char line[160];
-    std::snprintf(line, sizeof(line), "stalled: no frame from %s for %.1f s", source.c_str(), idleSec);
-    notifier_.status(line);
+    notifier_.status(formatted("stalled: no frame from %s for %.1f s", source.c_str(), idleSec));
 }
 
 } // namespace overlayd

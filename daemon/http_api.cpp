@@ -3,14 +3,20 @@
 #include "daemon/http_api.h"
 
 #include <charconv>
+#include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "alignment/point_queries.h"
+#include "base/number_range.h"
+#include "base/number_text.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
+#include "config/live_drop_in.h"
 #include "drivers/source_kind_names.h"
+#include "inputs/input_health.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
 
@@ -73,6 +79,31 @@ json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
                              {"vfov", glm::degrees(2.0 * std::atan(height / (2.0 * fy)))}};
     }
     return out;
+}
+
+// A wall-clock time as ISO 8601 UTC with milliseconds: "2026-11-27T11:43:25.123Z".
+std::string utcTime(std::chrono::system_clock::time_point time)
+{
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(time.time_since_epoch()).count();
+    const std::time_t seconds = std::time_t(ms / 1000);
+    std::tm utc{};
+    ::gmtime_r(&seconds, &utc);
+    char text[32]; // "YYYY-MM-DDTHH:MM:SS" is 19 characters for any year strftime can print in 4 digits
+    const size_t length = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+    return std::string(text, length) + formatted(".%03dZ", int(ms % 1000));
+}
+
+// One input's health, the same fields for every kind of input.
+json inputHealthJson(const inputs::InputHealth &input, std::chrono::steady_clock::time_point now)
+{
+    return {{"kind", input.kind},
+            {"name", input.name},
+            {"source", input.source},
+            {"state", inputs::inputStateName(input.state)},
+            {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
+            {"errors", input.errors},
+            {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
+            {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}};
 }
 
 // Numbers separated by ',' ';' or spaces: "x,y,z;x,y,z".
@@ -189,12 +220,16 @@ HttpResponse HttpApi::state()
         out["gpio"] = status_.gpio().describe();
     json inputs = json::array();
     const auto now = std::chrono::steady_clock::now();
-    for (const TextInputs::Reading &reading : status_.textInputs().readings())
-        inputs.push_back({{"kind", "text"},
-                          {"slot", reading.slot},
-                          {"file", reading.file},
-                          {"value", reading.text},
-                          {"age_s", std::chrono::duration<double>(now - reading.changed).count()}});
+    for (const TextInputs::Reading &reading : status_.textInputs().readings()) {
+        json entry = {{"kind", "text"},
+                      {"slot", reading.slot},
+                      {"file", reading.file},
+                      {"value", reading.text},
+                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
+        if (!reading.error.empty())
+            entry["error"] = reading.error;
+        inputs.push_back(std::move(entry));
+    }
     for (const PathInputs::Reading &reading : status_.pathInputs().readings()) {
         json entry = {{"kind", "path"},
                       {"annotation", reading.annotation},
@@ -231,7 +266,12 @@ HttpResponse HttpApi::state()
     }
     if (!inputs.empty())
         out["inputs"] = inputs;
-    return HttpResponse::json(200, out.dump());
+    json health = json::array();
+    for (const inputs::InputHealth &input : status_.inputHealth())
+        health.push_back(inputHealthJson(input, now));
+    if (!health.empty())
+        out["input_health"] = health;
+    return HttpResponse::json(200, writeJson(out));
 }
 
 HttpResponse HttpApi::metrics()
@@ -242,7 +282,7 @@ HttpResponse HttpApi::metrics()
                                 const std::string &labels = {}) {
         if (labels.empty() || text.find(std::string("# TYPE ") + name + " ") == std::string::npos)
             text += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
-        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + json(value).dump() + "\n";
+        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + writeJson(json(value)) + "\n";
     };
     metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
@@ -253,7 +293,7 @@ HttpResponse HttpApi::metrics()
            status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
     for (const auto &sink : status_.pipeline().sinks()) {
         const SinkCounters counters = sink->counters();
-        std::string label = "sink=" + json(sink->describe()).dump();
+        std::string label = "sink=" + writeJson(json(sink->describe()));
         metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
         metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
                label);
@@ -262,7 +302,7 @@ HttpResponse HttpApi::metrics()
     }
     const CanInputs &can = status_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
-        const std::string label = "input=" + json(can.options(i).name).dump();
+        const std::string label = "input=" + writeJson(json(can.options(i).name));
         const CanInputs::Reading &reading = can.reading(i);
         metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames), label);
         metric("overlayd_can_malformed_total", "counter", "CAN frames too short for the signal (ignored).",
@@ -270,6 +310,18 @@ HttpResponse HttpApi::metrics()
         metric("overlayd_can_value_valid", "gauge", "1 while the signal's value is fresh and in range.",
                reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
     }
+    // One loop per metric: a family's samples stay together, as the text format wants.
+    const std::vector<inputs::InputHealth> inputHealth = status_.inputHealth();
+    const auto inputLabel = [](const inputs::InputHealth &input) {
+        return "kind=" + writeJson(json(input.kind)) + ",input=" + writeJson(json(input.name));
+    };
+    for (const inputs::InputHealth &input : inputHealth)
+        metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
+               input.state == inputs::InputHealth::State::Following ? 1.0 : 0.0, inputLabel(input));
+    for (const inputs::InputHealth &input : inputHealth)
+        metric("overlayd_input_errors_total", "counter",
+               "Errors an input met (its folder or interface gone, a version refused).", double(input.errors),
+               inputLabel(input));
     metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
     metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
     metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));
@@ -289,14 +341,9 @@ HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
     auto spec = cameraFromJson(request.body, scene.camera(), width, height);
     if (!spec)
         return HttpResponse::error(400, spec.error().message);
-    // Anything but the pose changed: save writes the intrinsics too.
-    CameraSpec samePose = *spec;
-    samePose.pose = scene.camera().pose;
-    const bool intrinsicsChange = !(samePose == scene.camera());
     if (auto applied = scene.apply(CameraChange{*spec}); !applied)
         return HttpResponse::error(400, "camera: " + applied.error().message);
-    intrinsicsChanged_ = intrinsicsChanged_ || intrinsicsChange;
-    return HttpResponse::json(200, cameraJson(scene.camera(), scene.cameraFor(width, height)).dump());
+    return HttpResponse::json(200, writeJson(cameraJson(scene.camera(), scene.cameraFor(width, height))));
 }
 
 HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest &request)
@@ -313,7 +360,7 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
     const bool visible = (*body)["visible"].get<bool>();
     if (auto applied = scene.apply(LayerChange{layer, visible}); !applied)
         return HttpResponse::error(400, applied.error().message);
-    return HttpResponse::json(200, json({{"name", layer}, {"visible", visible}}).dump());
+    return HttpResponse::json(200, writeJson(json({{"name", layer}, {"visible", visible}})));
 }
 
 HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &request)
@@ -329,7 +376,7 @@ HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &
     const std::string text = (*body)["text"].get<std::string>();
     if (auto applied = scene_.apply(TextChange{slot, text}); !applied)
         return HttpResponse::error(400, "text: " + applied.error().message);
-    return HttpResponse::json(200, json({{"slot", slot}, {"text", text}}).dump());
+    return HttpResponse::json(200, writeJson(json({{"slot", slot}, {"text", text}})));
 }
 
 HttpResponse HttpApi::project(const http::HttpRequest &request)
@@ -339,6 +386,8 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
     if (!numbers || numbers->empty() || numbers->size() % 3 != 0 || numbers->size() / 3 > kMaxApiPoints)
         return HttpResponse::error(400, "points: expected x,y,z;x,y,z;... (at most " + std::to_string(kMaxApiPoints) +
                                             " finite points)");
+    if (const std::string why = numbersRefusal(*numbers, {"x", "y", "z"}, "point", kAnyMagnitude); !why.empty())
+        return HttpResponse::error(400, "points: " + why);
     const StreamFormat &format = status_.pipeline().format();
     auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
@@ -358,12 +407,17 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
     if (!pixels || !pixels->is_array() || pixels->empty() || pixels->size() > kMaxApiPoints)
         return HttpResponse::error(400, "pixels: expected {\"pixels\": [[u, v], ...]} with 1 to " +
                                             std::to_string(kMaxApiPoints) + " pixels");
-    std::vector<glm::dvec2> uv;
+    std::vector<double> numbers;
     for (const json &pixel : *pixels) {
         if (!pixel.is_array() || pixel.size() != 2 || !pixel[0].is_number() || !pixel[1].is_number())
             return HttpResponse::error(400, "pixels: each pixel is [u, v], two numbers");
-        uv.emplace_back(pixel[0].get<double>(), pixel[1].get<double>());
+        numbers.insert(numbers.end(), {pixel[0].get<double>(), pixel[1].get<double>()});
     }
+    if (const std::string why = numbersRefusal(numbers, {"u", "v"}, "pixel", kAnyMagnitude); !why.empty())
+        return HttpResponse::error(400, "pixels: " + why);
+    std::vector<glm::dvec2> uv;
+    for (size_t i = 0; i < numbers.size(); i += 2)
+        uv.emplace_back(numbers[i], numbers[i + 1]);
     const StreamFormat &format = status_.pipeline().format();
     auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
@@ -373,10 +427,12 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
 
 HttpResponse HttpApi::save()
 {
-    auto written = writeLiveDropIn(status_.config().path, scene_.camera(), intrinsicsChanged_);
+    // The whole live camera, merged into what the drop-in holds: a save after a restart keeps what an earlier save
+    // wrote, and the saved config projects as the live camera does.
+    auto written = writeLiveDropIn(status_.config().path, scene_.camera(), "POST /api/save");
     if (!written)
-        return HttpResponse::error(written.error().code == ErrorCode::Io ? 500 : 400, written.error().message);
-    return HttpResponse::json(200, json({{"saved", *written}}).dump());
+        return HttpResponse::error(500, written.error().message);
+    return HttpResponse::json(200, writeJson(json({{"saved", *written}})));
 }
 
 } // namespace overlayd

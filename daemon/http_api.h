@@ -36,7 +36,6 @@ private:
     const DaemonStatus &status_;
     std::function<http::HttpCounters()> counters_;
     const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-    bool intrinsicsChanged_ = false; // save writes intrinsics only when the API changed them
     // fps measured between two samples at least a second apart
     std::chrono::steady_clock::time_point sampleTime_ = started_;
     uint64_t sampleFrames_ = 0;

@@ -8,15 +8,17 @@ Status PathInputs::configure(const std::vector<inputs::PathInputOptions> &option
 {
     std::vector<inputs::TextFileWatch> watches;
     std::vector<Reading> readings;
+    std::vector<std::string> names;
     for (const inputs::PathInputOptions &input : options) {
         auto watch = inputs::TextFileWatch::open(input.file, inputs::kMaxPathFileBytes,
                                                  inputs::TextFileWatch::Reread::WhenComplete);
         if (!watch)
             return makeError(watch.error().code, "input.path '" + input.annotation + "': " + watch.error().message);
         watches.push_back(std::move(*watch));
+        names.push_back(input.annotation);
         readings.push_back({input.annotation, input.file, 0, {}, {}});
     }
-    files_.replace(std::move(watches));
+    files_.replace(std::move(watches), names);
     readings_ = std::move(readings);
     return Ok{};
 }
@@ -40,6 +42,7 @@ void PathInputs::show(size_t input)
     Status applied = points ? scene_.apply(PointsChange{reading.annotation, *points}) : Status(points.error());
     if (!applied) {
         reading.error = applied.error().message;
+        files_.fail(input, reading.error);
         logger_.warning(cat("input.path '", reading.annotation, "': ", reading.error, " (the points shown stay)"));
         return;
     }

@@ -19,7 +19,7 @@ class PathInputs
 {
 public:
     PathInputs(Logger &logger, SceneControl &scene)
-        : logger_(logger), scene_(scene), files_([this](size_t input) { show(input); })
+        : logger_(logger), scene_(scene), files_(logger, "path", [this](size_t input) { show(input); })
     {}
 
     // Watches every file (replacing the previous watches); showAll() then shows what each holds (after a reload's
@@ -37,6 +37,8 @@ public:
         std::chrono::steady_clock::time_point changed; // when the points shown last changed
     };
     const std::vector<Reading> &readings() const { return readings_; }
+    // Each input's health: following its file or waiting for its folder, and its last error.
+    const std::vector<inputs::InputHealth> &health() const { return files_.health(); }
 
 private:
     void show(size_t input);

@@ -1,6 +1,7 @@
 // Pipeline: the per-frame path and its statistics.
 #include "daemon/pipeline.h"
 
+#include "base/number_text.h"
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -16,9 +17,7 @@ double millis(std::chrono::nanoseconds total, uint64_t count)
 
 std::string fixed(double value, int decimals)
 {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-    return text;
+    return formatted("%.*f", decimals, value);
 }
 
 SinkCounters operator-(const SinkCounters &a, const SinkCounters &b)

@@ -1,6 +1,7 @@
 // SourceSupervisor while the source is down: back-off retries, NO SIGNAL frames, and what systemd is told meanwhile.
 #include "daemon/source_supervisor.h"
 
+#include "base/number_text.h"
 #include <cstdio>
 
 namespace overlayd {
@@ -9,9 +10,7 @@ namespace {
 
 std::string seconds(std::chrono::milliseconds delay)
 {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g s", double(delay.count()) / 1000.0);
-    return text;
+    return shortNumber(double(delay.count()) / 1000.0) + " s";
 }
 
 } // namespace

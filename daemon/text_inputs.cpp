@@ -6,14 +6,16 @@ Status TextInputs::configure(const std::vector<inputs::TextInputOptions> &option
 {
     std::vector<inputs::TextFileWatch> watches;
     std::vector<Reading> readings;
+    std::vector<std::string> names;
     for (const inputs::TextInputOptions &input : options) {
         auto watch = inputs::TextFileWatch::open(input.file, input.maxBytes);
         if (!watch)
             return makeError(watch.error().code, "input.text '" + input.slot + "': " + watch.error().message);
         watches.push_back(std::move(*watch));
-        readings.push_back({input.slot, input.file, {}, {}});
+        names.push_back(input.slot);
+        readings.push_back({input.slot, input.file, {}, {}, {}});
     }
-    files_.replace(std::move(watches));
+    files_.replace(std::move(watches), names);
     readings_ = std::move(readings);
     showAll();
     return Ok{};
@@ -29,12 +31,16 @@ void TextInputs::show(size_t input)
 {
     Reading &reading = readings_[input];
     std::string text = files_[input].read();
-    if (text == reading.text && reading.changed != std::chrono::steady_clock::time_point{})
-        return; // a write that changed nothing the slot shows
+    if (text == reading.text && reading.changed != std::chrono::steady_clock::time_point{} && reading.error.empty())
+        return; // a write that changed nothing the slot shows (after a refusal, the shown text again clears it)
     if (auto applied = scene_.apply(TextChange{reading.slot, text}); !applied) {
-        logger_.warning(cat("input.text '", reading.slot, "' (", reading.file, "): ", applied.error().message));
+        reading.error = applied.error().message;
+        logger_.warning(
+            cat("input.text '", reading.slot, "' (", reading.file, "): ", reading.error, " (the text shown stays)"));
+        files_.fail(input, reading.error);
         return;
     }
+    reading.error.clear();
     reading.text = std::move(text);
     reading.changed = std::chrono::steady_clock::now();
     logger_.debug(cat("input.text '", reading.slot, "': \"", reading.text, "\""));

@@ -18,7 +18,7 @@ class TextInputs
 {
 public:
     TextInputs(Logger &logger, SceneControl &scene)
-        : logger_(logger), scene_(scene), files_([this](size_t input) { show(input); })
+        : logger_(logger), scene_(scene), files_(logger, "text", [this](size_t input) { show(input); })
     {}
 
     // Watches every file (replacing the watches of the previous config) and shows what each holds now. A folder
@@ -31,9 +31,12 @@ public:
 
     struct Reading {
         std::string slot, file, text;
+        std::string error; // why the file's last line was refused ("" when it is shown); the text shown stays
         std::chrono::steady_clock::time_point changed; // when the text last changed
     };
     const std::vector<Reading> &readings() const { return readings_; }
+    // Each input's health: following its file or waiting for its folder, and its last error.
+    const std::vector<inputs::InputHealth> &health() const { return files_.health(); }
 
 private:
     void show(size_t input);

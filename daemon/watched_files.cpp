@@ -1,11 +1,24 @@
 #include "daemon/watched_files.h"
 
+#include <algorithm>
+
 namespace overlayd {
 
-void WatchedFiles::replace(std::vector<inputs::TextFileWatch> watches)
+void WatchedFiles::replace(std::vector<inputs::TextFileWatch> watches, const std::vector<std::string> &names)
 {
+    std::vector<inputs::InputHealth> health;
+    const auto now = inputs::InputHealth::Clock::now();
+    for (size_t i = 0; i < watches.size(); ++i) {
+        inputs::InputHealth next{kind_, names[i], watches[i].path(), inputs::InputHealth::State::Following, now};
+        const auto before = std::find_if(health_.begin(), health_.end(),
+                                         [&](const inputs::InputHealth &old) { return old.sameInput(next); });
+        if (before != health_.end())
+            next.keepHistory(*before);
+        health.push_back(std::move(next));
+    }
     wire(false);
     watches_ = std::move(watches);
+    health_ = std::move(health);
     wire(true);
 }
 
@@ -16,19 +29,33 @@ void WatchedFiles::attachLoop(EventLoop *loop)
     wire(true);
 }
 
+void WatchedFiles::onEvent(size_t file)
+{
+    inputs::TextFileWatch &watch = watches_[file];
+    const bool changed = watch.consume();
+    inputs::InputHealth &health = health_[file];
+    const std::string input = cat("input.", kind_, " '", health.name, "': ");
+    if (health.enter(watch.following() ? inputs::InputHealth::State::Following : inputs::InputHealth::State::Waiting)) {
+        if (watch.following()) {
+            logger_.info(cat(input, "following ", watch.path(), " again"));
+        } else {
+            health.fail(watch.problem());
+            logger_.warning(cat(input, watch.problem(), " (read as a missing file until it is back)"));
+        }
+    }
+    if (changed)
+        changed_(file);
+}
+
 void WatchedFiles::wire(bool add)
 {
     if (!loop_)
         return;
     for (size_t i = 0; i < watches_.size(); ++i) {
-        if (!add) {
+        if (add)
+            (void)loop_->add(watches_[i].fd(), [this, i] { onEvent(i); });
+        else
             loop_->remove(watches_[i].fd());
-            continue;
-        }
-        (void)loop_->add(watches_[i].fd(), [this, i] {
-            if (watches_[i].consume())
-                changed_(i);
-        });
     }
 }
 

@@ -2,6 +2,8 @@
 // libmicrohttpd (http_server_none.cpp) still has them.
 #include "http/http_server.h"
 
+#include "base/utf8.h"
+
 namespace overlayd::http {
 
 HttpResponse HttpResponse::json(unsigned status, std::string body)
@@ -16,14 +18,12 @@ HttpResponse HttpResponse::json(unsigned status, std::string body)
 
 HttpResponse HttpResponse::error(unsigned status, const std::string &message)
 {
+    // A message may quote what a client sent (a path, a parser's "last read"): quotable() makes it valid UTF-8.
     std::string escaped;
-    for (const char c : message) {
+    for (const char c : quotable(message, kMaxErrorBytes)) {
         if (c == '"' || c == '\\')
             escaped += '\\';
-        if (static_cast<unsigned char>(c) < 0x20)
-            escaped += ' ';
-        else
-            escaped += c;
+        escaped += c;
     }
     return json(status, "{\"error\":\"" + escaped + "\"}");
 }

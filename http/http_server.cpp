@@ -5,6 +5,7 @@
 #include <arpa/inet.h>
 #include <cstdarg>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <microhttpd.h>
 #include <netinet/in.h>
@@ -12,6 +13,7 @@
 #include <sys/socket.h>
 
 #include "http/page_files.h"
+#include "http/percent_decoding.h"
 
 namespace overlayd::http {
 
@@ -109,10 +111,37 @@ struct HttpServer::StreamClient {
 };
 
 struct MhdCallbacks {
-    static MHD_Result access(void *self, MHD_Connection *connection, const char *url, const char *method, const char *,
-                             const char *uploadData, size_t *uploadSize, void **state)
+    // An exception must not unwind through libmicrohttpd's C frames (that ends the process): a handler's bug is a
+    // 500 answer with a JSON body, and a log line (identical ones within the logger's window are counted, not
+    // printed).
+    static MHD_Result access(void *self, MHD_Connection *connection, const char *url, const char *method,
+                             const char *version, const char *uploadData, size_t *uploadSize, void **state)
     {
         auto &server = *static_cast<HttpServer *>(self);
+        try {
+            return accessUnguarded(server, connection, url, method, version, uploadData, uploadSize, state);
+        } catch (const std::exception &error) {
+            return failed(server, connection, error.what());
+        } catch (...) {
+            return failed(server, connection, "an exception that is not a std::exception");
+        }
+    }
+
+    static MHD_Result failed(HttpServer &server, MHD_Connection *connection, const char *what) noexcept
+    {
+        try {
+            server.logger_.error(std::string("http: a request failed (answered 500): ") + what);
+            return MHD_Result(
+                server.answer(connection, HttpResponse::error(500, std::string("internal error: ") + what)));
+        } catch (...) {
+            return MHD_NO; // out of memory even for the answer: libmicrohttpd closes the connection
+        }
+    }
+
+    static MHD_Result accessUnguarded(HttpServer &server, MHD_Connection *connection, const char *url,
+                                      const char *method, const char *, const char *uploadData, size_t *uploadSize,
+                                      void **state)
+    {
         if (!*state) {
             *state = new HttpServer::Exchange;
             if (const MHD_ConnectionInfo *info =
@@ -175,7 +204,11 @@ struct MhdCallbacks {
     static ssize_t readStream(void *client, uint64_t, char *buffer, size_t max)
     {
         auto &stream = *static_cast<HttpServer::StreamClient *>(client);
-        return stream.server->fillStream(stream, buffer, max);
+        try {
+            return stream.server->fillStream(stream, buffer, max);
+        } catch (...) {
+            return MHD_CONTENT_READER_END_WITH_ERROR; // this stream ends, the others go on
+        }
     }
 
     static void freeStream(void *client)
@@ -186,6 +219,9 @@ struct MhdCallbacks {
         server.feed_.setWatchers(unsigned(server.streams_.size()));
         delete stream;
     }
+
+    // The URL and the query stay as sent: access() decodes them (http/percent_decoding.h says why).
+    static size_t keepEscaped(void *, MHD_Connection *, char *text) { return std::strlen(text); }
 
     static void log(void *self, const char *format, va_list arguments)
     {
@@ -225,7 +261,7 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
         MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutSec, MHD_OPTION_CONNECTION_MEMORY_LIMIT, kConnectionMemoryBytes,
         MHD_OPTION_NOTIFY_COMPLETED, &MhdCallbacks::completed, server.get(), MHD_OPTION_NOTIFY_CONNECTION,
         &MhdCallbacks::connection, server.get(), MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(),
-        MHD_OPTION_END);
+        MHD_OPTION_UNESCAPE_CALLBACK, &MhdCallbacks::keepEscaped, nullptr, MHD_OPTION_END);
     if (!server->daemon_)
         return makeError(ErrorCode::Io, "http: libmicrohttpd could not start on " + address->describe());
     [[maybe_unused]] const int owned = socket->release(); // libmicrohttpd closes it when it stops
@@ -378,7 +414,7 @@ std::optional<HttpResponse> HttpServer::refuseControl(MHD_Connection *connection
     return refused;
 }
 
-int HttpServer::access(MHD_Connection *connection, const std::string &url, const std::string &method,
+int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, const std::string &method,
                        Exchange &exchange)
 {
     if (exchange.tooLarge)
@@ -386,14 +422,27 @@ int HttpServer::access(MHD_Connection *connection, const std::string &url, const
                       HttpResponse::error(413, "the body is over " + std::to_string(kMaxBodyBytes) + " bytes"));
     HttpRequest request;
     request.method = method;
-    request.path = url;
-    MHD_get_connection_values(connection, MHD_GET_ARGUMENT_KIND, &collectQuery, &request.query);
-    size_t urlBytes = url.size();
-    for (const auto &[key, value] : request.query)
+    std::map<std::string, std::string> query; // as sent: keepEscaped left the %-escapes
+    MHD_get_connection_values(connection, MHD_GET_ARGUMENT_KIND, &collectQuery, &query);
+    size_t urlBytes = rawUrl.size();
+    for (const auto &[key, value] : query)
         urlBytes += key.size() + value.size() + 2;
     if (urlBytes > kMaxUrlBytes)
         return answer(connection,
                       HttpResponse::error(414, "the URL is over " + std::to_string(kMaxUrlBytes) + " bytes"));
+    auto path = percentDecoded(rawUrl);
+    if (!path)
+        return answer(connection, HttpResponse::error(400, "the path: " + path.error().message));
+    request.path = std::move(*path);
+    for (const auto &[key, value] : query) {
+        auto decodedKey = percentDecoded(key), decodedValue = percentDecoded(value);
+        if (!decodedKey || !decodedValue)
+            return answer(connection,
+                          HttpResponse::error(400, "the query's '" + key + "': " +
+                                                       (decodedKey ? decodedValue : decodedKey).error().message));
+        request.query[*decodedKey] = std::move(*decodedValue);
+    }
+    const std::string &url = request.path;
     const bool reading = method == "GET" || method == "HEAD";
     if (!reading && method != "PUT" && method != "POST")
         return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));

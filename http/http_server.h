@@ -38,7 +38,11 @@ struct HttpResponse {
     std::vector<std::pair<std::string, std::string>> headers;
 
     static HttpResponse json(unsigned status, std::string body);
-    // {"error": message}
+    // The longest error message an answer quotes, in bytes (cut on a character boundary).
+    static constexpr size_t kMaxErrorBytes = 4096;
+
+    // {"error": message}: valid JSON whatever the message holds (bytes that are not UTF-8 and control characters
+    // written as \xNN).
     static HttpResponse error(unsigned status, const std::string &message);
 };
 

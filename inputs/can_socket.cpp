@@ -46,6 +46,14 @@ Result<CanSocket> CanSocket::open(const std::string &interface, CanId id)
     address.can_ifindex = int(index);
     if (::bind(fd.get(), reinterpret_cast<const sockaddr *>(&address), sizeof address) != 0)
         return socketError("bind", interface);
+    // An interface that is down binds, with ENETDOWN pending (net/can/raw.c raw_bind): refused here, so that the
+    // retry goes on until it is up instead of opening a socket whose first read fails.
+    int pending = 0;
+    socklen_t size = sizeof pending;
+    if (::getsockopt(fd.get(), SOL_SOCKET, SO_ERROR, &pending, &size) == 0 && pending != 0) {
+        errno = pending;
+        return socketError("bind", interface);
+    }
     return CanSocket(std::move(fd));
 }
 

@@ -30,7 +30,8 @@ class CanSocket
 {
 public:
     // Binds a non-blocking raw socket on the interface, filtered to the id (remote frames and error frames are
-    // not received). NotFound when the interface does not exist, Io otherwise (errno in the message).
+    // not received). NotFound when the interface does not exist, Io otherwise (errno in the message; ENETDOWN while
+    // the interface is down).
     static Result<CanSocket> open(const std::string &interface, CanId id);
 
     int fd() const { return fd_.get(); }

@@ -2,12 +2,19 @@
 // scientific notation, an optional sign).
 #include "inputs/point_list.h"
 
+#include "base/number_range.h"
+
 #include <charconv>
 #include <cmath>
+
+#include "base/utf8.h"
 
 namespace overlayd::inputs {
 
 namespace {
+
+// How much of a refused token a message quotes (whole characters, invalid bytes as \xNN).
+constexpr size_t kQuotedTokenBytes = 32;
 
 bool isSeparator(char c)
 {
@@ -49,7 +56,9 @@ Result<std::vector<glm::dvec3>> parsePointList(std::string_view text, const std:
             const auto [ptr, error] = std::from_chars(first, token.data() + token.size(), value);
             if (error != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value))
                 return makeError(ErrorCode::Malformed,
-                                 where() + "'" + std::string(token.substr(0, 32)) + "' is not a finite number");
+                                 where() + "'" + quotable(token, kQuotedTokenBytes) + "' is not a finite number");
+            if (const std::string why = kAnyMagnitude.refusal(value); !why.empty())
+                return makeError(ErrorCode::Malformed, where() + "xyz"[count] + ": " + why);
             values[count++] = value;
             at = stop;
         }

@@ -17,7 +17,7 @@ inline constexpr size_t kMaxPathPoints = 10000;
 inline constexpr size_t kMaxPathFileBytes = 1 << 20;
 
 // The points, or a Malformed error naming "name:line" and what is wrong (a missing or extra number, a value that is
-// not a finite number, more than kMaxPathPoints points). An empty text is an empty path.
+// not a finite number or outside kAnyMagnitude, more than kMaxPathPoints points). An empty text is an empty path.
 Result<std::vector<glm::dvec3>> parsePointList(std::string_view text, const std::string &name);
 
 } // namespace overlayd::inputs

@@ -1,11 +1,11 @@
 #include "inputs/text_file_watch.h"
 
-#include <cerrno>
-#include <cstring>
 #include <fcntl.h>
 #include <filesystem>
 #include <sys/inotify.h>
 #include <unistd.h>
+
+#include "base/utf8.h"
 
 namespace overlayd::inputs {
 
@@ -27,12 +27,7 @@ std::string slotLine(std::string_view content, size_t maxBytes)
         if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f)
             line += c;
     }
-    if (line.size() > maxBytes) {
-        size_t cut = maxBytes;
-        while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80)
-            --cut; // not inside a UTF-8 sequence
-        line.resize(cut);
-    }
+    line.resize(utf8Cut(line, maxBytes));
     return line;
 }
 
@@ -40,31 +35,10 @@ Result<TextFileWatch> TextFileWatch::open(const std::string &path, size_t maxByt
 {
     const std::filesystem::path file(path);
     const std::string folder = file.parent_path().empty() ? "." : file.parent_path().string();
-    UniqueFd fd(::inotify_init1(IN_NONBLOCK | IN_CLOEXEC));
-    if (fd.get() < 0)
-        return makeError(ErrorCode::Io, std::string("inotify: ") + std::strerror(errno));
-    if (::inotify_add_watch(fd.get(), folder.c_str(), reread == Reread::EveryWrite ? kEveryWrite : kWhenComplete) < 0)
-        return makeError(errno == ENOENT ? ErrorCode::NotFound : ErrorCode::Io,
-                         "cannot watch the folder " + folder + " of " + path + ": " + std::strerror(errno));
-    return TextFileWatch(std::move(fd), path, file.filename().string(), maxBytes);
-}
-
-bool TextFileWatch::consume()
-{
-    alignas(inotify_event) char buffer[4096];
-    bool ours = false;
-    for (;;) {
-        const ssize_t got = ::read(fd_.get(), buffer, sizeof(buffer));
-        if (got <= 0)
-            return ours;
-        for (ssize_t at = 0; at < got;) {
-            const auto *event = reinterpret_cast<const inotify_event *>(buffer + at);
-            // IN_Q_OVERFLOW: events were lost; read the file again to be sure.
-            if ((event->mask & IN_Q_OVERFLOW) || (event->len && name_ == event->name))
-                ours = true;
-            at += ssize_t(sizeof(inotify_event) + event->len);
-        }
-    }
+    auto watch = FolderWatch::open(folder, reread == Reread::EveryWrite ? kEveryWrite : kWhenComplete);
+    if (!watch)
+        return makeError(watch.error().code, watch.error().message + " (of " + path + ")");
+    return TextFileWatch(std::move(*watch), path, file.filename().string(), maxBytes);
 }
 
 std::string TextFileWatch::read() const

@@ -1,11 +1,12 @@
 // TextFileWatch: a text file other programs write, watched with inotify. The folder is watched, not the file, so
-// that a file replaced by rename (the safe way to write it), created late or deleted is followed too.
+// that a file replaced by rename (the safe way to write it), created late or deleted is followed too; and the folder
+// is followed by its path (FolderWatch), so that a folder removed and made again is followed too.
 #pragma once
 
 #include <string>
 
 #include "base/result.h"
-#include "base/unique_fd.h"
+#include "inputs/folder_watch.h"
 
 namespace overlayd::inputs {
 
@@ -20,12 +21,17 @@ public:
     // writer that keeps the file open), or only once a writer closes it or renames it in (a whole document such as
     // a path: never read half-written; a truncating `>` would otherwise read as empty first).
     enum class Reread { EveryWrite, WhenComplete };
-    // The folder must exist (a missing file is fine: it reads as empty until it appears).
+    // The folder must exist now (a missing file is fine: it reads as empty until it appears); if it goes later, it
+    // is waited for.
     static Result<TextFileWatch> open(const std::string &path, size_t maxBytes, Reread reread = Reread::EveryWrite);
 
-    // Readable when something happened in the folder; consume() then says whether it was this file.
-    int fd() const { return fd_.get(); }
-    bool consume();
+    // Readable when something happened in the folder; consume() then says whether it was this file (or may have
+    // been: the folder went or came back).
+    int fd() const { return folder_.fd(); }
+    bool consume() { return folder_.consume(name_); }
+    // Whether the folder is watched; otherwise problem() says why the file is not followed and what is waited for.
+    bool following() const { return folder_.following(); }
+    const std::string &problem() const { return folder_.problem(); }
     // The file's line now ("" when it does not exist or cannot be read).
     std::string read() const;
     // The file's first maxBytes + 1 bytes (so that a caller can tell a longer file); "" when it does not exist.
@@ -33,11 +39,11 @@ public:
     const std::string &path() const { return path_; }
 
 private:
-    TextFileWatch(UniqueFd fd, std::string path, std::string name, size_t maxBytes)
-        : fd_(std::move(fd)), path_(std::move(path)), name_(std::move(name)), maxBytes_(maxBytes)
+    TextFileWatch(FolderWatch folder, std::string path, std::string name, size_t maxBytes)
+        : folder_(std::move(folder)), path_(std::move(path)), name_(std::move(name)), maxBytes_(maxBytes)
     {}
 
-    UniqueFd fd_;
+    FolderWatch folder_;
     std::string path_, name_; // name_: the file's name within its folder
     size_t maxBytes_;
 };

@@ -1,16 +1,15 @@
 // Human-readable stream descriptions.
 #include "media/stream.h"
 
+#include "base/number_text.h"
+
 #include <cstdio>
 
 namespace overlayd {
 
 std::string StreamFormat::describe() const
 {
-    char text[96];
-    std::snprintf(text, sizeof(text), "%ux%u %s %.1f fps", width, height,
-                  format ? std::string(format->name).c_str() : "?", fps);
-    return text;
+    return formatted("%ux%u %s %.1f fps", width, height, format ? std::string(format->name).c_str() : "?", fps);
 }
 
 } // namespace overlayd

@@ -59,6 +59,13 @@ Result<Camera> Camera::create(const glm::dmat4 &view, const Projection &projecti
                 return makeError(ErrorCode::InvalidArgument, "view matrix must be finite");
     if (std::abs(glm::determinant(view)) < 1e-12)
         return makeError(ErrorCode::DegenerateBasis, "view matrix is singular");
+    // A finite value can still overflow here (a field of view of 1e-300 degrees: an infinite focal length).
+    const glm::dmat4 &m = projection.matrix();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r]))
+                return makeError(ErrorCode::InvalidArgument,
+                                 "the projection overflows (a field of view, focal length or size too small or large)");
     if (auto status = validateDistortion(distortion); !status)
         return status.error();
     if (distortion.model == DistortionModel::None)

@@ -1,6 +1,7 @@
 // Shared validation helpers for the projection builders.
 #include "checks.h"
 
+#include "base/number_text.h"
 #include <algorithm>
 #include <cstdio>
 
@@ -20,9 +21,7 @@ bool finite(const glm::dmat3 &m)
 
 std::string str(double v)
 {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.9g", v);
-    return buf;
+    return shortNumber(v, 9);
 }
 
 std::string str(const glm::dvec3 &v)

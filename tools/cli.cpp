@@ -77,9 +77,11 @@ CommandLine parseCommandLine(int argc, const char *const *argv)
                      "sqpnp (default: any 4+ points) | iterative (6+, or 4+ coplanar) | "
                      "ippe (4+ coplanar: a marked floor); each refined by Levenberg-Marquardt")
         ->check(CLI::IsMember({"sqpnp", "iterative", "ippe"}));
-    solve->add_flag("--write", line.write,
-                    "also write the pose to NAME.live.toml beside the config (the drop-in the loader reads after it, "
-                    "which the browser page's Save writes too; the config itself is never rewritten)");
+    solve->add_flag(
+        "--write", line.write,
+        "also write the pose, with the camera's intrinsics and lens, to NAME.live.toml beside the config (the "
+        "drop-in the loader reads after it, which the browser page's Save writes too, merged with what it "
+        "holds; the config itself is never rewritten)");
 
     CLI::App *render = app.add_subcommand("render", "run N frames unpaced into a file (.y4m, .yuv/.raw, %04d.png)");
     render->add_option("--config,-c", line.configPath, "the TOML config file")->required()->check(CLI::ExistingFile);

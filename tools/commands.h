@@ -10,6 +10,7 @@
 
 #include "alignment/point_queries.h"
 #include "base/logger.h"
+#include "base/number_range.h"
 #include "config/daemon_config.h"
 #include "daemon/daemon.h"
 #include "projection/camera.h"
@@ -20,7 +21,7 @@ namespace overlayd {
 // Exit statuses (CLI11 uses its own codes, 100 and up, for command-line errors).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;     // a runtime failure: source, sink, I/O
-inline constexpr int kExitConfigError = 2; // the config file does not validate
+inline constexpr int kExitConfigError = 2; // the config file, or a number given, does not validate
 
 int checkConfigCommand(const std::string &path);
 // `overlayd list-cameras [--json]`: every camera a source could open, with its formats, sizes and frame rates.
@@ -34,7 +35,7 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
 int unprojectCommand(const std::string &configPath, bool json, const std::vector<double> &plane,
                      const std::vector<double> &coordinates, Logger &logger);
 // `overlayd solve-pose --points FILE`: the camera pose from world points and their pixels, as config keys.
-// --write: also into the config's live drop-in (NAME.live.toml), which the loader merges over [camera]'s pose.
+// --write: also into the config's live drop-in (NAME.live.toml, config/live_drop_in.h) with the whole camera.
 // solver: "sqpnp", "iterative" or "ippe" (alignment::PnpSolver).
 int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, const std::string &solver,
                      bool write, Logger &logger);

@@ -1,8 +1,8 @@
 // `overlayd list-cameras`: what a user puts under [source] — each camera's id, model, formats, sizes and rates.
-#include <cstdio>
 #include <string>
 
 #include "base/json_text.h"
+#include "base/number_text.h"
 #include "drivers/camera_list.h"
 #include "tools/commands.h"
 
@@ -12,9 +12,7 @@ namespace {
 
 std::string numberText(double value)
 {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", value);
-    return text;
+    return shortNumber(value);
 }
 
 std::string asJson(const std::vector<CameraDescription> &cameras)

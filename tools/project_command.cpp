@@ -1,5 +1,5 @@
 // `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
-#include "base/json_text.h"
+#include "base/number_text.h"
 #include "inputs/point_list.h"
 #include "tools/commands.h"
 
@@ -56,6 +56,11 @@ int projectCommand(const std::string &configPath, bool json, const std::vector<d
             logger.error(
                 cat("project: expected X Y Z triples (or --points FILE), got ", coordinates.size(), " numbers"));
             return kExitFailure;
+        }
+        if (const std::string why = numbersRefusal(coordinates, {"X", "Y", "Z"}, "point", kAnyMagnitude);
+            !why.empty()) {
+            logger.error("project: " + why);
+            return kExitConfigError;
         }
         for (size_t i = 0; i < coordinates.size(); i += 3)
             world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);

@@ -6,7 +6,7 @@
 #include "alignment/points_file.h"
 #include "alignment/pose_solver.h"
 #include "base/json_text.h"
-#include "config/camera_request.h"
+#include "config/live_drop_in.h"
 #include "tools/commands.h"
 
 namespace overlayd {
@@ -68,7 +68,7 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
     if (write) {
         CameraSpec solved = config->camera;
         solved.pose = mountPose;
-        auto written = writeLiveDropIn(configPath, solved, false);
+        auto written = writeLiveDropIn(configPath, solved, "solve-pose --write");
         if (!written) {
             logger.error(cat("solve-pose: ", written.error().message));
             return kExitFailure;

@@ -75,21 +75,4 @@ Status writeAll(std::FILE *file, const void *data, size_t size, const std::strin
     return Ok{};
 }
 
-Status replaceFile(const std::string &path, const void *data, size_t size)
-{
-    const std::string temporary = path + ".tmp";
-    {
-        auto file = openForWriting(temporary, false);
-        if (!file)
-            return file.error();
-        if (auto written = writeAll(file->get(), data, size, temporary); !written)
-            return written;
-        if (std::fclose(file->release()) != 0)
-            return ioError("write failed", temporary, errno);
-    }
-    if (std::rename(temporary.c_str(), path.c_str()) != 0)
-        return ioError("cannot rename into place", path, errno);
-    return Ok{};
-}
-
 } // namespace overlayd

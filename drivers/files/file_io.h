@@ -32,7 +32,4 @@ Result<std::vector<uint8_t>> readWholeFile(const std::string &path, uintmax_t ma
 
 Status writeAll(std::FILE *file, const void *data, size_t size, const std::string &path);
 
-// Writes a whole file under a temporary name and renames it over `path`, so a viewer never sees half an image.
-Status replaceFile(const std::string &path, const void *data, size_t size);
-
 } // namespace overlayd

@@ -3,10 +3,11 @@
 #include "drivers/files/file_sinks.h"
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
-#include "drivers/files/file_io.h"
+#include "base/replace_file.h"
 #include "drivers/files/path_pattern.h"
 #include "media/codec/image_codec.h"
 #include "media/convert/frame_convert.h"
@@ -59,7 +60,9 @@ Status SnapshotSink::write(const FrameView &frame, const FrameMetadata &metadata
     auto bytes = encode(frame, metadata.colorimetry);
     if (!bytes)
         return bytes.error();
-    return replaceFile(*path, bytes->data(), bytes->size());
+    // Unsynced: a viewer must never see half an image, but a power cut may lose the newest snapshot.
+    return replaceFileContents(*path, std::string_view(reinterpret_cast<const char *>(bytes->data()), bytes->size()),
+                               Durability::Unsynced);
 }
 
 } // namespace

@@ -16,21 +16,25 @@ void LibcameraSource::signal()
 
 void LibcameraSource::onRequestCompleted(libcamera::Request *request)
 {
-    {
+    try {
         std::lock_guard lock(mutex_);
         completed_.push_back(unsigned(request->cookie()));
         lastCompletion_ = std::chrono::steady_clock::now();
+    } catch (...) {
+        callbackFailed_ = true; // a completion lost (out of memory): the loop restarts the camera
     }
     signal();
 }
 
 void LibcameraSource::onCameraRemoved(std::shared_ptr<libcamera::Camera> camera)
 {
-    {
+    try {
         std::lock_guard lock(mutex_);
         if (camera->id() != cameraId_)
             return;
         lost_ = true;
+    } catch (...) {
+        callbackFailed_ = true;
     }
     signal();
 }
@@ -41,6 +45,8 @@ Result<FrameLease> LibcameraSource::nextFrame()
         return makeError(ErrorCode::DeviceLost, describe() + " is not streaming");
     if (auto failed = session_->recycler->takeError())
         return *failed;
+    if (callbackFailed_.exchange(false))
+        return makeError(ErrorCode::DeviceLost, describe() + ": a libcamera callback failed (out of memory?)");
     uint64_t one;
     const bool woken = ::read(completions_.get(), &one, sizeof(one)) == sizeof(one);
     unsigned index = 0;

@@ -1,6 +1,7 @@
 // LibcameraSource: a libcamera camera as a FrameSource (negotiation, controls, in-place leases, unplug).
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <deque>
 #include <functional>
@@ -85,6 +86,9 @@ private:
     std::chrono::steady_clock::time_point lastCompletion_{};
     std::deque<unsigned> completed_;
     bool lost_ = false;
+    // A callback on libcamera's thread failed (an exception cannot cross into libcamera): the loop then treats the
+    // camera as lost and starts it again.
+    std::atomic<bool> callbackFailed_{false};
 
     SequenceCounter sequence_;
     uint64_t dropped_ = 0;

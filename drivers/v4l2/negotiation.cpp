@@ -1,6 +1,8 @@
 // Negotiation: format fallback order, nearest size, nearest rate.
 #include "drivers/v4l2/negotiation.h"
 
+#include "base/number_text.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -134,9 +136,7 @@ std::string describeOffers(std::span<const OfferedFormat> offers)
 
 std::string describeMode(unsigned width, unsigned height, double fps, const std::string &format)
 {
-    char text[96];
-    std::snprintf(text, sizeof(text), "%ux%u@%g %s", width, height, fps, format.c_str());
-    return text;
+    return formatted("%ux%u@%g %s", width, height, fps, format.c_str());
 }
 
 } // namespace overlayd::v4l2

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <ctime>
 
+#include "base/utf8.h"
+
 namespace overlayd {
 
 namespace {
@@ -120,9 +122,9 @@ Status checkSlotText(std::string_view text)
     if (text.size() > kMaxSlotTextBytes)
         return makeError(ErrorCode::InvalidArgument, "slot text of " + std::to_string(text.size()) +
                                                          " bytes: at most " + std::to_string(kMaxSlotTextBytes));
-    for (const char c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            return makeError(ErrorCode::InvalidArgument, "slot text holds a control character (one line of text)");
+    // Slot text comes from outside (files, the API, CAN): /state quotes it as JSON, the renderer draws it.
+    if (const auto problem = outsideTextProblem(text))
+        return makeError(ErrorCode::InvalidArgument, "slot text is not one line of UTF-8 text: " + *problem);
     return Ok{};
 }
 
@@ -130,7 +132,9 @@ void expandTokens(std::string_view text, const FrameMetadata &metadata, double f
                   const SlotTexts *slots)
 {
     out.clear();
-    char number[32];
+    // Room for any number printed here, whole: "%.2f" of the largest double is 313 characters (a camera's gain is
+    // its driver's float). On the stack, as nothing on the frame path allocates once the text has grown.
+    char number[320];
     scan(
         text, [&](std::string_view literal) { out.append(literal); },
         [&](std::string_view name) {

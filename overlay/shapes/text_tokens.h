@@ -25,7 +25,7 @@ inline constexpr size_t kMaxSlotTextBytes = 256;
 
 // The slot names a text's {slot:NAME} tokens use, appended to `names` once each.
 void appendSlotNames(std::string_view text, std::vector<std::string> &names);
-// What a slot may show: at most kMaxSlotTextBytes, printable (no control characters: one line of text).
+// What a slot may show: at most kMaxSlotTextBytes of valid UTF-8, printable (no control characters: one line of text).
 Status checkSlotText(std::string_view text);
 
 // Expands into `out` (cleared first; its capacity is reused). {time:FORMAT} formats the frame's wall clock in

@@ -4,20 +4,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <memory>
-#include <optional>
 #include <string>
 #include <string_view>
-#include <unistd.h>
 
-#include "config/daemon_config.h"
-#include "daemon/daemon.h"
-#include "daemon/http_api.h"
-#include "daemon/stages.h"
-#include "daemon/systemd_notify.h"
+#include "fuzz_daemon.h"
 
 namespace {
 
@@ -50,30 +40,6 @@ position = [4.0, 4.0]
 kind = "null"
 )";
 
-struct Running {
-    std::filesystem::path folder =
-        std::filesystem::temp_directory_path() / ("http_api_fuzz-" + std::to_string(getpid()));
-    overlayd::Logger logger{[](std::string_view) {}, false};
-    overlayd::SystemdNotifier notifier;
-    std::unique_ptr<overlayd::Daemon> daemon;
-    std::unique_ptr<overlayd::HttpApi> api;
-
-    Running()
-    {
-        std::filesystem::create_directories(folder);
-        const std::string path = (folder / "fuzz.toml").string();
-        std::ofstream(path) << kConfig;
-        daemon = std::make_unique<overlayd::Daemon>(logger, notifier, overlayd::defaultStageFactories(),
-                                                    overlayd::loadConfigFile,
-                                                    overlayd::DaemonOptions{path, std::nullopt, 0});
-        if (!daemon->start())
-            std::abort(); // the fixed config must start: a fuzz run over a daemon that did not is no run
-        api = std::make_unique<overlayd::HttpApi>(daemon->scene(), *daemon,
-                                                  [] { return overlayd::http::HttpCounters{}; });
-    }
-    ~Running() { std::filesystem::remove_all(folder); }
-};
-
 overlayd::http::HttpRequest request(std::string_view input)
 {
     overlayd::http::HttpRequest request;
@@ -104,7 +70,7 @@ overlayd::http::HttpRequest request(std::string_view input)
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static Running running;
+    static FuzzDaemon running("http_api_fuzz", kConfig);
     (void)running.api->handle(request(std::string_view(reinterpret_cast<const char *>(data), size)));
     return 0;
 }

@@ -113,6 +113,74 @@ def check_overlay_where_projected(base, workdir, tag):
     return {tuple(p["world"]): p["pixel"] for p in visible}
 
 
+# Numbers no config file may hold (a denormal, the largest doubles) and what a JSON parser makes of overflow.
+EXTREMES = (5e-324, -5e-324, 1e-300, 1e308, -1e308, "1e400")
+HOME = {"position": [0.0, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0, "fov": 60.0, "near": 0.1,
+        "far": 200.0, "distortion": {"model": "none"}}
+
+
+def camera_bodies(value):
+    """A [camera] request for each numeric key of the camera request, with `value` in that key."""
+    pose = {"position": [0.0, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0}
+    pinhole = {"fx": 900.0, "fy": 900.0, "cx": 640.0, "cy": 360.0, "skew": 0.0}
+    bounds = {"left": -1.0, "right": 1.0, "bottom": -1.0, "top": 1.0, "near": 0.1, "far": 100.0}
+    window = {"focal": 1.0, "half_width": 1.0, "half_height": 0.6, "centre": [0.0, 0.0]}
+    bodies = [{"fov": value}, {"near": value}, {"far": value}]
+    bodies += [{"pinhole": pinhole, "distortion": {"model": "plumb_bob", "coefficients": [value if i == at else 0.0
+                                                                                        for i in range(5)]}}
+               for at in range(5)]
+    bodies += [dict(pose, **{key: value}) for key in ("yaw", "pitch", "roll")]
+    bodies += [dict(pose, position=[value if i == axis else c for i, c in enumerate(pose["position"])])
+               for axis in range(3)]
+    bodies += [{"pinhole": dict(pinhole, **{key: value})} for key in pinhole]
+    bodies += [{"frustum": dict(bounds, **{key: value})} for key in bounds]
+    bodies += [{"window": dict(window, **{key: value})} for key in ("focal", "half_width", "half_height")]
+    return [json.dumps(body).replace('"1e400"', "1e400") for body in bodies]
+
+
+def finite_numbers(value):
+    """Every number in a JSON document is finite (nlohmann writes inf and nan as null)."""
+    if isinstance(value, dict):
+        return all(finite_numbers(v) for v in value.values())
+    if isinstance(value, list):
+        return all(finite_numbers(v) for v in value)
+    return value is not None and (not isinstance(value, float) or math.isfinite(value))
+
+
+def check_numbers_and_names(base, daemon):
+    """Every number the API takes is finite and in the config file's range, and a path segment is a whole name."""
+    for value in EXTREMES:
+        for body in camera_bodies(value):
+            status, result = curl_json(base, "/api/camera", "PUT", body, token=TOKEN)
+            camera = daemon.state()["camera"]
+            check(status in (200, 400) and finite_numbers(camera), f"PUT /api/camera {body}: {status} {camera}")
+            check(status == 200 or "camera." in result["error"] or "number overflow" in result["error"],
+                  f"PUT /api/camera {body}: {result}")
+            if status == 200:  # a value in range: back to the config's camera
+                status, result = curl_json(base, "/api/camera", "PUT", json.dumps(HOME), token=TOKEN)
+                check(status == 200, f"PUT /api/camera back home: {status} {result}")
+    status, result = curl_json(base, "/api/camera", "PUT", '{"fov": 5e-324}', token=TOKEN)
+    check(status == 400 and "camera.fov" in result["error"], f"PUT a fov of 5e-324: {status} {result}")
+
+    for query in ("nan,0,0", "1e308,0,0", "0,-1e300,0", "0,0,1e400"):
+        status, result = curl_json(base, "/api/project?points=" + query)
+        check(status == 400 and "point" in result["error"], f"/api/project?points={query}: {status} {result}")
+    for pixels in ("[[1e308, 0]]", "[[0, -1e300]]", "[[640, 360], [0, 1e7]]"):
+        status, result = curl_json(base, "/api/unproject", "POST", '{"pixels": %s}' % pixels, token=TOKEN)
+        check(status == 400 and "pixel" in result["error"], f"/api/unproject {pixels}: {status} {result}")
+
+    # A %-escaped NUL or control character in a name is refused, not cut short to another layer's name.
+    for path in ("/api/layers/grid%00x", "/api/layers/grid%00", "/api/layers/gr%0aid", "/api/layers/grid%7f",
+                 "/api/layers/grid%1", "/api/text/status%00x"):
+        status, result = curl_json(base, path, "PUT", '{"visible": false}', token=TOKEN)
+        check(status == 400, f"PUT {path}: {status} {result}")
+        check(all(layer["visible"] for layer in daemon.state()["layers"]), f"PUT {path} hid a layer")
+    status, result = curl_json(base, "/api/project?points=1,2,3%00", "GET")
+    check(status == 400, f"/api/project with a NUL in the query: {status} {result}")
+    status, result = curl_json(base, "/api/project?points=2%2C4%2C0", "GET")
+    check(status == 200 and result[0]["world"] == [2, 4, 0], f"/api/project with %-escaped commas: {status} {result}")
+
+
 def run(overlayd, workdir):
     port = daemon_fixture.free_port()
     token_file = os.path.join(workdir, "token")
@@ -204,6 +272,7 @@ def run(overlayd, workdir):
         check(status == 400 and "points" in result["error"], f"/api/project with 2 numbers: {status} {result}")
         status, result = curl_json(base, "/api/unproject", "POST", '{"pixels": [[1]]}', token=TOKEN)
         check(status == 400 and "pixels" in result["error"], f"/api/unproject with 1 number: {status} {result}")
+        check_numbers_and_names(base, daemon)
 
         # Limits: a 10 MB body is refused before it is read; so is a URL over 8 KiB.
         status, result = curl_json(base, "/api/camera", "PUT", b"x" * (10 * 1024 * 1024), token=TOKEN)

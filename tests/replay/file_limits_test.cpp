@@ -4,11 +4,14 @@
 // 2-channel OpenCV matrix, a key given twice, and a Y4M replay whose header declares an enormous frame. check-config
 // exits 2 naming the file (and the line where it is the file's fault); nothing crashes, blocks or allocates
 // what the file asks for.
+#include <chrono>
 #include <string>
 
 #include <sys/stat.h>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "harness.h"
 
@@ -163,6 +166,33 @@ TEST(FileLimits, ADirectoryAsAReplayIsCalledADirectory)
     EXPECT_FALSE(run.crashed) << run.all();
     EXPECT_EQ(run.exitStatus, 1) << run.all();
     EXPECT_NE(run.err.find("dir.y4m: is a directory, not a regular file"), std::string::npos) << run.err;
+}
+
+// Each image annotation is within its limits, their sum is not: 200 annotations of one small PNG (a 4096 x 4096
+// image, 64 MiB decoded) are refused at the fifth, which takes the scene past kMaxSceneImageBytes (256 MiB), by
+// check-config, render and run alike with the same line, quickly (the file is decoded once, the fifth never).
+TEST(FileLimits, ManyImageAnnotationsAreBoundedAsAWhole)
+{
+    const std::string dir = scratchDir("image-total");
+    ASSERT_TRUE(cv::imwrite(dir + "/big.png", cv::Mat(4096, 4096, CV_8UC1, cv::Scalar(0))));
+    std::string config = "[source]\nkind = \"synthetic\"\nwidth = 64\nheight = 48\n";
+    for (int i = 0; i < 200; ++i) // annotation[i].path on line 7 + 4 i
+        config += "[[annotation]]\ntype = \"image\"\npath = \"big.png\"\nposition = [0, 0]\n";
+    writeFile(dir + "/big.toml", config);
+    const std::string expected = "big.toml:23:8: annotation[4].path: the image ";
+    for (const std::string &args :
+         {std::string("check-config big.toml"), std::string("render --config big.toml --frames 1 --output out.y4m"),
+          std::string("run --config big.toml --frames 1")}) {
+        SCOPED_TRACE(args);
+        const auto start = std::chrono::steady_clock::now();
+        const RunResult run = runOverlayd(args, dir);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_FALSE(run.crashed) << run.all();
+        EXPECT_EQ(run.exitStatus, 2) << run.all();
+        EXPECT_NE(run.all().find(expected), std::string::npos) << run.all();
+        EXPECT_NE(run.all().find("past 256 MiB"), std::string::npos) << run.all();
+        EXPECT_LT(seconds, 20.0) << "one decode of 64 MiB takes well under a second";
+    }
 }
 
 } // namespace

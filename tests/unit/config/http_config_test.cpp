@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "config/camera_request.h"
+#include "config/live_drop_in.h"
 #include "config_test_util.h"
 #include "http/http_options.h"
 #include "http/listen_address.h"
@@ -175,7 +176,7 @@ TEST(LiveDropIn, IsReadAfterTheMainFileAndReplacesItsPose)
     const DaemonConfig before = *loadConfigFile(path, problems);
     const CameraSpec live =
         *cameraFromJson(R"({"eye": [2, -4, 1.5], "target": [0, 1, 0], "fov": 45})", before.camera, 640, 480);
-    std::ofstream(liveDropInPath(path)) << *liveDropInText(live, true);
+    std::ofstream(liveDropInPath(path)) << *liveDropInText(live, "", "a test");
     auto after = loadConfigFile(path, problems);
     ASSERT_TRUE(after.ok()) << after.error().message;
     for (int c = 0; c < 3; ++c)
@@ -192,4 +193,72 @@ TEST(LiveDropIn, IsReadAfterTheMainFileAndReplacesItsPose)
     EXPECT_EQ(problems.front().file, liveDropInPath(path));
     EXPECT_EQ(problems.front().line, 2u);
     EXPECT_EQ(problems.front().key, "camera.position");
+}
+
+// The whole camera goes into the drop-in and comes back equal, field for field, for every intrinsics form; what the
+// drop-in held that the save does not write is kept, what it replaces is gone.
+TEST(LiveDropIn, KeepsTheWholeCameraAndMergesWithWhatTheDropInHolds)
+{
+    const auto dir = scratch("whole");
+    const std::string path = (dir / "front.toml").string();
+    std::ofstream(path) << kBase;
+    std::vector<ConfigProblem> problems;
+    const DaemonConfig before = *loadConfigFile(path, problems);
+    const char *changes[] = {
+        R"({"fov": 47.123456789012345, "fov_axis": "horizontal", "near": 0.37, "far": "inf", "depth_range": "0..1"})",
+        R"({"pinhole": {"fx": 501.1, "fy": 499.9, "cx": 320.3, "cy": 239.7, "skew": 0.1},
+            "distortion": {"model": "rational_polynomial", "coefficients": [-0.2, 0.03, 0.001, -0.0008, 0.002, 0.01]}})",
+        R"({"pinhole": {"fx": 1001.0, "fy": 1001.0, "cx": 640.5, "cy": 400.5, "width": 1280, "height": 800},
+            "calibration_crop": [106, 0, 1067, 800], "distortion": {"model": "equidistant", "coefficients": [0.1]}})",
+        R"({"frustum": {"left": -0.06, "right": 0.055, "bottom": -0.033, "top": 0.031}, "near": 0.05})",
+        R"({"window": {"focal": 1.5, "centre": [0.01, -0.02], "half_width": 0.8, "half_height": 0.6}})",
+        R"({"orthographic": {"left": -8, "right": 8, "bottom": -6, "top": 6}, "far": 80})",
+        R"({"orthographic": {"width": 16, "height": 12}, "far": 80})",
+        R"({"eye": [2, -4, 1.5], "target": [0, 1, 0], "up": [0.1, 0, 1]})",
+    };
+    for (const char *change : changes) {
+        auto live = cameraFromJson(change, before.camera, 640, 480);
+        ASSERT_TRUE(live.ok()) << change << ": " << live.error().message;
+        std::ofstream(liveDropInPath(path)) << "# by hand\n[camera]\nframe = \"world\"\nfov = 33.0\nnear = 9.0\n";
+        auto written = writeLiveDropIn(path, *live, "a test");
+        ASSERT_TRUE(written.ok()) << written.error().message;
+        auto after = loadConfigFile(path, problems);
+        ASSERT_TRUE(after.ok()) << change << ": " << after.error().message;
+        EXPECT_TRUE(after->camera == *live) << change;
+        std::ifstream saved(liveDropInPath(path));
+        const std::string text((std::istreambuf_iterator<char>(saved)), std::istreambuf_iterator<char>());
+        EXPECT_NE(text.find("frame = \"world\""), std::string::npos) << text;
+        EXPECT_NE(text.find("(a test)"), std::string::npos) << text;
+    }
+    // A drop-in that is not TOML is not saved over.
+    std::ofstream(liveDropInPath(path)) << "[camera\n";
+    auto refused = writeLiveDropIn(path, before.camera, "a test");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("front.live.toml:1"), std::string::npos) << refused.error().message;
+}
+
+// A file or link planted at a predictable temporary name neither redirects the save nor is touched by it.
+TEST(LiveDropIn, APlantedTemporaryIsNeitherFollowedNorTouched)
+{
+    const auto dir = scratch("planted");
+    const std::string path = (dir / "front.toml").string();
+    std::ofstream(path) << kBase;
+    std::vector<ConfigProblem> problems;
+    const DaemonConfig config = *loadConfigFile(path, problems);
+    const auto victim = dir / "victim.txt", planted = dir / "front.live.toml.tmp";
+    std::ofstream(victim) << "untouched\n";
+    std::filesystem::create_symlink(victim, planted);
+    ASSERT_TRUE(writeLiveDropIn(path, config.camera, "a test").ok());
+    std::ifstream in(victim);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "untouched\n");
+    EXPECT_TRUE(std::filesystem::is_symlink(planted));
+    EXPECT_FALSE(std::filesystem::is_symlink(liveDropInPath(path)));
+    std::filesystem::remove(planted);
+    std::filesystem::create_directory(planted);
+    EXPECT_TRUE(writeLiveDropIn(path, config.camera, "a test").ok());
+    size_t entries = 0;
+    for ([[maybe_unused]] const auto &entry : std::filesystem::directory_iterator(dir))
+        ++entries;
+    EXPECT_EQ(entries, 4u); // the config, the drop-in, the victim, the planted folder: no temporary left
 }

@@ -204,3 +204,37 @@ position = [0.0, 0.0]
     EXPECT_TRUE(test::hasProblem(problems, "annotation[0].path", "4097x1; at most 4096"))
         << test::formatProblems(problems);
 }
+
+// One file named by several annotations (however its path is spelled) is decoded once: they share its pixels.
+TEST(ImageConfig, TheSameFileIsDecodedOnce)
+{
+    ImageFolder folder;
+    folder.write("a.png", cv::Mat(4, 6, CV_8UC3, cv::Scalar(10, 20, 30)));
+    folder.write("b.png", cv::Mat(4, 6, CV_8UC3, cv::Scalar(10, 20, 30)));
+    std::string text = kScene;
+    for (const char *path : {"a.png", "a.png", "./a.png", "b.png"})
+        text += std::string("[[annotation]]\ntype = \"image\"\npath = \"") + path + "\"\nposition = [0.0, 0.0]\n";
+    const DaemonConfig config = loadValid(text, folder.dir.string());
+    ASSERT_TRUE(imageOf(config, 0).image);
+    EXPECT_EQ(imageOf(config, 1).image.get(), imageOf(config, 0).image.get());
+    EXPECT_EQ(imageOf(config, 2).image.get(), imageOf(config, 0).image.get());
+    EXPECT_NE(imageOf(config, 3).image.get(), imageOf(config, 0).image.get());
+}
+
+// What a scene's image annotations decode to is bounded as a whole: four of 4096 x 4096 (64 MiB each) fill
+// kMaxSceneImageBytes, the fifth is refused at its path (once: the sixth is not read), one file named five times as
+// five files would be.
+TEST(ImageConfig, TheScenesDecodedTotalIsBounded)
+{
+    ImageFolder folder;
+    folder.write("big.png", cv::Mat(4096, 4096, CV_8UC1, cv::Scalar(0)));
+    std::string text = kScene;
+    for (int i = 0; i < 4; ++i)
+        text += "[[annotation]]\ntype = \"image\"\npath = \"big.png\"\nposition = [0.0, 0.0]\n";
+    loadValid(text, folder.dir.string());
+    for (int i = 0; i < 2; ++i)
+        text += "[[annotation]]\ntype = \"image\"\npath = \"big.png\"\nposition = [0.0, 0.0]\n";
+    const auto problems = loadInvalid(text, folder.dir.string());
+    EXPECT_TRUE(test::hasProblem(problems, "annotation[4].path", "past 256 MiB")) << test::formatProblems(problems);
+    EXPECT_EQ(problems.size(), 1u) << test::formatProblems(problems);
+}

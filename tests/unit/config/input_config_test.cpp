@@ -238,3 +238,25 @@ file = ""
     EXPECT_TRUE(has("input.path[4].annotation", "missing")) << all;
     EXPECT_TRUE(has("input.path[4].file", "missing")) << all;
 }
+
+TEST(InputConfig, TextFromOutsideHoldsNoControlCharacter)
+{
+    // TOML escapes make control characters toml++ lets through (it checks only the UTF-8): refused at their keys.
+    const auto problems = loadInvalid(kScene + R"(
+[[input.text]]
+slot = "status"
+file = "/tmp/sta\u0007tus.txt"
+[[input.can]]
+interface = "can0"
+id = 1
+start_bit = 0
+length = 8
+unit = "km\th"
+stale_text = "n/a\u0085"
+target = "slot:gear"
+)");
+    const std::string all = test::formatProblems(problems);
+    EXPECT_TRUE(test::hasProblem(problems, "input.text[0].file", "a control character (U+0007) at byte 8")) << all;
+    EXPECT_TRUE(test::hasProblem(problems, "input.can[0].unit", "a control character (U+0009) at byte 2")) << all;
+    EXPECT_TRUE(test::hasProblem(problems, "input.can[0].stale_text", "a control character (U+0085) at byte 3")) << all;
+}

@@ -181,5 +181,24 @@ TEST_F(CanInputsTest, AReloadKeepsAnUnchangedInputsValueAndShowsItOnTheNewScene)
     EXPECT_FALSE(guide().steeringKnown);
 }
 
+TEST_F(CanInputsTest, AMissingInterfaceIsWaitingAndItsErrorCountedOncePerReason)
+{
+    can.configure({steering()});
+    std::vector<inputs::InputHealth> health = can.health();
+    ASSERT_EQ(health.size(), 1u);
+    EXPECT_EQ(health[0].kind, "can");
+    EXPECT_EQ(health[0].name, "steering");
+    EXPECT_EQ(health[0].source, "overlayd-test-none");
+    EXPECT_EQ(health[0].state, inputs::InputHealth::State::Waiting);
+    EXPECT_EQ(health[0].errors, 1u);
+    EXPECT_EQ(health[0].lastError, can.reading(0).error);
+    EXPECT_FALSE(health[0].lastError.empty());
+    can.tick(t0 + 1500ms); // retried, refused for the same reason: not a new error
+    can.tick(t0 + 3000ms);
+    EXPECT_EQ(can.health()[0].errors, 1u);
+    can.configure({steering()});
+    EXPECT_EQ(can.health()[0].errors, 1u) << "the same input keeps its health";
+}
+
 } // namespace
 } // namespace overlayd

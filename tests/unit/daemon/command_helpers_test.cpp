@@ -1,6 +1,9 @@
 // The `project --json` format (hand-written expected text) and render's choice of sink from the output path.
 #include "tools/commands.h"
 
+#include <iomanip>
+#include <sstream>
+
 #include <gtest/gtest.h>
 
 namespace overlayd {
@@ -39,6 +42,33 @@ TEST(ProjectionsText, SaysWhatHappenedToEachPoint)
     EXPECT_EQ(projectionsText({{1, 2, 3}, {0, 0, -1}}, points, {{3.0, nullptr}, {-1.0, "behind-camera"}}),
               "(1, 2, 3) -> pixel (10.000, 20.000), depth 0.500000, 3.000 m in front, visible\n"
               "(0, 0, -1) -> no pixel: behind-camera (1.000 m behind the camera)\n");
+}
+
+// No fixed-size buffer: a number of 251 digits is printed whole, and the line still ends where it should.
+TEST(ProjectionsText, PrintsAHugeNumberWhole)
+{
+    std::vector<ProjectedPoint> points(1);
+    points[0] = {{10, 20}, 0.5, PointStatus::Visible};
+    std::ostringstream reference;
+    reference << std::fixed << std::setprecision(3) << 1e250;
+    const std::string text = projectionsText({{1, 2, 3}}, points, {{1e250, nullptr}});
+    EXPECT_NE(text.find(", " + reference.str() + " m in front, visible\n"), std::string::npos) << text;
+}
+
+// A plane 1e30 m away along the ray: its distance is printed with all of its 31 digits, not cut at 31 characters.
+TEST(UnprojectText, PrintsAFarHitWhole)
+{
+    const auto camera = CameraSpec{}.build(640, 480);
+    ASSERT_TRUE(camera) << camera.error().message;
+    const auto ray = camera->unproject({320, 240});
+    ASSERT_TRUE(ray);
+    const std::string text = unprojectText(*camera, Plane{ray->direction, -1e30}, {{320, 240}});
+    const size_t away = text.rfind(" m away\n");
+    ASSERT_NE(away, std::string::npos) << text;
+    const size_t start = text.rfind(' ', away - 1) + 1;
+    const std::string distance = text.substr(start, away - start);
+    EXPECT_EQ(distance.find('.'), 31u) << text; // 31 digits, a point and 6 decimals
+    EXPECT_NEAR(std::stod(distance) / 1e30, 1.0, 1e-9) << text;
 }
 
 TEST(SinkForOutput, ExtensionPicksTheSink)

@@ -122,6 +122,22 @@ TEST(Snapshots, JpegWithoutNumberIsReplaced)
     EXPECT_EQ(std::distance(fs::directory_iterator(dir.path("")), fs::directory_iterator()), 1); // no temp left
 }
 
+// A link planted where an older snapshot writer put its temporary ("live.jpg.tmp") neither redirects the snapshot
+// nor breaks it: the link's target keeps its bytes and the snapshot still lands.
+TEST(Snapshots, APlantedTemporaryLinkIsNotFollowed)
+{
+    test::TempDir dir;
+    std::ofstream(dir.path("victim.txt")) << "keep me";
+    fs::create_symlink(dir.path("victim.txt"), dir.path("live.jpg.tmp"));
+    FrameBuffer frame = test::makeFrame("NV12", 32, 16);
+    ASSERT_TRUE(fillFrame(frame.view(), {}, 200, 40, 40));
+    writeThrough(*sink(SinkKind::Snapshot, dir.path("live.jpg")), frame, 2);
+    std::ifstream victim(dir.path("victim.txt"));
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(victim), {}), "keep me");
+    EXPECT_FALSE(cv::imread(dir.path("live.jpg"), cv::IMREAD_COLOR).empty());
+    EXPECT_TRUE(fs::is_symlink(dir.path("live.jpg.tmp")));
+}
+
 SourceOptions images(const std::string &pattern, const std::string &format)
 {
     SourceOptions o;

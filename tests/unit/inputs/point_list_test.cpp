@@ -40,6 +40,8 @@ TEST(PointList, RefusesEachMalformedLineByNumber)
         {"1 2 0x10\n", "'0x10' is not a finite number"},
         {"1 2 ++3\n", "'++3' is not a finite number"},
         {"1 2 +-3\n", "'+-3' is not a finite number"},
+        {"0 0 0\n1 1e7 2\n", "route.txt:2: y: out of range: must be in [-1e+06, 1e+06] (got 10000000)"},
+        {"-1e300 0 0\n", "route.txt:1: x: out of range"},
     };
     for (const auto &c : cases) {
         const auto points = parsePointList(c.text, "route.txt");

@@ -2,6 +2,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,13 @@ TEST(TextTokens, ExpandsEveryToken)
     const SlotTexts slots{{"gear", "R"}};
     expandTokens("gear {slot:gear}{slot:speed}", metadata, 0, out, &slots);
     EXPECT_EQ(out, "gear R");
+    // A gain or frame rate of any size is printed whole (the largest float, the largest double).
+    metadata.analogueGain = 3.0e38f;
+    std::ostringstream gain, fps;
+    gain << std::fixed << std::setprecision(2) << double(3.0e38f);
+    fps << std::fixed << std::setprecision(1) << 1.7e308;
+    expandTokens("{gain}|{fps}", metadata, 1.7e308, out);
+    EXPECT_EQ(out, gain.str() + "|" + fps.str());
     std::vector<std::string> names;
     appendSlotNames("{slot:a} {frame} {{slot:b}} {slot:c} {slot:a}", names);
     EXPECT_EQ(names, (std::vector<std::string>{"a", "c"}));

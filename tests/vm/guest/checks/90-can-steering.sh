@@ -42,8 +42,9 @@ mods=$(grep -E '^(can|can_raw|vcan|can_dev) ' /proc/modules | cut -d' ' -f1 | tr
 verdict can-modules $ok "modprobe:$loaded (/proc/modules: $mods)"
 [ $ok = 0 ] || { cleanup; exit 0; }
 
-# can_entry: the "kind":"can" object of /state's "inputs" (flat, compact JSON); field ENTRY KEY: its value, unquoted.
-can_entry() { curl -s --max-time 5 "$URL/state" | grep -o '{[^{}]*"kind":"can"[^{}]*}' | head -1; }
+# can_entry: the "kind":"can" object of /state's "inputs" (flat, compact JSON, keys sorted: "interface" before
+# "kind"; "input_health" has "kind":"can" objects too, without "interface"); field ENTRY KEY: its value, unquoted.
+can_entry() { curl -s --max-time 5 "$URL/state" | grep -o '{[^{}]*"interface":[^{}]*"kind":"can"[^{}]*}' | head -1; }
 field() { echo "$1" | sed -n "s/.*\"$2\":\"\{0,1\}\([^\",}]*\).*/\1/p"; }
 same() { # VALUE WANT: within 0.05
     [ -n "$1" ] && [ "$1" != null ] && awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; exit !(d < 0.05 && d > -0.05) }'
@@ -172,6 +173,10 @@ ip link set vcan0 down
 await 5 is_connected false
 down=$?
 down_entry=$E
+sleep 2 # two retries: a down interface is not opened (its health waits)
+E=$(can_entry)
+is_connected false || down=1
+[ "$(curl -s --max-time 5 "$URL/metrics" | sed -n 's/^overlayd_input_following{kind="can",[^}]*} //p')" = 0.0 ] || down=1
 ip link set vcan0 up
 await 10 is_connected true
 up=$?
