@@ -3,6 +3,8 @@
 // bits, from the start bit's position in that word downwards).
 #include "inputs/can_signal.h"
 
+#include <cstdio>
+
 namespace overlayd::inputs {
 
 namespace {
@@ -71,6 +73,13 @@ std::optional<double> canDecode(const CanSignalLayout &layout, std::span<const u
     else if (layout.isSigned && layout.length == 64)
         value = double(int64_t(*raw));
     return value * layout.scale + layout.offset;
+}
+
+std::string canReadingText(double value, int decimals, const std::string &unit)
+{
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, value);
+    return unit.empty() ? std::string(text) : std::string(text) + " " + unit;
 }
 
 } // namespace overlayd::inputs
