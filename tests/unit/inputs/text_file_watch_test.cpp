@@ -11,6 +11,7 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace overlayd::inputs;
 namespace fs = std::filesystem;
@@ -19,7 +20,9 @@ namespace {
 
 fs::path scratch(const std::string &name)
 {
-    const fs::path dir = fs::temp_directory_path() / ("overlayd-text-watch-" + name);
+    // One folder per process: two builds' test runs on one machine must not write into each other's folder.
+    const fs::path dir =
+        fs::temp_directory_path() / ("overlayd-text-watch-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
