@@ -1,7 +1,9 @@
-// jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); UTF-8 passes through.
+// jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); valid UTF-8 passes through, and
+// each byte that is not (a device's card name, a file name) becomes U+FFFD, so the output is always JSON.
 #include "base/json_text.h"
 
 #include "base/number_text.h"
+#include "base/utf8.h"
 
 #include <charconv>
 #include <cmath>
@@ -12,8 +14,18 @@ namespace overlayd {
 std::string jsonString(const std::string &text)
 {
     std::string out = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
+    for (size_t at = 0; at < text.size();) {
+        const char c = text[at];
+        const size_t length = utf8SequenceLength(text, at);
+        if (length > 1) {
+            out.append(text, at, length);
+            at += length;
+            continue;
+        }
+        ++at;
+        if (length == 0) {
+            out += "\\ufffd"; // the JSON escape of U+FFFD, the replacement character
+        } else if (c == '"' || c == '\\') {
             out += '\\';
             out += c;
         } else if (static_cast<unsigned char>(c) < 0x20) {

@@ -47,6 +47,26 @@ void checkLayers(TableReader &table, std::string_view key, const std::vector<std
     }
 }
 
+// An input must switch something, and no layer both ways: shown only while the line is active and hidden while it
+// is, the layer could never be seen (layer_rules.h), whatever the line does.
+void checkSwitches(TableReader &input, const gpio::InputOptions &in)
+{
+    if (in.showLayers.empty() && in.hideLayers.empty()) {
+        const char *given = input.has("show_layers") ? "show_layers" : input.has("hide_layers") ? "hide_layers" : "";
+        if (*given)
+            input.problem(given, "an empty list: the input would switch nothing (name the layers it shows or hides)");
+        else
+            input.problemAtTable("an input needs show_layers or hide_layers: the layers it switches");
+        return;
+    }
+    for (const std::string &layer : in.hideLayers)
+        if (std::find(in.showLayers.begin(), in.showLayers.end(), layer) != in.showLayers.end()) {
+            input.problem("hide_layers",
+                          "layer '" + layer + "' is in show_layers too: one input cannot both show and hide it");
+            return;
+        }
+}
+
 struct Claim {
     gpio::LineAddress line;
     std::string who;
@@ -58,8 +78,9 @@ void claimLine(TableReader &table, const gpio::LineAddress &line, const std::str
     if (line.chip.empty())
         return;
     for (const Claim &claim : claims)
-        if (claim.line == line) {
-            table.problem("line", line.describe() + " is already used by " + claim.who);
+        if (claim.line.sameLine(line)) {
+            table.problem("line", line.describe() + " is already used by " + claim.who +
+                                      (claim.line.chip == line.chip ? "" : " (as " + claim.line.describe() + ")"));
             return;
         }
     claims.push_back({line, who});
@@ -87,8 +108,7 @@ void readInput(TableReader &input, size_t index, const std::vector<std::string> 
         out.hideLayers = *hide;
         checkLayers(input, "hide_layers", out.hideLayers, layers);
     }
-    if (out.showLayers.empty() && out.hideLayers.empty() && !input.has("show_layers") && !input.has("hide_layers"))
-        input.problemAtTable("an input needs show_layers or hide_layers: the layers it switches");
+    checkSwitches(input, out);
     claimLine(input, out.line, "input '" + out.name + "'", claims);
     input.finish();
 }

@@ -1,12 +1,10 @@
 // [http]: the server's address, limits and control mode, checked as far as a file can be (the address parses, an
-// open control API listens only locally, the token file is readable); whether the port is free is known only when
-// `run` binds it.
+// open control API listens only locally, a unix socket's folder exists, the token file holds a token: read by the
+// server's own reader); whether the port is free is known only when `run` binds it.
 #include "config/config_sections.h"
 
-#include <filesystem>
-#include <unistd.h>
-
 #include "http/listen_address.h"
+#include "http/token_file.h"
 
 namespace overlayd::config {
 
@@ -28,6 +26,8 @@ void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOpt
             address = *parsed;
         else
             table->problem("listen", parsed.error().message);
+        if (Status folder = address ? http::checkListenFolder(*address) : Status(Ok{}); !folder)
+            table->problem("listen", "'" + *listen + "': " + folder.error().message);
     } else {
         address = *http::parseListenAddress(out.listen);
     }
@@ -52,9 +52,8 @@ void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOpt
     if (out.control == http::ControlMode::Token) {
         if (out.tokenFile.empty())
             table->problem("token_file", "missing: control = \"token\" needs the file that holds the token");
-        else if (std::error_code error;
-                 !std::filesystem::is_regular_file(out.tokenFile, error) || ::access(out.tokenFile.c_str(), R_OK) != 0)
-            table->problem("token_file", "cannot read '" + out.tokenFile + "' (a readable regular file)");
+        else if (auto token = http::readTokenFile(out.tokenFile); !token)
+            table->problem("token_file", token.error().message); // what the server would refuse when it starts
     }
     table->finish();
 }

@@ -1,8 +1,9 @@
 // [[input.text]]: text slots fed by files; [[input.path]]: the points of a polyline or markers annotation from a
 // file; [[input.can]]: signals on a CAN bus, into the guide lines' steering or
 // a text slot. A target must exist in the scene (a typo would feed nothing, silently) and is fed by one input; a
-// text file's folder must exist (the file itself may appear later: a program that writes it may start after the
-// daemon). A CAN interface is not checked: like a camera it may appear after the daemon starts.
+// watched file's folder must exist and the file, if there, be a regular one (the file itself may appear later: a
+// program that writes it may start after the daemon). A CAN interface need not exist (like a camera it may appear
+// after the daemon starts), but its name must be one the kernel could give.
 #include "config/config_sections.h"
 
 #include <algorithm>
@@ -10,23 +11,40 @@
 
 #include "base/utf8.h"
 #include "config/limits.h"
+#include "inputs/can_signal.h"
+#include "inputs/can_socket.h"
+#include "inputs/text_file_watch.h"
 #include "overlay/shapes/scene_checks.h"
+#include "overlay/shapes/text_tokens.h"
 
 namespace overlayd::config {
 
 namespace {
 
-bool folderExists(TableReader &table, const std::string &key, const std::string &file)
+// The file an [[input.text]] or [[input.path]] watches: its folder must exist (the daemon watches the folder), and
+// what is at the path, if anything, must be a regular file (inputs::watchedFileProblem, as the watch refuses it).
+void readWatchedFile(TableReader &table, const std::string &baseDirectory, const std::string &missing, std::string &out)
 {
-    std::filesystem::path folder = std::filesystem::path(file).parent_path();
+    const std::optional<std::string> file = table.string("file");
+    if (!file) {
+        if (!table.has("file"))
+            table.problem("file", "missing: " + missing);
+        return;
+    }
+    if (file->empty()) {
+        table.problem("file", "an empty path");
+        return;
+    }
+    out = resolvePath(baseDirectory, *file);
+    std::filesystem::path folder = std::filesystem::path(out).parent_path();
     if (folder.empty()) // a config given as a relative path in the working directory
         folder = ".";
     std::error_code error;
-    if (std::filesystem::is_directory(folder, error))
-        return true;
-    table.problem(key, "the folder " + folder.string() +
-                           " does not exist (the file may appear later; its folder must be there)");
-    return false;
+    if (!std::filesystem::is_directory(folder, error))
+        table.problem("file", "the folder " + folder.string() +
+                                  " does not exist (the file may appear later; its folder must be there)");
+    else if (const std::string problem = inputs::watchedFileProblem(out); !problem.empty())
+        table.problem("file", problem);
 }
 
 void readTextInput(TableReader &table, const std::string &baseDirectory, const std::vector<std::string> &slots,
@@ -46,14 +64,7 @@ void readTextInput(TableReader &table, const std::string &baseDirectory, const s
     } else if (!table.has("slot")) {
         table.problem("slot", "missing: the {slot:NAME} this file feeds");
     }
-    if (auto file = table.string("file"); file && !file->empty()) {
-        out.file = resolvePath(baseDirectory, *file);
-        folderExists(table, "file", out.file);
-    } else if (!file) {
-        table.problem("file", "missing: the file another program writes");
-    } else {
-        table.problem("file", "an empty path");
-    }
+    readWatchedFile(table, baseDirectory, "the file another program writes", out.file);
     if (auto bytes = table.integer("max_bytes", 1, int64_t(inputs::kMaxTextBytes)))
         out.maxBytes = size_t(*bytes);
     table.finish();
@@ -83,14 +94,7 @@ void readPathInput(TableReader &table, const std::string &baseDirectory, const O
     } else if (!table.has("annotation")) {
         table.problem("annotation", "missing: the polyline or markers annotation whose points the file holds");
     }
-    if (auto file = table.string("file"); file && !file->empty()) {
-        out.file = resolvePath(baseDirectory, *file);
-        folderExists(table, "file", out.file);
-    } else if (!file) {
-        table.problem("file", "missing: the file another program writes (one \"x y z\" per line)");
-    } else {
-        table.problem("file", "an empty path");
-    }
+    readWatchedFile(table, baseDirectory, "the file another program writes (one \"x y z\" per line)", out.file);
     table.finish();
 }
 
@@ -124,15 +128,28 @@ void readCanTarget(TableReader &table, const OverlayScene &scene, const std::vec
     fed.push_back(key);
 }
 
+// What a slot target shows must be text a slot takes (checkSlotText, as SceneControl refuses it): the stale text,
+// and the unit after the shortest reading of [min, max] (a unit that does not fit then never shows). min >= max is
+// refused at max already.
+void checkSlotTexts(TableReader &table, const inputs::CanInputOptions &in)
+{
+    if (Status stale = checkSlotText(in.staleText); !stale)
+        table.problem("stale_text", "it could never show: " + stale.error().message);
+    if (in.target.kind != inputs::CanTarget::Kind::Slot || in.min >= in.max) // a steering target shows no unit
+        return;
+    const std::string shortest = inputs::canReadingText(std::clamp(0.0, in.min, in.max), in.decimals, in.unit);
+    if (Status unit = checkSlotText(shortest); !unit)
+        table.problem("unit", "no reading could show: " + unit.error().message);
+}
+
 void readCanInput(TableReader &table, const OverlayScene &scene, const std::vector<std::string> &slots,
                   std::vector<std::string> &fed, inputs::CanInputOptions &out)
 {
     out.name = table.string("name").value_or("");
     if (auto interface = table.string("interface")) {
         out.interface = *interface;
-        if (interface->empty() || interface->size() > 15 || interface->find('/') != std::string::npos)
-            table.problem("interface",
-                          "a network interface name of 1..15 characters (e.g. can0), got \"" + *interface + "\"");
+        if (const std::string problem = inputs::canInterfaceProblem(*interface); !problem.empty())
+            table.problem("interface", problem); // what opening the socket would refuse
     } else if (!table.has("interface")) {
         table.problem("interface", "missing: the SocketCAN interface (e.g. can0)");
     }
@@ -170,11 +187,8 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
     out.step = table.number("step", 0.0, kMaxCanValue).value_or(out.step);
     out.decimals = int(table.integer("decimals", 0, 9).value_or(out.decimals));
     out.staleText = table.string("stale_text").value_or(out.staleText);
-    if (out.staleText.size() > inputs::kMaxTextBytes)
-        table.problem("stale_text", "at most " + std::to_string(inputs::kMaxTextBytes) + " bytes");
-    else if (const auto problem = outsideTextProblem(out.staleText))
-        table.problem("stale_text", *problem + " (the text is shown on one line)");
     readCanTarget(table, scene, slots, fed, out.target);
+    checkSlotTexts(table, out);
     if (out.name.empty())
         out.name = out.interface + ":" + std::to_string(out.id.id);
     table.finish();

@@ -85,7 +85,8 @@ void readV4l2(TableReader &v4l2, V4l2CaptureOptions &out)
     v4l2.finish();
 }
 
-// Controls are checked by name and value type here (check-config has no camera); ranges when the camera opens.
+// Controls are checked by name and value here against libcamera's registry (check-config has no camera: the type's
+// range, NaN, array controls); the camera's own ranges when it opens.
 void readControls(TableReader &libcamera, std::vector<ControlSetting> &out)
 {
     const toml::node *node = libcamera.node("controls");
@@ -126,6 +127,10 @@ void readControls(TableReader &libcamera, std::vector<ControlSetting> &out)
                                  : *kind == ControlValueKind::Float   ? "a number"
                                                                       : "nothing a config can give";
             libcamera.problemAt(value, path, std::string("expected ") + wanted + ", got " + typeName(value));
+            continue;
+        }
+        if (const std::string problem = libcameraControlProblem(setting); !problem.empty()) {
+            libcamera.problemAt(value, path, problem); // what building the camera's controls would refuse
             continue;
         }
         const auto &begin = value.source().begin;

@@ -1,21 +1,11 @@
 #include "daemon/can_inputs.h"
 
-#include "base/number_text.h"
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "inputs/can_signal.h"
 
 namespace overlayd {
-
-namespace {
-
-std::string formatValue(double value, int decimals, const std::string &unit)
-{
-    const std::string text = formatted("%.*f", decimals, value);
-    return unit.empty() ? text : text + " " + unit;
-}
-
-} // namespace
 
 const char *CanInputs::stateName(State state)
 {
@@ -202,8 +192,9 @@ void CanInputs::show(size_t input, bool force)
     if (target.kind == inputs::CanTarget::Kind::Steering)
         applied = scene_.apply(SteeringChange{target.name, value});
     else
-        applied = scene_.apply(TextChange{target.name, value ? formatValue(*value, in.options.decimals, in.options.unit)
-                                                             : in.options.staleText});
+        applied = scene_.apply(
+            TextChange{target.name, value ? inputs::canReadingText(*value, in.options.decimals, in.options.unit)
+                                          : in.options.staleText});
     if (!applied) {
         logger_.warning(cat("input.can '", in.options.name, "': ", applied.error().message));
         return;
@@ -229,7 +220,8 @@ std::string CanInputs::describe(Clock::time_point now) const
         const Reading &r = in.reading;
         out += out.empty() ? "" : ", ";
         out += cat(in.options.name, "=");
-        out += r.state == State::NoData ? std::string("-") : formatValue(r.value, in.options.decimals, in.options.unit);
+        out += r.state == State::NoData ? std::string("-")
+                                        : inputs::canReadingText(r.value, in.options.decimals, in.options.unit);
         out += cat(" ", stateName(r.state));
         if (r.state != State::NoData)
             out += cat(" age ", std::chrono::duration_cast<std::chrono::milliseconds>(now - r.received).count(), " ms");

@@ -105,6 +105,10 @@ bool libcameraBuiltIn();
 enum class ControlValueKind { Bool, Integer, Float, Unsupported };
 std::vector<std::string> libcameraControlNames();
 std::optional<ControlValueKind> libcameraControlKind(const std::string &name);
+// Why the registry's control could never take the setting's value, whatever the camera (NaN or beyond the control's
+// type, a single value for an array control), or empty when it could; the camera's ranges are checked when it
+// opens. The same check builds the camera's controls, so check-config refuses what run would.
+std::string libcameraControlProblem(const ControlSetting &setting);
 
 // Validates before allocating anything (sizes, fps). V4L2 support may be compiled out: then asking for it is an
 // Unsupported error, never a crash. `sceneCamera`: the stream's camera, which the checkerboard-scene pattern is

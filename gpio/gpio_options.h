@@ -22,6 +22,9 @@ struct LineAddress {
 
     // "gpiochip0 line 17" or "gpiochip0 line 'REVERSE_IN'"
     std::string describe() const;
+    // The same line however its chip is spelt as libgpiod looks it up: "gpiochip0", "/dev/gpiochip0" and "0" are
+    // one chip (a label is known only on the machine, so it compares as written).
+    bool sameLine(const LineAddress &other) const;
     bool operator==(const LineAddress &) const = default;
 };
 

@@ -14,6 +14,7 @@
 
 #include "http/page_files.h"
 #include "http/percent_decoding.h"
+#include "http/token_file.h"
 
 namespace overlayd::http {
 
@@ -61,21 +62,6 @@ bool sameToken(const std::string &given, const std::string &expected)
     for (size_t i = 0; i < given.size(); ++i)
         difference |= static_cast<unsigned char>(given[i] ^ expected[i % std::max<size_t>(expected.size(), 1)]);
     return difference == 0 && !expected.empty();
-}
-
-Result<std::string> readToken(const std::string &path)
-{
-    std::ifstream in(path);
-    std::string token;
-    if (!in || !std::getline(in, token))
-        return makeError(ErrorCode::NotFound, "http.token_file '" + path + "': cannot read it (control = \"token\")");
-    while (!token.empty() && (token.back() == '\r' || token.back() == ' ' || token.back() == '\t'))
-        token.pop_back();
-    if (token.empty() || token.size() > kMaxTokenBytes)
-        return makeError(ErrorCode::InvalidArgument, "http.token_file '" + path +
-                                                         "': the first line must hold a token of 1 to " +
-                                                         std::to_string(kMaxTokenBytes) + " characters");
-    return token;
 }
 
 } // namespace
@@ -245,9 +231,9 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
                          "http.control = \"open\" only on loopback or a unix socket, not " + address->describe());
     std::unique_ptr<HttpServer> server(new HttpServer(options, *address, feed, std::move(api), logger));
     if (options.control == ControlMode::Token) {
-        auto token = readToken(options.tokenFile);
+        auto token = readTokenFile(options.tokenFile);
         if (!token)
-            return token.error();
+            return makeError(token.error().code, "http.token_file " + token.error().message);
         server->token_ = *token;
     }
     if (server->options_.pageDirectory.empty())

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <filesystem>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -100,8 +101,22 @@ Result<ListenAddress> parseListenAddress(const std::string &text)
     return out;
 }
 
+Status checkListenFolder(const ListenAddress &address)
+{
+    if (address.kind != ListenAddress::Kind::Unix)
+        return Ok{};
+    const std::string folder = std::filesystem::path(address.host).parent_path().string();
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error))
+        return makeError(ErrorCode::NotFound,
+                         "the socket's folder " + folder + " does not exist or is not a folder (bind would fail)");
+    return Ok{};
+}
+
 Result<UniqueFd> openListeningSocket(const ListenAddress &address, int backlog)
 {
+    if (Status folder = checkListenFolder(address); !folder)
+        return makeError(folder.error().code, "cannot listen on " + address.describe() + ": " + folder.error().message);
     const int family = address.kind == ListenAddress::Kind::Unix   ? AF_UNIX
                        : address.kind == ListenAddress::Kind::Ipv6 ? AF_INET6
                                                                    : AF_INET;

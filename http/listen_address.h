@@ -21,6 +21,10 @@ struct ListenAddress {
 // Refuses anything else with a reason that says what is expected.
 Result<ListenAddress> parseListenAddress(const std::string &text);
 
+// What binding the address would refuse whatever the moment: a unix socket's folder that does not exist (the
+// config loader asks, so check-config refuses it as run would).
+Status checkListenFolder(const ListenAddress &address);
+
 // A bound, listening, non-blocking socket (a stale unix socket file is replaced; its folder must exist).
 Result<UniqueFd> openListeningSocket(const ListenAddress &address, int backlog);
 

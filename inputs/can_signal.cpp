@@ -3,6 +3,8 @@
 // bits, from the start bit's position in that word downwards).
 #include "inputs/can_signal.h"
 
+#include "base/number_text.h"
+
 namespace overlayd::inputs {
 
 namespace {
@@ -71,6 +73,12 @@ std::optional<double> canDecode(const CanSignalLayout &layout, std::span<const u
     else if (layout.isSigned && layout.length == 64)
         value = double(int64_t(*raw));
     return value * layout.scale + layout.offset;
+}
+
+std::string canReadingText(double value, int decimals, const std::string &unit)
+{
+    const std::string text = formatted("%.*f", decimals, value);
+    return unit.empty() ? text : text + " " + unit;
 }
 
 } // namespace overlayd::inputs

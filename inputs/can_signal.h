@@ -41,4 +41,8 @@ std::optional<uint64_t> canRawBits(const CanSignalLayout &layout, std::span<cons
 // The physical value: the raw bits, sign-extended when signed, times scale plus offset.
 std::optional<double> canDecode(const CanSignalLayout &layout, std::span<const uint8_t> data);
 
+// What a text slot shows for a value: "12.3 km/h" (`decimals` after the point, then the unit, if any). The config
+// loader checks the shortest reading against the slot's limits, so a unit no reading could show is refused.
+std::string canReadingText(double value, int decimals, const std::string &unit);
+
 } // namespace overlayd::inputs

@@ -4,6 +4,7 @@
 #include "inputs/can_socket.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 
@@ -26,10 +27,23 @@ Error socketError(const std::string &what, const std::string &interface)
 
 } // namespace
 
+std::string canInterfaceProblem(std::string_view name)
+{
+    const auto forbidden = [](char c) {
+        return c == '/' || c == ':' || std::isspace(static_cast<unsigned char>(c));
+    };
+    if (name.empty() || name.size() >= IFNAMSIZ || name == "." || name == ".." ||
+        std::any_of(name.begin(), name.end(), forbidden))
+        return "a network interface name of 1.." + std::to_string(IFNAMSIZ - 1) +
+               " bytes without '/', ':' or blanks, as the kernel requires (e.g. can0), got \"" +
+               std::string(name.substr(0, 64)) + "\"";
+    return {};
+}
+
 Result<CanSocket> CanSocket::open(const std::string &interface, CanId id)
 {
-    if (interface.empty() || interface.size() >= IFNAMSIZ)
-        return makeError(ErrorCode::InvalidArgument, "CAN interface name '" + interface + "' is not 1..15 bytes");
+    if (const std::string problem = canInterfaceProblem(interface); !problem.empty())
+        return makeError(ErrorCode::InvalidArgument, "CAN interface: " + problem);
     UniqueFd fd(::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW));
     if (fd.get() < 0)
         return socketError("socket(PF_CAN)", interface);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "base/result.h"
 #include "base/unique_fd.h"
@@ -25,6 +26,10 @@ struct CanFrame {
     uint8_t data[8]{};
     std::span<const uint8_t> bytes() const { return {data, length}; }
 };
+
+// Why the kernel could never name an interface so (its dev_valid_name(): 1..IFNAMSIZ-1 bytes, not "." or "..",
+// no '/', ':' or whitespace); empty when it could. The config loader asks too, so check-config refuses the name.
+std::string canInterfaceProblem(std::string_view name);
 
 class CanSocket
 {

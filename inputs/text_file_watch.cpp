@@ -3,8 +3,10 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <sys/inotify.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/regular_file.h"
 #include "base/utf8.h"
 
 namespace overlayd::inputs {
@@ -31,8 +33,19 @@ std::string slotLine(std::string_view content, size_t maxBytes)
     return line;
 }
 
+std::string watchedFileProblem(const std::string &path)
+{
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0 || S_ISREG(info.st_mode))
+        return {};
+    return "'" + path + "' is " + fileKindName(info.st_mode) +
+           ": a watched file must be a regular file (or not exist yet: it may appear later)";
+}
+
 Result<TextFileWatch> TextFileWatch::open(const std::string &path, size_t maxBytes, Reread reread)
 {
+    if (const std::string problem = watchedFileProblem(path); !problem.empty())
+        return makeError(ErrorCode::InvalidArgument, problem);
     const std::filesystem::path file(path);
     const std::string folder = file.parent_path().empty() ? "." : file.parent_path().string();
     auto watch = FolderWatch::open(folder, reread == Reread::EveryWrite ? kEveryWrite : kWhenComplete);

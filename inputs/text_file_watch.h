@@ -14,6 +14,11 @@ namespace overlayd::inputs {
 // at a UTF-8 character boundary.
 std::string slotLine(std::string_view content, size_t maxBytes);
 
+// Why a watched file could never be read as one: something that exists at the path and is not a regular file (a
+// directory, a device, a FIFO); empty when it is one or nothing is there yet. open() refuses it, and the config
+// loader asks too, so check-config refuses it as run does.
+std::string watchedFileProblem(const std::string &path);
+
 class TextFileWatch
 {
 public:
@@ -21,8 +26,8 @@ public:
     // writer that keeps the file open), or only once a writer closes it or renames it in (a whole document such as
     // a path: never read half-written; a truncating `>` would otherwise read as empty first).
     enum class Reread { EveryWrite, WhenComplete };
-    // The folder must exist now (a missing file is fine: it reads as empty until it appears); if it goes later, it
-    // is waited for.
+    // The folder must exist now (a missing file is fine: it reads as empty until it appears; if the folder goes
+    // later, it is waited for); an existing path that is not a regular file is refused (watchedFileProblem).
     static Result<TextFileWatch> open(const std::string &path, size_t maxBytes, Reread reread = Reread::EveryWrite);
 
     // Readable when something happened in the folder; consume() then says whether it was this file (or may have

@@ -1,7 +1,10 @@
 // Controls: the registry answers what check-config can know; the camera's ControlInfoMap what only it knows.
 #include "drivers/libcamera/libcamera_controls.h"
 
+#include <cfloat>
+#include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 
 #include <libcamera/control_ids.h>
@@ -17,6 +20,24 @@ const libcamera::ControlId *registryControl(const std::string &name)
             return control;
     }
     return nullptr;
+}
+
+// Whether the control takes an array. ControlId::isArray() arrived after Debian 12's libcamera 0.0.3; there, the
+// table's array controls (the Span<> ones of its control_ids.h) are named.
+template<typename Id>
+bool isArrayControl(const Id &id)
+{
+    if constexpr (requires { id.isArray(); }) {
+        return id.isArray();
+    } else {
+        namespace c = libcamera::controls;
+        for (const libcamera::ControlId *array : std::initializer_list<const libcamera::ControlId *>{
+                 &c::ColourGains, &c::SensorBlackLevels, &c::ColourCorrectionMatrix, &c::FrameDurationLimits,
+                 &c::AfWindows})
+            if (&id == array)
+                return true;
+        return false;
+    }
 }
 
 } // namespace
@@ -52,10 +73,13 @@ namespace lc {
 
 namespace {
 
-// The config value as the control's type, or the reason it cannot be one.
+// The config value as the control's type, or the reason it can never be one, whatever the camera.
 Result<libcamera::ControlValue> toControlValue(const libcamera::ControlId &id, const ControlSetting &setting)
 {
+    if (isArrayControl(id))
+        return makeError(ErrorCode::ConfigError, "an array control: not settable from the config");
     const auto *integer = std::get_if<int64_t>(&setting.value);
+    const auto *real = std::get_if<double>(&setting.value);
     switch (id.type()) {
     case libcamera::ControlTypeBool:
         if (const auto *b = std::get_if<bool>(&setting.value))
@@ -74,17 +98,20 @@ Result<libcamera::ControlValue> toControlValue(const libcamera::ControlId &id, c
             return libcamera::ControlValue(*integer);
         break;
     case libcamera::ControlTypeFloat:
-        if (const auto *d = std::get_if<double>(&setting.value))
-            return libcamera::ControlValue(float(*d));
+        if (real && std::isnan(*real))
+            return makeError(ErrorCode::ConfigError, "not a number (nan): expected a number");
+        if (real && std::abs(*real) <= FLT_MAX)
+            return libcamera::ControlValue(float(*real));
         break;
     default:
         break;
     }
     const char *wanted = id.type() == libcamera::ControlTypeBool        ? "true or false"
                          : id.type() == libcamera::ControlTypeByte      ? "an integer 0..255"
-                         : id.type() == libcamera::ControlTypeInteger32 ? "a 32-bit integer"
+                         : id.type() == libcamera::ControlTypeInteger32 ? "a 32-bit integer (-2147483648..2147483647)"
                          : id.type() == libcamera::ControlTypeInteger64 ? "an integer"
-                         : id.type() == libcamera::ControlTypeFloat     ? "a number"
+                         : id.type() == libcamera::ControlTypeFloat     ? "a finite number within a float's range "
+                                                                          "(+-3.4e38)"
                                                                         : "a value a config cannot give";
     return makeError(ErrorCode::ConfigError, std::string("expected ") + wanted);
 }
@@ -125,6 +152,19 @@ std::string checkRange(const libcamera::ControlValue &value, const libcamera::Co
 }
 
 } // namespace
+
+} // namespace lc
+
+std::string libcameraControlProblem(const ControlSetting &setting)
+{
+    const libcamera::ControlId *id = registryControl(setting.name);
+    if (!id)
+        return "unknown libcamera control";
+    const auto value = lc::toControlValue(*id, setting);
+    return value ? std::string() : value.error().message;
+}
+
+namespace lc {
 
 Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &settings,
                                              const libcamera::ControlInfoMap &camera)

@@ -18,6 +18,11 @@ std::optional<ControlValueKind> libcameraControlKind(const std::string &)
     return std::nullopt;
 }
 
+std::string libcameraControlProblem(const ControlSetting &)
+{
+    return {};
+}
+
 Result<std::unique_ptr<FrameSource>> makeLibcameraSource(const SourceOptions &)
 {
     return makeError(

@@ -2,6 +2,8 @@
 // render and run alike, through the real binary, with the same "file:line:column: key: reason" line and exit
 // status 2; every config of tests/data/config/accepted/ is accepted by all three. A row is a file: its first line
 // says where it must be refused ("# refused at: LINE:COLUMN: KEY: REASON WORDS"), or nothing for an accepted one.
+// A row about an optional part (libmicrohttpd, libcamera, libgpiod) says so on its second line ("# needs: http",
+// "libcamera" or "gpiod") and is skipped in a build without it: there the whole section is refused instead.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -21,7 +23,14 @@ namespace fs = std::filesystem;
 struct Row {
     std::string path;    // the config, absolute
     std::string refusal; // "LINE:COLUMN: KEY: WORDS" from its first line; empty: it must be accepted
+    std::string needs;   // the optional part it needs ("http", "libcamera", "gpiod"), from its second line
 };
+
+// Whether this build has the optional part a row needs (OVERLAYD_FEATURES: " http libcamera gpiod ", from CMake).
+bool built(const Row &row)
+{
+    return row.needs.empty() || std::string(OVERLAYD_FEATURES).find(" " + row.needs + " ") != std::string::npos;
+}
 
 void PrintTo(const Row &row, std::ostream *out)
 {
@@ -34,10 +43,12 @@ std::vector<Row> rows(const std::string &folder)
     for (const auto &entry : fs::directory_iterator(std::string(OVERLAYD_SOURCE_DIR) + "/tests/data/config/" + folder))
         if (entry.path().extension() == ".toml") {
             std::ifstream in(entry.path());
-            std::string first;
+            std::string first, second;
             std::getline(in, first);
-            const std::string marker = "# refused at: ";
-            out.push_back(Row{entry.path().string(), first.rfind(marker, 0) == 0 ? first.substr(marker.size()) : ""});
+            std::getline(in, second);
+            const std::string marker = "# refused at: ", needs = "# needs: ";
+            out.push_back(Row{entry.path().string(), first.rfind(marker, 0) == 0 ? first.substr(marker.size()) : "",
+                              second.rfind(needs, 0) == 0 ? second.substr(needs.size()) : ""});
         }
     std::sort(out.begin(), out.end(), [](const Row &a, const Row &b) { return a.path < b.path; });
     return out;
@@ -80,6 +91,8 @@ TEST_P(Refusals, CheckConfigRenderAndRunRefuseWithTheSameLocatedProblem)
 {
     const Row row = GetParam();
     ASSERT_FALSE(row.refusal.empty()) << row.path << ": the first line must be '# refused at: LINE:COLUMN: KEY: ...'";
+    if (!built(row))
+        GTEST_SKIP() << "this overlayd was built without " << row.needs;
     const Verdicts v = runAll(row);
     const std::string expected = fs::path(row.path).filename().string() + ":" + row.refusal;
     const std::string line = lineWith(v.check.out, expected);
@@ -103,6 +116,8 @@ class Accepted : public ::testing::TestWithParam<Row>
 
 TEST_P(Accepted, CheckConfigRenderAndRunAllAccept)
 {
+    if (!built(GetParam()))
+        GTEST_SKIP() << "this overlayd was built without " << GetParam().needs;
     const Verdicts v = runAll(GetParam());
     for (const RunResult *result : {&v.check, &v.render, &v.run}) {
         EXPECT_FALSE(result->crashed) << result->all();

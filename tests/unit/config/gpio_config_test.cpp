@@ -147,6 +147,37 @@ TEST_F(GpioConfig, AnInputThatSwitchesNothingIsRefused)
     EXPECT_NE(problems[0].message.find("needs show_layers or hide_layers"), std::string::npos);
 }
 
+// libgpiod v1 opens "0", "gpiochip0" and "/dev/gpiochip0" as one chip: a line under two of them is one line.
+TEST_F(GpioConfig, OneLineUnderTwoSpellingsOfItsChipIsUsedTwice)
+{
+    for (const char *other : {"/dev/gpiochip0", "0", "00"}) {
+        const auto problems = loadInvalid(kScene +
+                                          "[[gpio.input]]\nchip = \"gpiochip0\"\nline = 5\n"
+                                          "show_layers = [\"guides\"]\n[[gpio.output]]\nchip = \"" +
+                                          other + "\"\nline = 5\n");
+        ASSERT_EQ(problems.size(), 1u) << other << "\n" << test::formatProblems(problems);
+        EXPECT_EQ(problems[0].key, "gpio.output[0].line") << other;
+    }
+    gpio::LineAddress byName{"gpiochip0", "", 5}, otherChip{"/dev/gpiochip1", "", 5}, label{"pinctrl", "", 5};
+    EXPECT_FALSE(byName.sameLine(otherChip));
+    EXPECT_FALSE(byName.sameLine(label)); // a label is known only on the machine
+    EXPECT_FALSE(byName.sameLine({"gpiochip0", "", 6}));
+}
+
+// Shown only while active and hidden while active: never seen. An empty list switches nothing.
+TEST_F(GpioConfig, AnInputCannotShowAndHideOneLayerOrSwitchAnEmptyList)
+{
+    auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guides\", "
+                                         "\"logo\"]\nhide_layers = [\"logo\"]\n");
+    ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
+    EXPECT_EQ(problems[0].key, "gpio.input[0].hide_layers");
+    EXPECT_NE(problems[0].message.find("layer 'logo' is in show_layers too"), std::string::npos);
+    problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nhide_layers = []\n");
+    ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
+    EXPECT_EQ(problems[0].key, "gpio.input[0].hide_layers");
+    EXPECT_NE(problems[0].message.find("would switch nothing"), std::string::npos);
+}
+
 TEST_F(GpioConfig, InputsAreLimited)
 {
     std::string text = kScene;

@@ -176,7 +176,7 @@ target = "guide lines.steering"
     const auto has = [&](const std::string &key, const std::string &words) {
         return test::hasProblem(problems, key, words);
     };
-    EXPECT_TRUE(has("input.can[0].interface", "1..15 characters")) << all;
+    EXPECT_TRUE(has("input.can[0].interface", "1..15 bytes")) << all;
     EXPECT_TRUE(has("input.can[0].id", "2047")) << all;
     EXPECT_TRUE(has("input.can[0].start_bit", "runs past the 8th data byte")) << all;
     EXPECT_TRUE(has("input.can[0].byte_order", "little-endian | big-endian")) << all;

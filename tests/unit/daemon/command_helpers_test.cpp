@@ -1,10 +1,12 @@
 // The `project --json` format (hand-written expected text) and render's choice of sink from the output path.
+#include "base/json_text.h"
 #include "tools/commands.h"
 
 #include <iomanip>
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 namespace overlayd {
 namespace {
@@ -69,6 +71,20 @@ TEST(UnprojectText, PrintsAFarHitWhole)
     const std::string distance = text.substr(start, away - start);
     EXPECT_EQ(distance.find('.'), 31u) << text; // 31 digits, a point and 6 decimals
     EXPECT_NEAR(std::stod(distance) / 1e30, 1.0, 1e-9) << text;
+}
+
+// A card name or file name that is not UTF-8 (a driver's bytes) still prints as JSON: nlohmann's strict parser is the
+// independent reader, and valid multi-byte characters and escapes come back unchanged.
+TEST(JsonString, IsJsonWhateverTheBytes)
+{
+    const std::string valid = "caf\xC3\xA9 \"cam\"\\\t";
+    // Eight bytes that are no UTF-8: a stray FF, an overlong C0 AF, a surrogate ED A0 80, a sequence cut short E2 82.
+    const std::string invalid = "\xFF\xC0\xAF\xED\xA0\x80\xE2\x82";
+    const nlohmann::json parsed = nlohmann::json::parse(jsonString(valid + invalid));
+    std::string expected = valid;
+    for (int i = 0; i < 8; ++i)
+        expected += "\xEF\xBF\xBD"; // U+FFFD in UTF-8
+    EXPECT_EQ(parsed.get<std::string>(), expected);
 }
 
 TEST(SinkForOutput, ExtensionPicksTheSink)

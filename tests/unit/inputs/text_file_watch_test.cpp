@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <fstream>
 #include <poll.h>
+#include <sys/stat.h>
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace overlayd::inputs;
 namespace fs = std::filesystem;
@@ -18,7 +20,9 @@ namespace {
 
 fs::path scratch(const std::string &name)
 {
-    const fs::path dir = fs::temp_directory_path() / ("overlayd-text-watch-" + name);
+    // One folder per process: two builds' test runs on one machine must not write into each other's folder.
+    const fs::path dir =
+        fs::temp_directory_path() / ("overlayd-text-watch-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -86,4 +90,22 @@ TEST(TextFileWatch, AMissingFolderIsRefusedNamingIt)
     auto watch = TextFileWatch::open("/nonexistent-overlayd-folder/status.txt", 16);
     ASSERT_FALSE(watch.ok());
     EXPECT_NE(watch.error().message.find("/nonexistent-overlayd-folder"), std::string::npos);
+}
+
+// What is at the path must be a file to be watched as one: a directory, a FIFO or a device is refused (the config
+// loader asks the same question); nothing there yet, or a regular file, is fine.
+TEST(TextFileWatch, RefusesAPathThatIsNotARegularFile)
+{
+    const fs::path dir = scratch("kinds");
+    const std::string fifo = (dir / "pipe").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::ofstream(dir / "status.txt") << "ok\n";
+    EXPECT_NE(watchedFileProblem(fifo).find("is a FIFO"), std::string::npos) << watchedFileProblem(fifo);
+    EXPECT_NE(watchedFileProblem(dir.string()).find("is a directory"), std::string::npos);
+    EXPECT_NE(watchedFileProblem("/dev/null").find("is a character device"), std::string::npos);
+    EXPECT_EQ(watchedFileProblem((dir / "status.txt").string()), "");
+    EXPECT_EQ(watchedFileProblem((dir / "later.txt").string()), "");
+    EXPECT_FALSE(TextFileWatch::open(fifo, 16).ok());
+    EXPECT_TRUE(TextFileWatch::open((dir / "later.txt").string(), 16).ok());
+    fs::remove_all(dir);
 }

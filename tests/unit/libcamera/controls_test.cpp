@@ -1,5 +1,7 @@
 // Config controls against libcamera: names and types through its registry, ranges against a camera's
 // ControlInfoMap (built here as a pipeline handler builds one), every problem in the config's file:line shape.
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <libcamera/control_ids.h>
 
@@ -70,6 +72,25 @@ TEST(Controls, IntegersBeyondTheControlsTypeAreRefused)
     auto list = buildControls({setting("ExposureTime", int64_t(1) << 40)}, cameraControls());
     ASSERT_FALSE(list.ok());
     EXPECT_NE(list.error().message.find("ExposureTime"), std::string::npos);
+}
+
+// What no camera could take, known from libcamera's table alone (check-config asks this; buildControls refuses the
+// same values with the same words).
+TEST(Controls, ValuesNoCameraCouldTakeAreRefusedWithoutACamera)
+{
+    EXPECT_EQ(libcameraControlProblem(setting("Brightness", 0.5)), "");
+    EXPECT_EQ(libcameraControlProblem(setting("ExposureTime", int64_t(INT32_MAX))), "");
+    EXPECT_NE(libcameraControlProblem(setting("Brightness", std::nan(""))).find("not a number"), std::string::npos);
+    EXPECT_NE(libcameraControlProblem(setting("Brightness", 1e39)).find("float"), std::string::npos);
+    EXPECT_NE(libcameraControlProblem(setting("Brightness", -HUGE_VAL)).find("float"), std::string::npos);
+    EXPECT_NE(libcameraControlProblem(setting("ExposureTime", int64_t(INT32_MAX) + 1)).find("32-bit"),
+              std::string::npos);
+    EXPECT_NE(libcameraControlProblem(setting("ColourGains", 1.5)).find("array"), std::string::npos);
+    EXPECT_NE(libcameraControlProblem(setting("FrameDurationLimits", int64_t(33333))).find("array"), std::string::npos);
+    EXPECT_NE(libcameraControlProblem(setting("Brightnes", 0.5)).find("unknown"), std::string::npos);
+    const auto list = buildControls({setting("Brightness", std::nan(""))}, cameraControls());
+    ASSERT_FALSE(list.ok());
+    EXPECT_NE(list.error().message.find("Brightness: not a number"), std::string::npos) << list.error().message;
 }
 
 } // namespace
