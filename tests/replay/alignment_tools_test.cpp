@@ -235,6 +235,59 @@ TEST(SolvePose, RefusesTooFewAndCollinearPointsAndNamesABadLine)
     EXPECT_FALSE(run.crashed);
 }
 
+// A spreadsheet's CSV starts with a row of column names: solve-pose reads it as it reads the same points without,
+// and `project --points` takes the same marks file (x y z used, u v ignored), putting the points on OpenCV's
+// pixels. Only the first line may be names: one later is a bad line, named.
+TEST(PointsFile, AHeaderRowIsReadAndProjectTakesTheMarksFile)
+{
+    const std::string dir = scratchDir("points-header");
+    const auto world = worldPoints();
+    const auto pixels = opencvPixels(world);
+    std::string body = pointsFile(world, pixels);
+    body = body.substr(body.find('\n') + 1); // without its comment line
+    writeFile(dir + "/marks.csv", "x,y,z,u,v\n" + body);
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points marks.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    const cv::Vec3d rvec = vectorAfter(run.out, "rvec"), tvec = vectorAfter(run.out, "tvec");
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(rvec[k], kRvec[k], 1e-6) << run.out;
+        EXPECT_NEAR(tvec[k], kTvec[k], 1e-6) << run.out;
+    }
+
+    run = runOverlayd("project --config '" + example() + "' --json --points marks.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    size_t count = 0;
+    for (size_t at = run.out.find("\"pixel\":["); at != std::string::npos; at = run.out.find("\"pixel\":[", at + 1)) {
+        double u = NAN, v = NAN;
+        std::sscanf(run.out.c_str() + at + 9, "%lf,%lf", &u, &v);
+        ASSERT_LT(count, pixels.size()) << run.out;
+        EXPECT_LT(cv::norm(cv::Point2d(u, v) - pixels[count]), 1e-6) << count << "\n" << run.out;
+        ++count;
+    }
+    EXPECT_EQ(count, world.size()) << run.out;
+
+    // "# comment", then the header with blanks and quotes as some programs write them, then x y z lines.
+    writeFile(dir + "/route.txt", "# planned route\n\"X\" \"Y\" \"Z\"\n0 1.5 0\n+1 3 0\n");
+    run = runOverlayd("project --config '" + example() + "' --points route.txt", dir);
+    EXPECT_EQ(run.exitStatus, 0) << run.all();
+
+    writeFile(dir + "/twice.csv", "x,y,z,u,v\n" + body + "x,y,z,u,v\n");
+    run = runOverlayd("solve-pose --config '" + example() + "' --points twice.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("twice.csv:" + std::to_string(world.size() + 2) + ": 'x' is not a finite number"),
+              std::string::npos)
+        << run.all();
+    writeFile(dir + "/four.csv", "x,y,z,u\n0,1.5,0,640\n");
+    run = runOverlayd("project --config '" + example() + "' --points four.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("four.csv:2: expected x y z or x y z u v, got 4 numbers"), std::string::npos) << run.all();
+    // A first line with a number in it is data, not a header: named as a bad line.
+    writeFile(dir + "/mixed.csv", "x,1,z,u,v\n" + body);
+    run = runOverlayd("solve-pose --config '" + example() + "' --points mixed.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("mixed.csv:1: 'x' is not a finite number"), std::string::npos) << run.all();
+}
+
 TEST(Unproject, PixelsOpenCVProjectedMeetTheGroundWhereTheirPointsAre)
 {
     const std::string dir = scratchDir("unproject-ground");
