@@ -25,10 +25,10 @@ std::string example()
     return std::string(OVERLAYD_SOURCE_DIR) + "/config/examples/distorted_pinhole.toml";
 }
 
-// Ground points and a few above it, all in view of the example camera.
+// Ground points and a few above it, all in view of the example camera (its 1280x720 image).
 std::vector<cv::Point3d> worldPoints()
 {
-    return {{-1.5, 1.5, 0}, {0, 1.5, 0}, {1.5, 1.5, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}, {-0.5, 2, 0.5}, {0.7, 4, 1}};
+    return {{-1.5, 2.2, 0}, {0, 2.2, 0}, {1.5, 2.2, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}, {-0.5, 2, 0.5}, {0.7, 4, 1}};
 }
 
 std::vector<cv::Point2d> opencvPixels(const std::vector<cv::Point3d> &world)
@@ -191,6 +191,44 @@ TEST(SolvePose, WarnsAboutFewCoplanarPointsALargeErrorAndAPlaneSeenEdgeOn)
     run = runOverlayd("solve-pose --config low.toml --points far.csv", dir);
     ASSERT_EQ(run.exitStatus, 0) << run.all();
     EXPECT_NE(run.out.find("warning: the points' plane is seen nearly edge-on (2."), std::string::npos) << run.out;
+}
+
+// u and v swapped (a transposed image): the mirrored pose under the floor fits the ground marks; said so. A pixel
+// outside the 1280x720 image is named, whichever side it leaves by; the points' own pixels raise neither warning.
+TEST(SolvePose, WarnsAboutACameraBelowThePointsAndPixelsOutsideTheImage)
+{
+    const std::string dir = scratchDir("solve-pose-sanity");
+    const std::vector<cv::Point3d> ground{{-1.5, 2.2, 0}, {0, 2.2, 0}, {1.5, 2.2, 0}, {-1, 3, 0},
+                                          {1, 3, 0},      {0, 5, 0},   {-2, 6, 0},    {2, 4, 0}};
+    auto pixels = opencvPixels(ground);
+    writeFile(dir + "/ground.csv", pointsFile(ground, pixels));
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points ground.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_EQ(run.out.find("below the plane"), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("outside the"), std::string::npos) << run.out;
+
+    std::vector<cv::Point2d> swapped;
+    for (const cv::Point2d &p : pixels)
+        swapped.emplace_back(p.y, p.x);
+    writeFile(dir + "/swapped.csv", pointsFile(ground, swapped));
+    run = runOverlayd("solve-pose --config '" + example() + "' --points swapped.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("# warning: the camera is below the plane of the points: are u and v swapped?"),
+              std::string::npos)
+        << run.out;
+    EXPECT_LT(vectorAfter(run.out, "# position")[2], 0.0) << run.out;
+
+    pixels[3] = {1300.25, 400};
+    pixels[5] = {600, -3};
+    writeFile(dir + "/outside.csv", pointsFile(ground, pixels));
+    run = runOverlayd("solve-pose --config '" + example() + "' --points outside.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("# warning: point 4's pixel (1300.25, 400) is outside the 1280x720 image"),
+              std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("# warning: point 6's pixel (600, -3) is outside the 1280x720 image"), std::string::npos)
+        << run.out;
+    EXPECT_EQ(run.out.find("point 1's pixel"), std::string::npos) << run.out;
 }
 
 TEST(SolvePose, ReportsPixelNoiseInsteadOfHidingIt)
