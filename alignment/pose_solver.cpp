@@ -2,6 +2,8 @@
 // refined by Levenberg-Marquardt), reproject through the solved pose to report the error in pixels.
 #include "alignment/pose_solver.h"
 
+#include "base/number_text.h"
+
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -136,11 +138,31 @@ Result<PoseSolution> solvePose(const Camera &camera, const Distortion &distortio
             solution.warnings.push_back(pointName(i) + " is behind the solved camera: the points do not fit one pose");
     }
     solution.rmsPx = std::sqrt(sum / double(points.size()));
+    // Nothing a user clicks lies outside the image: such a pixel is mistyped, or its u and v are swapped.
+    const Viewport &viewport = camera.viewport();
+    for (size_t i = 0; i < points.size(); ++i) {
+        const glm::dvec2 &px = points[i].pixel;
+        if (!(px.x >= -0.5 && px.x <= viewport.frameWidth() - 0.5 && px.y >= -0.5 &&
+              px.y <= viewport.frameHeight() - 0.5)) {
+            const glm::dvec2 user = viewport.toUser(px);
+            solution.warnings.push_back(pointName(i) + "'s pixel (" + shortNumber(user.x, 10) + ", " +
+                                        shortNumber(user.y, 10) + ") is outside the " +
+                                        std::to_string(viewport.frameWidth()) + "x" +
+                                        std::to_string(viewport.frameHeight()) + " image");
+        }
+    }
+    const bool flat = s[2] <= 1e-3 * s[0];
+    // Marks on a floor seen from under it: the mirrored pose that swapped u and v (a transposed image) fit. The
+    // plane's up side is its normal's with z > 0; a plane steeper than kMaxUpPlaneTiltDeg (a wall) has none.
+    const glm::dvec3 up = shape.leastAxis.z < 0.0 ? -shape.leastAxis : shape.leastAxis;
+    if (flat && up.z >= std::cos(glm::radians(kMaxUpPlaneTiltDeg)) &&
+        glm::dot(solved->position() - shape.centroid, up) < 0.0)
+        solution.warnings.push_back("the camera is below the plane of the points: are u and v swapped?");
     if (coplanar && points.size() < 6)
         solution.warnings.push_back("the points are coplanar and few: a mirrored pose fits them too; add points "
                                     "off their plane or spread them wider");
     // A flat set seen edge-on: its pixels barely change as the pose tilts about the plane, so the tilt is guesswork.
-    if (s[2] <= 1e-3 * s[0]) {
+    if (flat) {
         const glm::dvec3 toPoints = shape.centroid - solved->position();
         const double elevation =
             glm::degrees(std::asin(std::min(1.0, std::abs(glm::dot(glm::normalize(toPoints), shape.leastAxis)))));

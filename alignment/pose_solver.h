@@ -18,6 +18,9 @@ namespace overlayd::alignment {
 
 inline constexpr size_t kMinCorrespondences = 4, kMaxCorrespondences = 10000;
 inline constexpr double kLargeRmsPx = 2.0; // above this the result is reported with a warning
+// A flat set of points whose plane is tilted at most this far from level has an up side (its normal with z > 0):
+// a camera solved on the other side is warned about (u and v swapped mirror it there).
+inline constexpr double kMaxUpPlaneTiltDeg = 60.0;
 // A coplanar set seen from less than this far above its plane (the angle at its centroid) is warned about.
 inline constexpr double kMinPlaneElevationDeg = 10.0;
 

@@ -188,6 +188,14 @@ void readDistortion(TableReader &camera, Distortion &out, CameraKeys &keys)
         for (size_t i = coefficients->size(); i < out.coeffs.size(); ++i)
             out.coeffs[i] = 0.0;
     }
+    if (auto field = table->positive("max_field_deg", kMaxFisheyeFieldDeg)) {
+        if (*field >= kMaxFisheyeFieldDeg)
+            table->problem("max_field_deg", "out of range: must be in (0, 360) degrees, below a full turn");
+        else if (out.model != DistortionModel::Fisheye)
+            table->problem("max_field_deg", "only an equidistant (fisheye) lens takes a field of view");
+        else
+            out.fieldDeg = *field;
+    }
     table->finish();
 }
 

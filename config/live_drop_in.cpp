@@ -184,6 +184,8 @@ void putCamera(const CameraSpec &spec, toml::table &camera)
             coefficients.push_back(spec.distortion.coeffs[size_t(i)]);
         distortion.insert_or_assign("coefficients", std::move(coefficients));
     }
+    if (spec.distortion.fieldDeg > 0.0)
+        distortion.insert_or_assign("max_field_deg", spec.distortion.fieldDeg);
     camera.insert_or_assign("distortion", std::move(distortion));
 }
 

@@ -1,10 +1,15 @@
 // [daemon], [source] (with its synthetic, replay, v4l2 and libcamera sub-tables) and [[sink]].
 #include "config/config_sections.h"
 
+#include <cerrno>
 #include <filesystem>
 #include <map>
 
+#include <sys/stat.h>
+
+#include "base/regular_file.h"
 #include "config/limits.h"
+#include "drivers/files/path_pattern.h"
 #include "drivers/source_kind_names.h"
 #include "media/frame.h"
 #include "media/pixel_format.h"
@@ -56,9 +61,37 @@ void readSynthetic(TableReader &synthetic, SyntheticOptions &out)
     synthetic.finish();
 }
 
-void readReplay(TableReader &replay, const std::string &baseDirectory, ReplayOptions &out)
+// Why a replay's recording cannot be read, or empty. A missing file is known without a device, so check-config
+// refuses it as run would when it opens the source (a file the source cannot open for another reason, as a
+// permission, is left to the source). An image sequence is checked by its first file. The words are the source's
+// (base/regular_file.h), after the path as written and, when that differs, the file looked for.
+std::string replayFileProblem(const std::string &written, const ReplayOptions &replay)
 {
-    if (auto path = replay.string("path"))
+    std::string first = replay.path;
+    if (replay.format == ReplayFormat::Images || (replay.format == ReplayFormat::Auto && hasIndexPattern(first))) {
+        auto numbered = formatIndex(replay.path, replay.firstIndex);
+        if (!numbered)
+            return numbered.error().message;
+        first = *numbered;
+    }
+    std::string why;
+    struct stat info {};
+    if (::stat(first.c_str(), &info) != 0) {
+        if (errno != ENOENT && errno != ENOTDIR)
+            return {};
+        why = "does not exist";
+    } else if (!S_ISREG(info.st_mode)) {
+        why = std::string("is ") + fileKindName(unsigned(info.st_mode)) + ", not a regular file";
+    } else {
+        return {};
+    }
+    return written + ": " + why + (first != written ? " (" + first + ")" : "");
+}
+
+void readReplay(TableReader &replay, const std::string &baseDirectory, bool used, ReplayOptions &out)
+{
+    auto path = replay.string("path");
+    if (path)
         out.path = resolvePath(baseDirectory, *path);
     else if (!replay.has("path"))
         replay.problem("path", "missing: a replay source needs the file to read");
@@ -71,6 +104,9 @@ void readReplay(TableReader &replay, const std::string &baseDirectory, ReplayOpt
         out.loop = *loop;
     if (auto first = replay.integer("first_index", 0, 1000000000))
         out.firstIndex = unsigned(*first);
+    if (path && used)
+        if (const std::string problem = replayFileProblem(*path, out); !problem.empty())
+            replay.problem("path", problem);
     replay.finish();
 }
 
@@ -225,7 +261,7 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
     if (auto synthetic = source->table("synthetic"))
         readSynthetic(*synthetic, out.synthetic);
     if (auto replay = source->table("replay"))
-        readReplay(*replay, baseDirectory, out.replay);
+        readReplay(*replay, baseDirectory, out.kind == SourceKind::Replay, out.replay);
     else if (out.kind == SourceKind::Replay)
         source->problem("replay", "missing: kind = \"replay\" needs a [source.replay] table with its path");
     if (auto v4l2 = source->table("v4l2"))

@@ -37,6 +37,11 @@ Status validateDistortion(const Distortion &distortion)
             return makeError(ErrorCode::InvalidArgument, "distortion model takes " +
                                                              std::to_string(coefficientCount(distortion.model)) +
                                                              " coefficients; extra ones are not zero");
+    if (!(distortion.fieldDeg >= 0.0 && distortion.fieldDeg < kMaxFisheyeFieldDeg))
+        return makeError(ErrorCode::InvalidArgument, "a fisheye's field of view must be in (0, 360) degrees");
+    if (distortion.fieldDeg != 0.0 && distortion.model != DistortionModel::Fisheye)
+        return makeError(ErrorCode::InvalidArgument,
+                         "a field of view is declared for fisheye (equidistant) lenses only");
     return Ok{};
 }
 
@@ -114,28 +119,45 @@ double scanAngle(int i)
 
 } // namespace
 
-double fisheyeMaxAngle(const Distortion &distortion)
+namespace {
+
+double scanFisheye(const Distortion &distortion, int steps)
 {
     double previous = 0.0;
-    for (int i = 1; i <= kScanSteps; ++i) {
+    for (int i = 1; i <= steps; ++i) {
         const double image = formulas::fisheyeTheta(distortion.coeffs, scanAngle(i));
         // The peak lies between steps i - 2 and i: i - 2 is the last step known to be before it.
         if (!(image > previous))
             return scanAngle(std::max(i - 2, 0));
         previous = image;
     }
-    return scanAngle(kScanSteps);
+    return scanAngle(steps);
+}
+
+} // namespace
+
+double fisheyeMaxAngle(const Distortion &distortion)
+{
+    return scanFisheye(distortion, kScanSteps);
+}
+
+double fisheyeFieldAngle(const Distortion &distortion)
+{
+    const double declared = distortion.fieldDeg > 0.0 ? 0.5 * distortion.fieldDeg * M_PI / 180.0 : M_PI;
+    const double model =
+        distortion.fieldDeg > 180.0 ? fisheyeMaxAngle(distortion) : scanFisheye(distortion, kNarrowSteps);
+    return std::min(model, declared);
 }
 
 double monotonicRadius(const Distortion &distortion)
 {
     // Scan outwards in small steps of the viewing angle, up to just short of 90 degrees off-axis: the radius
-    // X/Z ends there. A fisheye is scanned on its angle, further (fisheyeMaxAngle); past 90 degrees every
-    // radius in front of the camera is valid.
+    // X/Z ends there. A fisheye is scanned on its angle (fisheyeFieldAngle); when its field goes past 90 degrees
+    // every radius in front of the camera is valid.
     if (distortion.model == DistortionModel::None)
         return std::tan(kNarrowMaxAngle);
     if (distortion.model == DistortionModel::Fisheye) {
-        const double angle = fisheyeMaxAngle(distortion);
+        const double angle = fisheyeFieldAngle(distortion);
         return angle >= M_PI / 2 ? std::numeric_limits<double>::infinity() : std::tan(angle);
     }
     double previous = 0.0;

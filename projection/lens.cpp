@@ -28,7 +28,7 @@ Result<Lens> Lens::create(const PinholeIntrinsics &k, const Distortion &distorti
     lens.normalizedToNdc_ = normalizedToPixel.then(pixelToNdc);
     lens.validRadius_ = monotonicRadius(distortion);
     lens.validAngle_ =
-        distortion.model == DistortionModel::Fisheye ? fisheyeMaxAngle(distortion) : std::atan(lens.validRadius_);
+        distortion.model == DistortionModel::Fisheye ? fisheyeFieldAngle(distortion) : std::atan(lens.validRadius_);
     lens.guardBand_ = lens.computeGuardBand();
     return lens;
 }

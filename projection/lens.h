@@ -38,8 +38,8 @@ public:
     double validRadius() const { return validRadius_; }
     // The angle from the optical axis up to which the model is valid (atan(validRadius) but for a wide fisheye).
     double validAngle() const { return validAngle_; }
-    // A fisheye whose model keeps growing past 90 degrees: it sees points behind the camera plane, which no
-    // X/Z radius describes (validRadius is then infinite and the camera works on the angle).
+    // A fisheye declared wider than 180 degrees whose model keeps growing past 90: it sees points behind the
+    // camera plane, which no X/Z radius describes (validRadius is then infinite and the camera works on the angle).
     bool seesBehind() const { return validAngle_ > M_PI / 2; }
     // Whether a clip-space point lies inside the cone of valid radii (w > 0 assumed).
     bool insideValidCone(const glm::dvec4 &clip) const;

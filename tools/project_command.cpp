@@ -1,6 +1,6 @@
 // `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
+#include "alignment/points_file.h"
 #include "base/number_text.h"
-#include "inputs/point_list.h"
 #include "tools/commands.h"
 
 #include <cerrno>
@@ -14,20 +14,20 @@ namespace overlayd {
 
 namespace {
 
-// The points of --points: a file, or stdin for "-", read up to the path files' limit.
+// The points of --points: a file, or stdin for "-", in solve-pose's points format (its marks file works here).
 Result<std::vector<glm::dvec3>> readPoints(const std::string &path)
 {
     std::FILE *file = path == "-" ? stdin : std::fopen(path.c_str(), "rb");
     if (!file)
         return makeError(ErrorCode::NotFound, "cannot open " + path + ": " + std::strerror(errno));
-    std::string text(inputs::kMaxPathFileBytes + 1, '\0');
+    std::string text(alignment::kMaxPointsFileBytes + 1, '\0');
     text.resize(std::fread(text.data(), 1, text.size(), file));
     if (file != stdin)
         std::fclose(file);
-    if (text.size() > inputs::kMaxPathFileBytes)
+    if (text.size() > alignment::kMaxPointsFileBytes)
         return makeError(ErrorCode::Malformed,
-                         path + ": more than " + std::to_string(inputs::kMaxPathFileBytes) + " bytes");
-    return inputs::parsePointList(text, path == "-" ? "stdin" : path);
+                         path + ": more than " + std::to_string(alignment::kMaxPointsFileBytes) + " bytes");
+    return alignment::parseWorldPoints(text, path == "-" ? "stdin" : path);
 }
 
 } // namespace

@@ -25,10 +25,10 @@ std::string example()
     return std::string(OVERLAYD_SOURCE_DIR) + "/config/examples/distorted_pinhole.toml";
 }
 
-// Ground points and a few above it, all in view of the example camera.
+// Ground points and a few above it, all in view of the example camera (its 1280x720 image).
 std::vector<cv::Point3d> worldPoints()
 {
-    return {{-1.5, 1.5, 0}, {0, 1.5, 0}, {1.5, 1.5, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}, {-0.5, 2, 0.5}, {0.7, 4, 1}};
+    return {{-1.5, 2.2, 0}, {0, 2.2, 0}, {1.5, 2.2, 0}, {-1, 3, 0}, {1, 3, 0}, {0, 5, 0}, {-0.5, 2, 0.5}, {0.7, 4, 1}};
 }
 
 std::vector<cv::Point2d> opencvPixels(const std::vector<cv::Point3d> &world)
@@ -193,6 +193,44 @@ TEST(SolvePose, WarnsAboutFewCoplanarPointsALargeErrorAndAPlaneSeenEdgeOn)
     EXPECT_NE(run.out.find("warning: the points' plane is seen nearly edge-on (2."), std::string::npos) << run.out;
 }
 
+// u and v swapped (a transposed image): the mirrored pose under the floor fits the ground marks; said so. A pixel
+// outside the 1280x720 image is named, whichever side it leaves by; the points' own pixels raise neither warning.
+TEST(SolvePose, WarnsAboutACameraBelowThePointsAndPixelsOutsideTheImage)
+{
+    const std::string dir = scratchDir("solve-pose-sanity");
+    const std::vector<cv::Point3d> ground{{-1.5, 2.2, 0}, {0, 2.2, 0}, {1.5, 2.2, 0}, {-1, 3, 0},
+                                          {1, 3, 0},      {0, 5, 0},   {-2, 6, 0},    {2, 4, 0}};
+    auto pixels = opencvPixels(ground);
+    writeFile(dir + "/ground.csv", pointsFile(ground, pixels));
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points ground.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_EQ(run.out.find("below the plane"), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("outside the"), std::string::npos) << run.out;
+
+    std::vector<cv::Point2d> swapped;
+    for (const cv::Point2d &p : pixels)
+        swapped.emplace_back(p.y, p.x);
+    writeFile(dir + "/swapped.csv", pointsFile(ground, swapped));
+    run = runOverlayd("solve-pose --config '" + example() + "' --points swapped.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("# warning: the camera is below the plane of the points: are u and v swapped?"),
+              std::string::npos)
+        << run.out;
+    EXPECT_LT(vectorAfter(run.out, "# position")[2], 0.0) << run.out;
+
+    pixels[3] = {1300.25, 400};
+    pixels[5] = {600, -3};
+    writeFile(dir + "/outside.csv", pointsFile(ground, pixels));
+    run = runOverlayd("solve-pose --config '" + example() + "' --points outside.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    EXPECT_NE(run.out.find("# warning: point 4's pixel (1300.25, 400) is outside the 1280x720 image"),
+              std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("# warning: point 6's pixel (600, -3) is outside the 1280x720 image"), std::string::npos)
+        << run.out;
+    EXPECT_EQ(run.out.find("point 1's pixel"), std::string::npos) << run.out;
+}
+
 TEST(SolvePose, ReportsPixelNoiseInsteadOfHidingIt)
 {
     const std::string dir = scratchDir("solve-pose-noise");
@@ -233,6 +271,59 @@ TEST(SolvePose, RefusesTooFewAndCollinearPointsAndNamesABadLine)
     EXPECT_EQ(run.exitStatus, 1);
     EXPECT_NE(run.err.find("bad.csv:2: 'nope' is not a finite number"), std::string::npos) << run.all();
     EXPECT_FALSE(run.crashed);
+}
+
+// A spreadsheet's CSV starts with a row of column names: solve-pose reads it as it reads the same points without,
+// and `project --points` takes the same marks file (x y z used, u v ignored), putting the points on OpenCV's
+// pixels. Only the first line may be names: one later is a bad line, named.
+TEST(PointsFile, AHeaderRowIsReadAndProjectTakesTheMarksFile)
+{
+    const std::string dir = scratchDir("points-header");
+    const auto world = worldPoints();
+    const auto pixels = opencvPixels(world);
+    std::string body = pointsFile(world, pixels);
+    body = body.substr(body.find('\n') + 1); // without its comment line
+    writeFile(dir + "/marks.csv", "x,y,z,u,v\n" + body);
+    RunResult run = runOverlayd("solve-pose --config '" + example() + "' --points marks.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    const cv::Vec3d rvec = vectorAfter(run.out, "rvec"), tvec = vectorAfter(run.out, "tvec");
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(rvec[k], kRvec[k], 1e-6) << run.out;
+        EXPECT_NEAR(tvec[k], kTvec[k], 1e-6) << run.out;
+    }
+
+    run = runOverlayd("project --config '" + example() + "' --json --points marks.csv", dir);
+    ASSERT_EQ(run.exitStatus, 0) << run.all();
+    size_t count = 0;
+    for (size_t at = run.out.find("\"pixel\":["); at != std::string::npos; at = run.out.find("\"pixel\":[", at + 1)) {
+        double u = NAN, v = NAN;
+        std::sscanf(run.out.c_str() + at + 9, "%lf,%lf", &u, &v);
+        ASSERT_LT(count, pixels.size()) << run.out;
+        EXPECT_LT(cv::norm(cv::Point2d(u, v) - pixels[count]), 1e-6) << count << "\n" << run.out;
+        ++count;
+    }
+    EXPECT_EQ(count, world.size()) << run.out;
+
+    // "# comment", then the header with blanks and quotes as some programs write them, then x y z lines.
+    writeFile(dir + "/route.txt", "# planned route\n\"X\" \"Y\" \"Z\"\n0 1.5 0\n+1 3 0\n");
+    run = runOverlayd("project --config '" + example() + "' --points route.txt", dir);
+    EXPECT_EQ(run.exitStatus, 0) << run.all();
+
+    writeFile(dir + "/twice.csv", "x,y,z,u,v\n" + body + "x,y,z,u,v\n");
+    run = runOverlayd("solve-pose --config '" + example() + "' --points twice.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("twice.csv:" + std::to_string(world.size() + 2) + ": 'x' is not a finite number"),
+              std::string::npos)
+        << run.all();
+    writeFile(dir + "/four.csv", "x,y,z,u\n0,1.5,0,640\n");
+    run = runOverlayd("project --config '" + example() + "' --points four.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("four.csv:2: expected x y z or x y z u v, got 4 numbers"), std::string::npos) << run.all();
+    // A first line with a number in it is data, not a header: named as a bad line.
+    writeFile(dir + "/mixed.csv", "x,1,z,u,v\n" + body);
+    run = runOverlayd("solve-pose --config '" + example() + "' --points mixed.csv", dir);
+    EXPECT_EQ(run.exitStatus, 1) << run.all();
+    EXPECT_NE(run.err.find("mixed.csv:1: 'x' is not a finite number"), std::string::npos) << run.all();
 }
 
 TEST(Unproject, PixelsOpenCVProjectedMeetTheGroundWhereTheirPointsAre)

@@ -104,7 +104,7 @@ TEST(ProjectJson, PointsFromAFileOrStdinAreTheCoordinates)
     }
     const RunResult bad = runOverlayd(config + "--points bad.txt", dir);
     EXPECT_EQ(bad.exitStatus, 1);
-    EXPECT_NE(bad.err.find("bad.txt:2: 2 number(s)"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("bad.txt:2: expected x y z or x y z u v, got 2 numbers"), std::string::npos) << bad.err;
     const RunResult both = runOverlayd(config + "--points points.txt -- 1 2 3", dir);
     EXPECT_EQ(both.exitStatus, 1);
     EXPECT_NE(both.err.find("not both"), std::string::npos) << both.err;

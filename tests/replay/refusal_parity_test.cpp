@@ -128,6 +128,29 @@ TEST_P(Accepted, CheckConfigRenderAndRunAllAccept)
 INSTANTIATE_TEST_SUITE_P(Corpus, Accepted, ::testing::ValuesIn(rows("accepted")),
                          [](const auto &param) { return fs::path(param.param.path).stem().string(); });
 
+// Every example under config/examples/ passes check-config and renders a frame through the real binary, from
+// another folder (its input paths resolve against its own folder); only a camera device's example cannot render
+// here. replay.toml replays the recording shipped beside it.
+TEST(Examples, EveryExamplePassesCheckConfigAndRenders)
+{
+    const std::string dir = scratchDir("examples");
+    int rendered = 0;
+    for (const auto &entry : fs::directory_iterator(std::string(OVERLAYD_SOURCE_DIR) + "/config/examples")) {
+        if (entry.path().extension() != ".toml")
+            continue;
+        const std::string path = entry.path().string();
+        SCOPED_TRACE(path);
+        const RunResult check = runOverlayd("check-config '" + path + "'", dir);
+        EXPECT_EQ(check.exitStatus, 0) << check.all();
+        if (entry.path().filename() == "v4l2_camera.toml")
+            continue;
+        const RunResult render = runOverlayd("render --config '" + path + "' --frames 1 --output out.y4m", dir);
+        EXPECT_EQ(render.exitStatus, 0) << render.all();
+        ++rendered;
+    }
+    EXPECT_GE(rendered, 7);
+}
+
 // "did you mean" and the problem list cost bounded work: an unknown key of 100 KB and 10000 unknown keys each get
 // an answer from check-config and run (no timing: that they return), in a bounded number of bounded lines.
 TEST(BoundedSuggestions, HugeAndManyUnknownKeysGetAShortAnswer)

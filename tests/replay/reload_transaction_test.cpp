@@ -179,7 +179,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "not-a-folder/b.y4m"},
         BadReload{"source_sinks_and_camera_at_once",
                   configText(kMissingReplay, kMovedCamera, "[60.0, 50.0]", sink("b.y4m") + sink("not-a-folder/c.y4m")),
-                  "not-a-folder/c.y4m"}), // the loader finds the sink's path first now, before any source is opened
+                  "missing.y4m"}), // the loader finds the missing replay first, before any source is opened
     [](const auto &param) { return std::string(param.param.name); });
 
 } // namespace

@@ -38,7 +38,8 @@ std::string config()
                   "[source]\nkind = \"synthetic\"\nwidth = 1600\nheight = 1200\n"
                   "[camera]\nrvec = [%.17g, 0.0, 0.0]\ntvec = [0.0, %.17g, %.17g]\nnear = 0.05\nfar = 100.0\n"
                   "[camera.pinhole]\nfx = %.17g\nfy = %.17g\ncx = %.17g\ncy = %.17g\nwidth = 1600\nheight = 1200\n"
-                  "[camera.distortion]\nmodel = \"equidistant\"\ncoefficients = [0.0, %.17g, 0.0, 0.0]\n",
+                  "[camera.distortion]\nmodel = \"equidistant\"\ncoefficients = [0.0, %.17g, 0.0, 0.0]\n"
+                  "max_field_deg = 220\n",
                   kRvec[0], kTvec[1], kTvec[2], focal(), focal(), kCx, kCy, kK2);
     return text;
 }

@@ -195,9 +195,11 @@ TEST_F(DaemonNotifyTest, RefusedReloadSaysWhyInStatusWhileTheOldConfigStreams)
     while (refused && refused->fields()["STATUS"].find("reload refused") == std::string::npos)
         refused = waitFor("STATUS", 10s);
     ASSERT_TRUE(refused) << "no STATUS= saying the reload was refused";
-    // The loader finds the sink's path first (check-config would refuse it too), before any source is opened.
-    EXPECT_NE(refused->fields()["STATUS"].find("sink[0].path"), std::string::npos) << refused->text;
-    EXPECT_NE(refused->fields()["STATUS"].find("which is not a folder"), std::string::npos) << refused->text;
+    // The loader finds the missing replay file first (check-config would refuse it too), before any source is
+    // opened, and counts the sink's path among the rest.
+    EXPECT_NE(refused->fields()["STATUS"].find("source.replay.path"), std::string::npos) << refused->text;
+    EXPECT_NE(refused->fields()["STATUS"].find("missing.y4m: does not exist"), std::string::npos) << refused->text;
+    EXPECT_NE(refused->fields()["STATUS"].find("(and 1 more problems)"), std::string::npos) << refused->text;
     EXPECT_TRUE(waitFor("READY", 10s)) << "no READY=1 after the refused reload";
     auto flowing = collect(1s);
     EXPECT_GE(count(flowing, "WATCHDOG"), 2u) << "frames should still flow from the old config";

@@ -226,6 +226,28 @@ TEST(Intrinsics, EquidistantDistortionMatchesOpenCvFisheye)
         expectPixel(camera, {world[i].x, world[i].y, world[i].z}, expected[i].x, expected[i].y, 1e-6);
 }
 
+// max_field_deg is the full field in degrees, in (0, 360), of an equidistant lens only; declared beyond 180 the
+// camera sees behind its plane, otherwise (and by default) it does not.
+TEST(Intrinsics, FisheyeFieldOfViewIsDeclaredAndChecked)
+{
+    const std::string lens = kHeader + kIdentityPose +
+                             "[camera.pinhole]\nfx = 330\nfy = 330\ncx = 639.5\ncy = 359.5\n"
+                             "[camera.distortion]\nmodel = \"equidistant\"\n"
+                             "coefficients = [-0.013, -0.0037, 0.0016, -0.0004]\n";
+    EXPECT_FALSE(buildCamera(lens).seesBehind());
+    EXPECT_FALSE(buildCamera(lens + "max_field_deg = 180\n").seesBehind());
+    EXPECT_TRUE(buildCamera(lens + "max_field_deg = 220\n").seesBehind());
+    for (const char *bad : {"0", "-10", "360", "400", "nan", "\"wide\""}) {
+        const auto problems = loadInvalid(lens + "max_field_deg = " + bad + "\n");
+        EXPECT_TRUE(hasProblem(problems, "camera.distortion.max_field_deg", "")) << bad << formatProblems(problems);
+    }
+    const auto plumbBob = loadInvalid(kHeader + kIdentityPose +
+                                      "[camera.distortion]\nmodel = \"plumb_bob\"\n"
+                                      "coefficients = [0.1, 0, 0, 0, 0]\nmax_field_deg = 220\n");
+    EXPECT_TRUE(hasProblem(plumbBob, "camera.distortion.max_field_deg", "only an equidistant (fisheye) lens"))
+        << formatProblems(plumbBob);
+}
+
 TEST(Viewport, BottomLeftOriginFlipsRows)
 {
     const std::string camera = kIdentityPose + "fov = 90\nfov_axis = \"horizontal\"\n";

@@ -1,5 +1,7 @@
 // The schema: the pinned [daemon]/[source]/[[sink]] keys, frames, every annotation type and style form, defaults,
 // path resolution, pose/intrinsics form conflicts, and the "did you mean" machinery.
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -22,6 +24,10 @@ TEST(Schema, EmptyFileGivesTheDefaults)
 
 TEST(Schema, PinnedDaemonSourceAndSinkKeys)
 {
+    // The replay's file must exist (check-config refuses a missing one): a config folder holding it.
+    const std::string base = ::testing::TempDir() + "schema-pinned";
+    std::filesystem::create_directories(base + "/clips");
+    std::ofstream(base + "/clips/in.y4m") << "raw bytes";
     const DaemonConfig config = loadValid(R"(
 [daemon]
 log_level = "warning"
@@ -59,7 +65,7 @@ buffers = 3
 [[sink]]
 kind = "null"
 )",
-                                          "/etc/overlayd");
+                                          base);
     EXPECT_EQ(config.daemon.logLevel, LogLevel::Warning);
     EXPECT_EQ(config.daemon.statsIntervalSec, 2.5);
     EXPECT_EQ(config.source.kind, SourceKind::Replay);
@@ -72,7 +78,7 @@ kind = "null"
     EXPECT_EQ(config.source.synthetic.checkerPx, 16u);
     EXPECT_EQ(config.source.synthetic.checkerMetres, 0.25);
     EXPECT_EQ(config.source.synthetic.stallAfterFrames, 100u);
-    EXPECT_EQ(config.source.replay.path, "/etc/overlayd/clips/in.y4m"); // inputs resolve against the config
+    EXPECT_EQ(config.source.replay.path, base + "/clips/in.y4m"); // inputs resolve against the config
     EXPECT_EQ(config.source.replay.format, ReplayFormat::Raw);
     EXPECT_TRUE(config.source.replay.loop);
     EXPECT_EQ(config.source.replay.firstIndex, 3u);

@@ -56,7 +56,8 @@ const WideLens kLenses[] = {
     {220.0, {0.0, -0.01, 0.0, 0.0}},
 };
 
-CvCamera wideCamera(const WideLens &lens, std::mt19937_64 &rng)
+// The lens as a config declares it: its field of view (max_field_deg), or a wider one given.
+CvCamera wideCamera(const WideLens &lens, std::mt19937_64 &rng, double declaredFieldDeg = 0.0)
 {
     CvCamera c;
     c.rvec = {uniform(rng, -3, 3), uniform(rng, -3, 3), uniform(rng, -3, 3)};
@@ -68,7 +69,9 @@ CvCamera wideCamera(const WideLens &lens, std::mt19937_64 &rng)
     c.fx = c.fy * 1.01;
     c.cx = 801.3;
     c.cy = 598.7;
-    c.distortion = {DistortionModel::Fisheye, {lens.k[0], lens.k[1], lens.k[2], lens.k[3]}};
+    c.distortion = {DistortionModel::Fisheye,
+                    {lens.k[0], lens.k[1], lens.k[2], lens.k[3]},
+                    declaredFieldDeg > 0.0 ? declaredFieldDeg : lens.fovDeg};
     return c;
 }
 
@@ -98,17 +101,91 @@ glm::dvec3 pointAt(const CvCamera &c, double angle, double phi, double distance)
     return test::worldFromOptical(c, o);
 }
 
+// Declared as wide as a field can be (just under a full turn), the model's own limit decides.
+// Every batch loop gives the single-point path's statuses and bits.
+void expectBatchIsSinglePoint(const Camera &camera, const std::vector<glm::dvec3> &world)
+{
+    for (BatchKernel kernel : {BatchKernel::Lanes2, BatchKernel::Lanes4Avx2, BatchKernel::Lanes8Avx512}) {
+        std::vector<ProjectedPoint> batch(world.size());
+        camera.projectPoints(world, batch, kernel);
+        for (size_t i = 0; i < world.size(); ++i) {
+            const ProjectedPoint one = camera.project(world[i]);
+            EXPECT_EQ(batch[i].status, one.status);
+            EXPECT_EQ(batch[i].pixel.x, one.pixel.x) << "same bits";
+            EXPECT_EQ(batch[i].pixel.y, one.pixel.y) << "same bits";
+        }
+    }
+}
+
+// An OpenCV fisheye calibration of an ordinary lens: its polynomial keeps growing up to 121 degrees from the axis,
+// but a calibration describes only the front hemisphere. Without a declared field a point behind the camera plane
+// is clipped, as for a pinhole; declared as a 220-degree lens it gets the model's pixel.
+TEST(WideFisheye, AnOrdinaryCalibrationSeesTheFrontHemisphereUnlessDeclaredWider)
+{
+    const std::array<double, 4> k{-0.013, -0.0037, 0.0016, -0.0004};
+    ASSERT_GT(modelLimit(k), 120.0 * kDegree);
+    std::mt19937_64 rng(90);
+    for (double declared : {0.0, 220.0}) {
+        CvCamera c;
+        c.rvec = {uniform(rng, -3, 3), uniform(rng, -3, 3), uniform(rng, -3, 3)};
+        c.tvec = {uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)};
+        c.width = 1280;
+        c.height = 800;
+        c.fx = 331.2;
+        c.fy = 330.7;
+        c.cx = 640.4;
+        c.cy = 399.8;
+        c.distortion = {DistortionModel::Fisheye, {k[0], k[1], k[2], k[3]}, declared};
+        const Camera camera = test::makeCamera(c, DepthRange::ZeroToOne, 0.05, 1000.0);
+        EXPECT_EQ(camera.seesBehind(), declared > 0.0);
+        std::vector<glm::dvec3> world;
+        for (int i = 0; i < 200; ++i) // in front up to 88 degrees, behind from 92 to 108 degrees
+            world.push_back(pointAt(c, i % 2 ? uniform(rng, 92.0, 108.0) * kDegree : uniform(rng, 0.0, 88.0) * kDegree,
+                                    uniform(rng, -M_PI, M_PI), uniform(rng, 0.5, 50.0)));
+        int behind = 0;
+        for (const glm::dvec3 &p : world) {
+            const ProjectedPoint ours = camera.project(p);
+            const glm::dvec3 o = opticalOf(c, p);
+            if (o.z <= 0.0 && declared == 0.0) {
+                EXPECT_EQ(ours.status, PointStatus::Clipped) << "behind the camera plane";
+                ++behind;
+                continue;
+            }
+            ASSERT_NE(ours.status, PointStatus::Clipped) << declared;
+            EXPECT_LT(glm::length(ours.pixel - referencePixel(c, p)), 1e-7) << declared;
+            if (o.z > 0.01 * glm::length(o)) {
+                EXPECT_LT(glm::length(ours.pixel - test::cvProject(c, p)), 1e-6) << declared;
+            }
+        }
+        EXPECT_EQ(behind, declared == 0.0 ? 100 : 0);
+        expectBatchIsSinglePoint(camera, world);
+    }
+}
+
 TEST(WideFisheye, TheValidFieldEndsWhereTheModelStopsGrowingNotAt89Degrees)
 {
     std::mt19937_64 rng(21);
     for (const WideLens &lens : kLenses) {
-        const CvCamera c = wideCamera(lens, rng);
+        const CvCamera c = wideCamera(lens, rng, 359.99);
         const Camera camera = test::makeCamera(c, DepthRange::ZeroToOne, 0.05, 1000.0);
         ASSERT_TRUE(camera.lens());
         const double limit = modelLimit(lens.k);
         EXPECT_GT(limit, 0.5 * lens.fovDeg * kDegree) << lens.fovDeg;
         EXPECT_NEAR(camera.lens()->validAngle(), limit, 0.011 * kDegree) << lens.fovDeg;
         EXPECT_LE(camera.lens()->validAngle(), limit + 1e-12) << "the turned part must never count as valid";
+        EXPECT_TRUE(camera.seesBehind());
+    }
+}
+
+// Declared narrower than the model's limit, the declared field decides: half of it from the axis.
+TEST(WideFisheye, TheDeclaredFieldCapsTheModelsLimit)
+{
+    std::mt19937_64 rng(22);
+    for (const WideLens &lens : kLenses) {
+        const Camera camera = test::makeCamera(wideCamera(lens, rng), DepthRange::ZeroToOne, 0.05, 1000.0);
+        EXPECT_NEAR(camera.lens()->validAngle(), std::min(modelLimit(lens.k), 0.5 * lens.fovDeg * kDegree),
+                    0.011 * kDegree)
+            << lens.fovDeg;
         EXPECT_TRUE(camera.seesBehind());
     }
 }
@@ -141,16 +218,7 @@ TEST(WideFisheye, ProjectsBehindTheCameraPlaneAsTheModelSays)
             }
             EXPECT_GE(behind, 200) << lens.fovDeg;
             EXPECT_GT(visible, 350) << lens.fovDeg;
-            for (BatchKernel kernel : {BatchKernel::Lanes2, BatchKernel::Lanes4Avx2, BatchKernel::Lanes8Avx512}) {
-                std::vector<ProjectedPoint> batch(world.size());
-                camera.projectPoints(world, batch, kernel);
-                for (size_t i = 0; i < world.size(); ++i) {
-                    const ProjectedPoint one = camera.project(world[i]);
-                    EXPECT_EQ(batch[i].status, one.status);
-                    EXPECT_EQ(batch[i].pixel.x, one.pixel.x) << "same bits";
-                    EXPECT_EQ(batch[i].pixel.y, one.pixel.y) << "same bits";
-                }
-            }
+            expectBatchIsSinglePoint(camera, world);
         }
     }
 }
@@ -228,7 +296,7 @@ TEST(WideFisheye, SegmentsBehindTheCameraAreDrawnAndCutByTheBlindCone)
 {
     std::mt19937_64 rng(2200);
     const WideLens &lens = kLenses[2];
-    const CvCamera c = wideCamera(lens, rng);
+    const CvCamera c = wideCamera(lens, rng, 359.99); // the model's limit, 121 degrees, bounds the cone
     const Camera camera = test::makeCamera(c, DepthRange::ZeroToOne, 0.05, 1000.0);
     // In the optical frame: 2 m behind the camera, from left to right across the back axis.
     const glm::dvec3 a = test::worldFromOptical(c, {-20.0, 0.3, -2.0}),
