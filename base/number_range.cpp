@@ -17,4 +17,13 @@ std::string Range::refusal(double value) const
     return "out of range: must be in " + describe() + " (got " + shortNumber(value, 15) + ")";
 }
 
+std::string numbersRefusal(const std::vector<double> &values, const std::vector<std::string> &names,
+                           const std::string &group, const Range &range)
+{
+    for (size_t i = 0; i < values.size(); ++i)
+        if (const std::string why = range.refusal(values[i]); !why.empty())
+            return names[i % names.size()] + " of " + group + " " + std::to_string(i / names.size() + 1) + ": " + why;
+    return {};
+}
+
 } // namespace overlayd

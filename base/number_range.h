@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace overlayd {
 
@@ -22,5 +23,10 @@ struct Range {
     std::string refusal(double value) const;
 };
 inline constexpr Range kAnyMagnitude{};
+
+// Numbers from the command line or an API body, checked before use: "" when each lies in `range`, else the first one
+// out named by its place ("X of point 2", cycling `names` over groups of names.size() called `group`) and the range.
+std::string numbersRefusal(const std::vector<double> &values, const std::vector<std::string> &names,
+                           const std::string &group, const Range &range);
 
 } // namespace overlayd

@@ -173,8 +173,8 @@ Result<Projection> CameraSpec::buildProjection(const Viewport &vp) const
         b.far = far;
         return Projection::orthographic(b, depth);
     }
-    case IntrinsicsForm::Seed000Orthographic:
-        return Projection::seed000Orthographic(orthoSize.x, orthoSize.y, near, far, depth);
+    case IntrinsicsForm::WindowOrthographic:
+        return Projection::windowOrthographic(orthoSize.x, orthoSize.y, near, far, depth);
     }
     return makeError(ErrorCode::Unsupported, "unknown intrinsics form");
 }

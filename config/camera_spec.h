@@ -34,9 +34,9 @@ enum class IntrinsicsForm {
     FieldOfView,         // fovDeg across fovAxis, aspect from the viewport window (round circles)
     Frustum,             // bounds.left..top on the near plane (glFrustum)
     Pinhole,             // calibrated fx, fy, cx, cy, skew for an image of pinhole.width x height
-    Window,              // seed 000's window model
+    Window,              // the viewing pipeline's window model
     Orthographic,        // bounds.left..top box (glOrtho)
-    Seed000Orthographic, // seed 000's P_o for a centred orthoSize window
+    WindowOrthographic,  // the viewing pipeline's P_o for a centred orthoSize window
 };
 
 class CameraSpec

@@ -1,5 +1,5 @@
-// [camera] intrinsics: field of view, frustum, pinhole (or a calibration file), seed 000 window, orthographic;
-// near/far, depth range and lens distortion.
+// [camera] intrinsics: field of view, frustum, pinhole (or a calibration file), the viewing-pipeline window,
+// orthographic; near/far, depth range and lens distortion.
 #include "config/config_sections.h"
 
 #include <array>
@@ -127,12 +127,12 @@ void readForm(TableReader &camera, std::string_view key, CameraSpec &out)
         auto table = camera.table(key);
         if (!table)
             return;
-        const bool seed000 = key == "orthographic" && (table->has("width") || table->has("height"));
-        if (seed000) {
-            out.form = IntrinsicsForm::Seed000Orthographic;
+        const bool centredWindow = key == "orthographic" && (table->has("width") || table->has("height"));
+        if (centredWindow) {
+            out.form = IntrinsicsForm::WindowOrthographic;
             out.orthoSize = {table->positive("width").value_or(2.0), table->positive("height").value_or(2.0)};
         }
-        readBounds(*table, out.bounds, !seed000);
+        readBounds(*table, out.bounds, !centredWindow);
         table->finish();
     } else if (key == "window") {
         auto table = camera.table("window");
@@ -140,7 +140,7 @@ void readForm(TableReader &camera, std::string_view key, CameraSpec &out)
             return;
         for (std::string_view required : {"focal", "half_width", "half_height"})
             if (!table->has(required))
-                table->problem(required, "missing: the seed 000 window needs focal, half_width and half_height");
+                table->problem(required, "missing: the window needs focal, half_width and half_height");
         out.window.focal = table->positive("focal").value_or(1.0);
         out.window.centre = table->vec2("centre").value_or(glm::dvec2(0.0));
         out.window.halfWidth = table->positive("half_width").value_or(1.0);
@@ -230,7 +230,7 @@ void readIntrinsics(TableReader &camera, const std::string &baseDirectory, Camer
     if (auto far = readFar(camera)) {
         out.far = *far;
         const bool orthographic =
-            out.form == IntrinsicsForm::Orthographic || out.form == IntrinsicsForm::Seed000Orthographic;
+            out.form == IntrinsicsForm::Orthographic || out.form == IntrinsicsForm::WindowOrthographic;
         if (orthographic && *far == kInfiniteFar) {
             // Otherwise the projection refuses its box as "not finite", at the form's key: say what is wrong here.
             camera.problem("far", "an orthographic camera needs a finite far plane (\"inf\" is for perspective)");

@@ -143,7 +143,7 @@ void putIntrinsicsForm(const CameraSpec &spec, toml::table &camera)
     case IntrinsicsForm::Orthographic:
         camera.insert_or_assign("orthographic", boundsTable(spec.bounds));
         return;
-    case IntrinsicsForm::Seed000Orthographic: {
+    case IntrinsicsForm::WindowOrthographic: {
         toml::table box = boundsTable(spec.bounds);
         box.insert_or_assign("width", spec.orthoSize.x);
         box.insert_or_assign("height", spec.orthoSize.y);

@@ -10,6 +10,7 @@
 #include "base/regular_file.h"
 #include "config/limits.h"
 #include "drivers/files/path_pattern.h"
+#include "drivers/source_kind_names.h"
 #include "media/frame.h"
 #include "media/pixel_format.h"
 
@@ -251,10 +252,7 @@ void readSource(TableReader &root, const std::string &baseDirectory, SourceOptio
     auto source = root.table("source");
     if (!source)
         return;
-    if (auto kind = source->choice<SourceKind>("kind", {{"synthetic", SourceKind::Synthetic},
-                                                        {"replay", SourceKind::Replay},
-                                                        {"v4l2", SourceKind::V4l2},
-                                                        {"libcamera", SourceKind::Libcamera}})) {
+    if (auto kind = source->choice<SourceKind>("kind", kSourceKindNames)) {
         out.kind = *kind;
         if (out.kind == SourceKind::Libcamera && !libcameraBuiltIn())
             source->problem("kind", "this overlayd was built without libcamera (CMake option OVERLAYD_LIBCAMERA)");

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -56,7 +57,13 @@ public:
     // At most maxBytes long.
     std::optional<std::string> string(std::string_view key, size_t maxBytes = kMaxStringBytes);
     template<typename E>
-    std::optional<E> choice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> names);
+    std::optional<E> choice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> names)
+    {
+        return choice(key, std::span<const std::pair<std::string_view, E>>(names.begin(), names.size()));
+    }
+    // The same from a table of names written elsewhere (drivers/source_kind_names.h).
+    template<typename E>
+    std::optional<E> choice(std::string_view key, std::span<const std::pair<std::string_view, E>> names);
     std::optional<glm::dvec2> vec2(std::string_view key, Range range = {}) { return vector<glm::dvec2, 2>(key, range); }
     std::optional<glm::dvec3> vec3(std::string_view key, Range range = {}) { return vector<glm::dvec3, 3>(key, range); }
     // [w, x, y, z], normalized; a zero quaternion is refused.
@@ -118,7 +125,7 @@ std::optional<V> TableReader::vector(std::string_view key, Range range)
 }
 
 template<typename E>
-std::optional<E> TableReader::choice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> names)
+std::optional<E> TableReader::choice(std::string_view key, std::span<const std::pair<std::string_view, E>> names)
 {
     const std::optional<std::string> text = string(key);
     if (!text)

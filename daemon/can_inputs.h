@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/event_loop.h"
 #include "daemon/scene_control.h"
 #include "inputs/can_socket.h"
 #include "inputs/input_health.h"

@@ -7,7 +7,7 @@ Daemon::Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factori
                DaemonOptions options)
     : logger_(logger), factories_(std::move(factories)), loader_(std::move(loader)), options_(std::move(options)),
       pipeline_(logger), scene_(factories_.renderer), health_(logger, notifier), gpio_(logger, scene_),
-      textInputs_(logger, scene_), pathInputs_(logger, scene_), canInputs_(logger, scene_), http_(logger, *this)
+      textInputs_(logger, scene_), pathInputs_(logger, scene_), canInputs_(logger, scene_), http_(logger, scene_, *this)
 {
     pipeline_.setRawTap([this](const FrameView &frame, const FrameMetadata &metadata) {
         if (http_.running())

@@ -10,10 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
 #include "daemon/can_inputs.h"
-#include "daemon/event_loop.h"
+#include "daemon/daemon_status.h"
 #include "daemon/gpio_control.h"
 #include "daemon/health_reporter.h"
 #include "daemon/http_front.h"
@@ -35,11 +36,9 @@ struct DaemonOptions {
     uint64_t maxFrames = 0;           // stop cleanly after this many source frames (0: until signalled)
 };
 
-class Daemon
+class Daemon final : public DaemonStatus
 {
 public:
-    using State = SourceSupervisor::State;
-
     Daemon(Logger &logger, SystemdNotifier &notifier, StageFactories factories, ConfigLoader loader,
            DaemonOptions options);
     ~Daemon();
@@ -62,21 +61,21 @@ public:
     bool reload();
     void requestStop(int exitStatus);
 
-    State state() const { return source_ ? source_->state() : State::Idle; }
-    const DaemonConfig &config() const { return config_; }
-    const Pipeline &pipeline() const { return pipeline_; }
+    State state() const override { return source_ ? source_->state() : State::Idle; }
+    const DaemonConfig &config() const override { return config_; }
+    const Pipeline &pipeline() const override { return pipeline_; }
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
-    const GpioControl &gpio() const { return gpio_; }
+    const GpioControl &gpio() const override { return gpio_; }
     GpioControl &gpio() { return gpio_; }
-    const TextInputs &textInputs() const { return textInputs_; }
+    const TextInputs &textInputs() const override { return textInputs_; }
     TextInputs &textInputs() { return textInputs_; }
-    const PathInputs &pathInputs() const { return pathInputs_; }
+    const PathInputs &pathInputs() const override { return pathInputs_; }
     PathInputs &pathInputs() { return pathInputs_; }
-    const CanInputs &canInputs() const { return canInputs_; }
+    const CanInputs &canInputs() const override { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
     // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
-    std::vector<inputs::InputHealth> inputHealth() const;
+    std::vector<inputs::InputHealth> inputHealth() const override;
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }

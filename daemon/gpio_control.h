@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/event_loop.h"
 #include "daemon/scene_control.h"
 #include "daemon/source_supervisor.h"
 #include "gpio/line_provider.h"

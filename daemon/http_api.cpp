@@ -9,12 +9,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "alignment/point_queries.h"
+#include "base/number_range.h"
 #include "base/number_text.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
-#include "daemon/commands.h"
-#include "daemon/daemon.h"
+#include "drivers/source_kind_names.h"
 #include "inputs/input_health.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
@@ -28,31 +29,16 @@ using nlohmann::json;
 
 constexpr size_t kMaxApiPoints = 4096; // /api/project and /api/unproject, per request
 
-const char *sourceKindName(SourceKind kind)
-{
-    switch (kind) {
-    case SourceKind::Synthetic:
-        return "synthetic";
-    case SourceKind::Replay:
-        return "replay";
-    case SourceKind::V4l2:
-        return "v4l2";
-    case SourceKind::Libcamera:
-        return "libcamera";
-    }
-    return "?";
-}
-
-const char *stateName(Daemon::State state)
+const char *stateName(DaemonStatus::State state)
 {
     switch (state) {
-    case Daemon::State::Idle:
+    case DaemonStatus::State::Idle:
         return "idle";
-    case Daemon::State::Streaming:
+    case DaemonStatus::State::Streaming:
         return "streaming";
-    case Daemon::State::Waiting:
+    case DaemonStatus::State::Waiting:
         return "waiting";
-    case Daemon::State::Finished:
+    case DaemonStatus::State::Finished:
         return "finished";
     }
     return "?";
@@ -142,8 +128,8 @@ std::optional<std::vector<double>> numberList(const std::string &text)
 
 } // namespace
 
-HttpApi::HttpApi(Daemon &daemon, std::function<http::HttpCounters()> counters)
-    : daemon_(daemon), counters_(std::move(counters))
+HttpApi::HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<http::HttpCounters()> counters)
+    : scene_(scene), status_(status), counters_(std::move(counters))
 {}
 
 HttpResponse HttpApi::handle(const http::HttpRequest &request)
@@ -176,7 +162,7 @@ double HttpApi::measuredFps()
 {
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - sampleTime_).count();
-    const uint64_t frames = daemon_.pipeline().framesIn();
+    const uint64_t frames = status_.pipeline().framesIn();
     if (seconds >= 1.0) {
         fps_ = double(frames - sampleFrames_) / seconds;
         sampleTime_ = now;
@@ -187,12 +173,12 @@ double HttpApi::measuredFps()
 
 HttpResponse HttpApi::state()
 {
-    const DaemonConfig &config = daemon_.config();
-    const StreamFormat &format = daemon_.pipeline().format();
-    SceneControl &scene = daemon_.scene();
-    json source = {{"kind", sourceKindName(config.source.kind)},
-                   {"state", stateName(daemon_.state())},
-                   {"frames", daemon_.pipeline().framesIn()},
+    const DaemonConfig &config = status_.config();
+    const StreamFormat &format = status_.pipeline().format();
+    SceneControl &scene = scene_;
+    json source = {{"kind", std::string(sourceKindName(config.source.kind))},
+                   {"state", stateName(status_.state())},
+                   {"frames", status_.pipeline().framesIn()},
                    {"fps_measured", measuredFps()}};
     if (config.source.kind == SourceKind::V4l2)
         source["device"] = config.source.v4l2.device;
@@ -208,7 +194,7 @@ HttpResponse HttpApi::state()
     for (const std::string &slot : textSlotNames(scene.scene()))
         slots[slot] = scene.slotText(slot);
     json sinks = json::array();
-    for (const auto &sink : daemon_.pipeline().sinks()) {
+    for (const auto &sink : status_.pipeline().sinks()) {
         const SinkCounters counters = sink->counters();
         sinks.push_back({{"name", sink->describe()},
                          {"written", counters.written},
@@ -230,11 +216,11 @@ HttpResponse HttpApi::state()
                   {"stream_fps", http.streamFps},
                   {"parts_sent", http.partsSent},
                   {"requests", http.requests}}}};
-    if (!daemon_.gpio().empty())
-        out["gpio"] = daemon_.gpio().describe();
+    if (!status_.gpio().empty())
+        out["gpio"] = status_.gpio().describe();
     json inputs = json::array();
     const auto now = std::chrono::steady_clock::now();
-    for (const TextInputs::Reading &reading : daemon_.textInputs().readings()) {
+    for (const TextInputs::Reading &reading : status_.textInputs().readings()) {
         json entry = {{"kind", "text"},
                       {"slot", reading.slot},
                       {"file", reading.file},
@@ -244,7 +230,7 @@ HttpResponse HttpApi::state()
             entry["error"] = reading.error;
         inputs.push_back(std::move(entry));
     }
-    for (const PathInputs::Reading &reading : daemon_.pathInputs().readings()) {
+    for (const PathInputs::Reading &reading : status_.pathInputs().readings()) {
         json entry = {{"kind", "path"},
                       {"annotation", reading.annotation},
                       {"file", reading.file},
@@ -254,7 +240,7 @@ HttpResponse HttpApi::state()
             entry["error"] = reading.error;
         inputs.push_back(std::move(entry));
     }
-    const CanInputs &can = daemon_.canInputs();
+    const CanInputs &can = status_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
         const inputs::CanInputOptions &options = can.options(i);
         const CanInputs::Reading &reading = can.reading(i);
@@ -281,7 +267,7 @@ HttpResponse HttpApi::state()
     if (!inputs.empty())
         out["inputs"] = inputs;
     json health = json::array();
-    for (const inputs::InputHealth &input : daemon_.inputHealth())
+    for (const inputs::InputHealth &input : status_.inputHealth())
         health.push_back(inputHealthJson(input, now));
     if (!health.empty())
         out["input_health"] = health;
@@ -301,11 +287,11 @@ HttpResponse HttpApi::metrics()
     metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
     metric("overlayd_source_frames_total", "counter", "Frames the source delivered.",
-           double(daemon_.pipeline().framesIn()));
+           double(status_.pipeline().framesIn()));
     metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
     metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
-           daemon_.state() == Daemon::State::Streaming ? 1.0 : 0.0);
-    for (const auto &sink : daemon_.pipeline().sinks()) {
+           status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
+    for (const auto &sink : status_.pipeline().sinks()) {
         const SinkCounters counters = sink->counters();
         std::string label = "sink=" + writeJson(json(sink->describe()));
         metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
@@ -314,7 +300,7 @@ HttpResponse HttpApi::metrics()
         metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
                label);
     }
-    const CanInputs &can = daemon_.canInputs();
+    const CanInputs &can = status_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
         const std::string label = "input=" + writeJson(json(can.options(i).name));
         const CanInputs::Reading &reading = can.reading(i);
@@ -325,7 +311,7 @@ HttpResponse HttpApi::metrics()
                reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
     }
     // One loop per metric: a family's samples stay together, as the text format wants.
-    const std::vector<inputs::InputHealth> inputHealth = daemon_.inputHealth();
+    const std::vector<inputs::InputHealth> inputHealth = status_.inputHealth();
     const auto inputLabel = [](const inputs::InputHealth &input) {
         return "kind=" + writeJson(json(input.kind)) + ",input=" + writeJson(json(input.name));
     };
@@ -348,10 +334,10 @@ HttpResponse HttpApi::metrics()
 
 HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
 {
-    SceneControl &scene = daemon_.scene();
-    const StreamFormat &format = daemon_.pipeline().format();
-    const unsigned width = format.format ? format.width : daemon_.config().source.width;
-    const unsigned height = format.format ? format.height : daemon_.config().source.height;
+    SceneControl &scene = scene_;
+    const StreamFormat &format = status_.pipeline().format();
+    const unsigned width = format.format ? format.width : status_.config().source.width;
+    const unsigned height = format.format ? format.height : status_.config().source.height;
     auto spec = cameraFromJson(request.body, scene.camera(), width, height);
     if (!spec)
         return HttpResponse::error(400, spec.error().message);
@@ -362,7 +348,7 @@ HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
 
 HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest &request)
 {
-    SceneControl &scene = daemon_.scene();
+    SceneControl &scene = scene_;
     const auto names = scene.layerNames();
     if (std::find(names.begin(), names.end(), layer) == names.end())
         return HttpResponse::error(404, "no layer '" + layer + "' in the scene");
@@ -379,7 +365,7 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
 
 HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &request)
 {
-    const auto slots = textSlotNames(daemon_.scene().scene());
+    const auto slots = textSlotNames(scene_.scene());
     if (std::find(slots.begin(), slots.end(), slot) == slots.end())
         return HttpResponse::error(404, "no text in the scene shows the slot '" + slot + "' ({slot:" + slot + "})");
     const auto body = parseJsonBody(request.body);
@@ -388,7 +374,7 @@ HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &
     if (!body->is_object() || !body->contains("text") || !(*body)["text"].is_string() || body->size() != 1)
         return HttpResponse::error(400, "text: expected {\"text\": \"...\"}");
     const std::string text = (*body)["text"].get<std::string>();
-    if (auto applied = daemon_.scene().apply(TextChange{slot, text}); !applied)
+    if (auto applied = scene_.apply(TextChange{slot, text}); !applied)
         return HttpResponse::error(400, "text: " + applied.error().message);
     return HttpResponse::json(200, writeJson(json({{"slot", slot}, {"text", text}})));
 }
@@ -402,8 +388,8 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
                                             " finite points)");
     if (const std::string why = numbersRefusal(*numbers, {"x", "y", "z"}, "point", kAnyMagnitude); !why.empty())
         return HttpResponse::error(400, "points: " + why);
-    const StreamFormat &format = daemon_.pipeline().format();
-    auto camera = daemon_.scene().cameraFor(format.width, format.height);
+    const StreamFormat &format = status_.pipeline().format();
+    auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
         return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");
     std::vector<glm::dvec3> world;
@@ -432,8 +418,8 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
     std::vector<glm::dvec2> uv;
     for (size_t i = 0; i < numbers.size(); i += 2)
         uv.emplace_back(numbers[i], numbers[i + 1]);
-    const StreamFormat &format = daemon_.pipeline().format();
-    auto camera = daemon_.scene().cameraFor(format.width, format.height);
+    const StreamFormat &format = status_.pipeline().format();
+    auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
         return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");
     return HttpResponse::json(200, unprojectJson(*camera, Plane{}, uv));
@@ -443,7 +429,7 @@ HttpResponse HttpApi::save()
 {
     // The whole live camera, merged into what the drop-in holds: a save after a restart keeps what an earlier save
     // wrote, and the saved config projects as the live camera does.
-    auto written = writeLiveDropIn(daemon_.config().path, daemon_.scene().camera(), "POST /api/save");
+    auto written = writeLiveDropIn(status_.config().path, scene_.camera(), "POST /api/save");
     if (!written)
         return HttpResponse::error(500, written.error().message);
     return HttpResponse::json(200, writeJson(json({{"saved", *written}})));

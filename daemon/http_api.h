@@ -1,22 +1,23 @@
-// HttpApi: what /state, /metrics and /api/... answer. Every change goes through SceneControl, validated by the
-// config file's own readers; a refused change answers 400 naming the field and changes nothing. Loop thread only.
+// HttpApi: what /state, /metrics and /api/... answer, from a read-only view of the daemon (DaemonStatus). Every
+// change goes through SceneControl, validated by the config file's own readers; a refused change answers 400 naming the
+// field and changes nothing. Loop thread only.
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <functional>
 
+#include "daemon/daemon_status.h"
+#include "daemon/scene_control.h"
 #include "http/http_server.h"
 
 namespace overlayd {
-
-class Daemon;
 
 class HttpApi
 {
 public:
     // counters: the server's, for /state and /metrics (the server is created after the API it calls).
-    HttpApi(Daemon &daemon, std::function<http::HttpCounters()> counters);
+    HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<http::HttpCounters()> counters);
 
     http::HttpResponse handle(const http::HttpRequest &request);
 
@@ -31,7 +32,8 @@ private:
     http::HttpResponse save();
     double measuredFps();
 
-    Daemon &daemon_;
+    SceneControl &scene_;
+    const DaemonStatus &status_;
     std::function<http::HttpCounters()> counters_;
     const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
     // fps measured between two samples at least a second apart

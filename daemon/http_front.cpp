@@ -18,8 +18,8 @@ http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
 
 } // namespace
 
-HttpFront::HttpFront(Logger &logger, Daemon &daemon)
-    : logger_(logger), api_(daemon, [this] { return server_ ? server_->counters() : http::HttpCounters{}; }),
+HttpFront::HttpFront(Logger &logger, SceneControl &scene, const DaemonStatus &status)
+    : logger_(logger), api_(scene, status, [this] { return server_ ? server_->counters() : http::HttpCounters{}; }),
       rawTap_(feedOrAbort(feed_), quality_)
 {}
 

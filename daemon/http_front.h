@@ -7,7 +7,7 @@
 #include <memory>
 #include <optional>
 
-#include "daemon/event_loop.h"
+#include "base/event_loop.h"
 #include "daemon/http_api.h"
 #include "daemon/http_frames.h"
 #include "daemon/sink_worker.h"
@@ -18,7 +18,7 @@ namespace overlayd {
 class HttpFront
 {
 public:
-    HttpFront(Logger &logger, Daemon &daemon);
+    HttpFront(Logger &logger, SceneControl &scene, const DaemonStatus &status);
     ~HttpFront();
 
     // Starts the server, restarts it when the options changed, or stops it (options.enabled false). A server that

@@ -1,41 +1,47 @@
-// NoSignalFrame: OpenCV text on an opaque layer; blending an opaque layer replaces every byte of the frame, so the
-// frame needs no format-specific fill.
+// NoSignalFrame: the overlay's own text (the glyph cache, DejaVu Sans) on an opaque layer; blending an opaque layer
+// replaces every byte of the frame, so the frame needs no format-specific fill.
 #include "daemon/no_signal.h"
 
 #include <algorithm>
 
-#include <opencv2/imgproc.hpp>
-
 #include "overlay/blend/native_layer.h"
 #include "overlay/raster/overlay_layer.h"
+#include "overlay/raster/rasterizer.h"
+#include "overlay/raster/text_renderer.h"
+#include "overlay/shapes/primitives.h"
 
 namespace overlayd {
 
 namespace {
 
-void drawCentred(cv::Mat &image, const std::string &text, double y, double scale, int thickness)
+constexpr Rgba kBackground{48, 48, 48, 255};
+constexpr Rgba kText{255, 255, 255, 255};
+
+TextItem centred(const TextRenderer &text, const std::string &line, unsigned width, double centreY, double sizePx)
 {
-    int baseline = 0;
-    const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &baseline);
-    const cv::Point origin((image.cols - size.width) / 2, int(y) + size.height / 2);
-    cv::putText(image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255, 255), thickness,
-                cv::LINE_AA);
+    const TextRenderer::Box box = text.measure(line, sizePx);
+    TextItem item;
+    item.text = line;
+    item.sizePx = sizePx;
+    item.colour = kText;
+    item.anchor = {std::max(0.0, (double(width) - box.width) / 2.0), centreY - box.height() / 2.0};
+    return item;
 }
 
 void drawLayer(OverlayLayer &layer, const std::string &reason)
 {
-    layer.fillRect(0, 0, int(layer.width()), int(layer.height()), Rgba{48, 48, 48, 255});
-    cv::Mat image(int(layer.height()), int(layer.width()), CV_8UC4, layer.data(), layer.stride());
+    layer.fillRect(0, 0, int(layer.width()), int(layer.height()), kBackground);
+    const TextRenderer text;
     // Text scales with the frame so that it reads the same on 320x240 and 1920x1080.
-    const double scale = std::max(0.3, layer.width() / 640.0);
-    drawCentred(image, "NO SIGNAL", layer.height() * 0.42, 1.6 * scale, std::max(1, int(3 * scale)));
+    const double height = layer.height();
+    DrawList list;
+    list.texts.push_back(centred(text, "NO SIGNAL", layer.width(), height * 0.42, std::max(12.0, height * 0.12)));
     // The reason may be long (a device path and an errno text): shrink it to fit the width.
-    double reasonScale = 0.6 * scale;
-    int baseline = 0;
-    while (reasonScale > 0.2 &&
-           cv::getTextSize(reason, cv::FONT_HERSHEY_SIMPLEX, reasonScale, 1, &baseline).width > int(layer.width()) - 8)
-        reasonScale *= 0.9;
-    drawCentred(image, reason, layer.height() * 0.6, reasonScale, 1);
+    double reasonSize = std::max(8.0, height * 0.05);
+    while (reasonSize > 6.0 && text.measure(reason, reasonSize).width > int(layer.width()) - 8)
+        reasonSize *= 0.9;
+    list.texts.push_back(centred(text, reason, layer.width(), height * 0.6, reasonSize));
+    Rasterizer(text).draw(list, layer, {0, 0}, {0, 0, int(layer.width()), int(layer.height())});
     layer.updateSpans();
 }
 

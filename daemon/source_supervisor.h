@@ -11,10 +11,10 @@
 #include <optional>
 #include <string>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
 #include "daemon/backoff.h"
-#include "daemon/event_loop.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
 #include "daemon/open_stream.h"

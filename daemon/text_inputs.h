@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/event_loop.h"
 #include "daemon/scene_control.h"
 #include "daemon/watched_files.h"
 #include "inputs/input_options.h"

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/event_loop.h"
 #include "inputs/input_health.h"
 #include "inputs/text_file_watch.h"
 

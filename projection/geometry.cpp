@@ -1,4 +1,4 @@
-// Seed 003's line, ray and plane geometry.
+// The homogeneous line, ray and plane geometry.
 #include "geometry.h"
 
 #include <cmath>

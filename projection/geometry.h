@@ -1,4 +1,4 @@
-// Seed 003's geometry: rays, planes <N, D>, signed distances, intersections, and the view frustum's planes.
+// The homogeneous geometry: rays, planes <N, D>, signed distances, intersections, and the view frustum's planes.
 #pragma once
 
 #include <array>
@@ -31,10 +31,10 @@ struct Plane {
     glm::dvec4 homogeneous() const { return {normal, d}; }
 };
 
-// Seed 003's t = -(L.S)/(L.V) with L = <N, D>, S = (origin, 1), V = (direction, 0): the ray parameter where it
-// meets the plane; nothing when parallel or when the hit is behind the origin (t < 0).
+// In homogeneous form t = -(L.S)/(L.V) with L = <N, D>, S = (origin, 1), V = (direction, 0): the ray parameter
+// where it meets the plane; nothing when parallel or when the hit is behind the origin (t < 0).
 std::optional<double> intersect(const Ray &ray, const Plane &plane);
-// The same for the infinite line through p0 and p1, parameter t with P(t) = (1 - t) p0 + t p1 (seed 003 drops
+// The same for the infinite line through p0 and p1, parameter t with P(t) = (1 - t) p0 + t p1 (the derivation drops
 // the second t).
 std::optional<double> intersectLine(const glm::dvec3 &p0, const glm::dvec3 &p1, const Plane &plane);
 double pointLineDistance(const glm::dvec3 &point, const glm::dvec3 &linePoint, const glm::dvec3 &lineDirection);

@@ -1,4 +1,4 @@
-// Camera pose builders: seeds 000-002 graphics forms, orientations, and OpenCV/ROS extrinsics.
+// Camera pose builders: the viewing pipeline's graphics forms, orientations, and OpenCV/ROS extrinsics.
 #include "pose.h"
 
 #include <algorithm>

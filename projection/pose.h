@@ -10,7 +10,7 @@
 
 namespace overlayd {
 
-// The internal camera frame is OpenGL's (seeds 000-003): X right, Y up, looking down -Z.
+// The internal camera frame is OpenGL's: X right, Y up, looking down -Z.
 // A Pose maps world points into it: x_camera = rotation * x_world + translation.
 struct Pose {
     glm::dmat3 rotation{1.0};
@@ -32,11 +32,11 @@ enum class CameraAxes {
 // Rotation taking vectors in the given camera axes to the internal (OpenGL) camera axes.
 glm::dmat3 internalFromAxes(CameraAxes axes);
 
-// Seeds 001/002: eye, gaze and up: w = -g/|g|, u = t x w / |t x w|, v = w x u.
+// Eye, gaze and up: w = -g/|g|, u = t x w / |t x w|, v = w x u.
 Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const glm::dvec3 &up);
 // Eye, a target point looked at, and up (gluLookAt).
 Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const glm::dvec3 &up);
-// Seed 000: Z' = VPN (pointing back towards the viewer), X' = normalize(VUP x VPN), Y' = Z' x X'.
+// PRP, VPN, VUP: Z' = VPN (pointing back towards the viewer), X' = normalize(VUP x VPN), Y' = Z' x X'.
 Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, const glm::dvec3 &vup);
 // Position plus the orientation of the camera's `axes` in the world (a unit quaternion, world_from_axes).
 Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &worldFromAxes, CameraAxes axes);

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "checks.h"
-#include "seed000.h"
+#include "viewing_pipeline.h"
 
 namespace overlayd {
 
@@ -35,7 +35,7 @@ void setPerspectiveDepth(glm::dmat4 &m, double near, double far, DepthRange dept
     m[2][3] = -1.0;
     m[3][3] = 0.0;
     const bool zeroToOne = depth == DepthRange::ZeroToOne;
-    if (std::isinf(far)) { // seed 002: the limit far -> infinity
+    if (std::isinf(far)) { // the limit far -> infinity
         m[2][2] = -1.0;
         m[3][2] = zeroToOne ? -near : -2.0 * near;
     } else if (zeroToOne) {
@@ -162,13 +162,14 @@ Result<Projection> Projection::window(const WindowIntrinsics &w, DepthRange dept
     if (auto status = checkNearFar(w.near, w.far, false); !status)
         return status.error();
     const glm::dvec3 cw(w.centre, -w.focal);
-    const glm::dmat4 zeroToOne = seed000::perspective(w.near / w.far) * seed000::scaleFar(w.far) *
-                                 seed000::scaleXY(w.focal, 2.0 * w.halfWidth, 2.0 * w.halfHeight) * seed000::shear(cw);
+    const glm::dmat4 zeroToOne = viewing_pipeline::perspective(w.near / w.far) * viewing_pipeline::scaleFar(w.far) *
+                                 viewing_pipeline::scaleXY(w.focal, 2.0 * w.halfWidth, 2.0 * w.halfHeight) *
+                                 viewing_pipeline::shear(cw);
     const glm::dmat4 m = depth == DepthRange::ZeroToOne ? zeroToOne : zeroToOneToMinusOneToOne() * zeroToOne;
     return Projection(m, depth, true, true);
 }
 
-Result<Projection> Projection::seed000Orthographic(double width, double height, double near, double far,
+Result<Projection> Projection::windowOrthographic(double width, double height, double near, double far,
                                                    DepthRange depth)
 {
     if (!std::isfinite(width) || !std::isfinite(height) || width <= 0.0 || height <= 0.0)
@@ -176,7 +177,7 @@ Result<Projection> Projection::seed000Orthographic(double width, double height, 
     if (!std::isfinite(near) || !std::isfinite(far) || far <= near)
         return makeError(ErrorCode::InvalidArgument,
                          "far must be greater than near (near " + str(near) + ", far " + str(far) + ")");
-    const glm::dmat4 zeroToOne = seed000::orthographic(width, height, near, far);
+    const glm::dmat4 zeroToOne = viewing_pipeline::orthographic(width, height, near, far);
     const glm::dmat4 m = depth == DepthRange::ZeroToOne ? zeroToOne : zeroToOneToMinusOneToOne() * zeroToOne;
     return Projection(m, depth, false, true);
 }

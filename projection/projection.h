@@ -11,14 +11,14 @@
 
 namespace overlayd {
 
-// NDC depth convention: OpenGL's [-1, 1] (seeds 001-004) or [0, 1] (seed 000, Vulkan, Direct3D).
+// NDC depth convention: OpenGL's [-1, 1] or [0, 1] (the viewing pipeline's window model, Vulkan, Direct3D).
 enum class DepthRange { MinusOneToOne, ZeroToOne };
 enum class FovAxis { Vertical, Horizontal };
 
 inline constexpr double kInfiniteFar = std::numeric_limits<double>::infinity();
 
-// A box or frustum in camera coordinates (seeds 001-003): l, r, b, t on the near plane; near and far are
-// positive distances along the viewing direction. far may be kInfiniteFar for perspective frusta (seed 002).
+// A box or frustum in camera coordinates: l, r, b, t on the near plane; near and far are
+// positive distances along the viewing direction. far may be kInfiniteFar for perspective frusta.
 struct FrustumBounds {
     double left = 0, right = 0, bottom = 0, top = 0, near = 0, far = 0;
 
@@ -34,8 +34,9 @@ struct PinholeIntrinsics {
     bool operator==(const PinholeIntrinsics &) const = default;
 };
 
-// Seed 000's window model: a window of 2*halfWidth x 2*halfHeight at distance focal along the view direction,
-// its centre offset by (centre.x, centre.y) from the optical axis (CW = (centre, -focal) in camera coordinates).
+// The viewing pipeline's window model: a window of 2*halfWidth x 2*halfHeight at distance focal along the view
+// direction, its centre offset by (centre.x, centre.y) from the optical axis (CW = (centre, -focal) in camera
+// coordinates).
 struct WindowIntrinsics {
     double focal = 0;
     glm::dvec2 centre{0.0};
@@ -48,19 +49,19 @@ struct WindowIntrinsics {
 class Projection
 {
 public:
-    // gluPerspective (seed 001): fov in degrees across `axis`, aspect = width / height of the window.
+    // gluPerspective: fov in degrees across `axis`, aspect = width / height of the window.
     static Result<Projection> perspective(FovAxis axis, double fovDeg, double aspect, double near, double far,
                                           DepthRange depth);
-    // glFrustum (seeds 002, 003), possibly off-axis; far may be kInfiniteFar.
+    // glFrustum, possibly off-axis; far may be kInfiniteFar.
     static Result<Projection> frustum(const FrustumBounds &bounds, DepthRange depth);
-    // Seed 001's M_orth for the box [l,r] x [b,t] x [-near,-far] (glOrtho).
+    // The viewing pipeline's M_orth for the box [l,r] x [b,t] x [-near,-far] (glOrtho).
     static Result<Projection> orthographic(const FrustumBounds &bounds, DepthRange depth);
     // Calibrated pinhole intrinsics; the image of width x height fills NDC [-1,1]^2 exactly.
     static Result<Projection> pinhole(const PinholeIntrinsics &k, double near, double far, DepthRange depth);
-    // Seed 000's window model, composed step by step: P_persp S_far S_xy H.
+    // The viewing pipeline's window model, composed step by step: P_persp S_far S_xy H.
     static Result<Projection> window(const WindowIntrinsics &w, DepthRange depth);
-    // Seed 000's parallel alternative P_o = S_xyz T_near for a centred width x height window.
-    static Result<Projection> seed000Orthographic(double width, double height, double near, double far,
+    // The viewing pipeline's parallel alternative P_o = S_xyz T_near for a centred width x height window.
+    static Result<Projection> windowOrthographic(double width, double height, double near, double far,
                                                   DepthRange depth);
 
     const glm::dmat4 &matrix() const { return matrix_; }

@@ -1,4 +1,4 @@
-// Named coordinate frames, each placed relative to its parent (seed 000's hierarchical coordinate systems).
+// Named coordinate frames, each placed relative to its parent (the viewing pipeline's hierarchical coordinate systems).
 #pragma once
 
 #include <map>
@@ -41,7 +41,7 @@ public:
     bool contains(const std::string &name) const;
     // world_from_frame; "world" is the identity.
     Result<glm::dmat4> worldMatrix(const std::string &name) const;
-    // The inverse transpose of the upper 3x3 of worldMatrix (seed 002): transforms normals.
+    // The inverse transpose of the upper 3x3 of worldMatrix: transforms normals.
     Result<glm::dmat3> normalMatrix(const std::string &name) const;
 
 private:

@@ -1,8 +1,8 @@
-// Viewport (seed 000's viewport transformation): NDC -> pixels of a window placed on a frame.
+// Viewport (the viewing pipeline's viewport transformation): NDC -> pixels of a window placed on a frame.
 //
 // Pixel convention: pixel (i, j) is the unit square centred on (i, j), so a frame of W x H pixels spans
-// [-0.5, W - 0.5] x [-0.5, H - 0.5]. This is OpenCV's and ROS's convention (cx, cy are used as given); seed 001's
-// corner-based screen coordinates are ours + 0.5. With Origin::TopLeft, row 0 is the top row and rows grow
+// [-0.5, W - 0.5] x [-0.5, H - 0.5]. This is OpenCV's and ROS's convention (cx, cy are used as given); the viewing
+// pipeline's corner-based screen coordinates are ours + 0.5. With Origin::TopLeft, row 0 is the top row and rows grow
 // downwards; with Origin::BottomLeft, row 0 is the bottom row and rows grow upwards. Window position and scissor
 // are given in the same convention as the pixels.
 #pragma once

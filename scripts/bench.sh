@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every benchmark program on a Release build (as a user builds it), each with Google Benchmark's JSON output, merged
 # into one file with the machine and the date (out/bench/bench-DATE.json), then the same-run ratios as Markdown
-# tables (README's Speed section is this output). Reported, not asserted: each program refuses to time a wrong
+# tables (docs/speed.md's tables are this output). Reported, not asserted: each program refuses to time a wrong
 # answer, but the figures depend on the machine and on what else runs on it.
 #
 # Usage: scripts/bench.sh [extra Google Benchmark flags]

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Merges Google Benchmark JSON files (--benchmark_out=FILE --benchmark_out_format=json) into one file with the
-machine and date, and prints the same-run ratios as Markdown tables (README's Speed section is this output).
+machine and date, and prints the same-run ratios as Markdown tables (docs/speed.md's tables are this output).
 
     bench_table.py merge OUT.json IN.json...   # writes OUT.json, then prints its tables
     bench_table.py table MERGED.json           # prints the tables of a merged file

@@ -3,7 +3,7 @@
 # a perspective ground grid of 19 + 19 lines 2 px wide, an XYZ triad 3 px wide, 3 labels, anti-aliased) over the
 # same raw 1920x1080 YUYV frames (ffmpeg's testsrc2) with overlayd, FFmpeg's filters, OpenCV's drawing and
 # GStreamer's overlay elements, each run as its own process on one thread; prints each tool's CPU time per frame
-# with and without drawing, and the ratios to overlayd, as a Markdown table (README "Speed": "Side by side").
+# with and without drawing, and the ratios to overlayd, as a Markdown table (docs/speed.md, "Side by side").
 # Each tool's first frame is checked to show the scene overlayd draws before anything is timed.
 #
 # Usage: scripts/compare-peers.sh [--frames N] [--runs R] [--tools LIST] [--out DIR] [--build-dir DIR]

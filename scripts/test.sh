@@ -2,7 +2,7 @@
 # The whole test suite from a fresh Debian 12 machine: install what is missing, build, run every test through
 # CTest, then print the projection benchmark's speed ratios against OpenCV measured in the same run (reported,
 # not asserted: these machines drift by up to 1.5x; the benchmark itself refuses to time mismatching results).
-# scripts/bench.sh runs every benchmark on a Release build for the README's Speed table.
+# scripts/bench.sh runs every benchmark on a Release build for the tables of docs/speed.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

@@ -15,12 +15,18 @@ namespace overlayd {
 
 namespace {
 
-using scene::colourOf;
 using scene::Hit;
 using scene::SceneTracer;
 using scene::Square;
 
 constexpr unsigned kBlock = 4; // pixels per side of the blocks tried as one colour first
+
+const uint8_t *colourOf(const Square &square)
+{
+    if (!square.ground)
+        return kSceneSky;
+    return ((square.i + square.j) & 1) ? kSceneDark : kSceneLight;
+}
 
 // The corners of one pixel: top-left, top-right, bottom-left, bottom-right.
 struct PixelCorners {

@@ -6,7 +6,6 @@
 
 #include <glm/vec2.hpp>
 
-#include "drivers/synthetic/checker_scene.h"
 #include "projection/camera.h"
 
 // A namespace of its own: Hit and Square are common names.
@@ -60,12 +59,5 @@ private:
     double square_;
     Plane ground_ = Plane::fromPointNormal({0, 0, 0}, {0, 0, 1});
 };
-
-inline const uint8_t *colourOf(const Square &square)
-{
-    if (!square.ground)
-        return kSceneSky;
-    return ((square.i + square.j) & 1) ? kSceneDark : kSceneLight;
-}
 
 } // namespace overlayd::scene

@@ -2,7 +2,11 @@
 // by the file's signature.
 #pragma once
 
-#include "media/codec/image_codec.h"
+#include <cstdint>
+#include <span>
+
+#include "base/result.h"
+#include "media/codec/image_file.h"
 
 namespace overlayd::codec {
 

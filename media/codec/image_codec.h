@@ -8,26 +8,10 @@
 #include <vector>
 
 #include "base/result.h"
+#include "media/codec/image_file.h"
 #include "media/convert/images.h"
 
 namespace overlayd {
-
-enum class ImageFileType { Png, Jpeg };
-
-// What a file's header says, read before any pixel is decoded: enough to refuse an image too large to allocate.
-struct ImageFileInfo {
-    ImageFileType type = ImageFileType::Png;
-    unsigned width = 0, height = 0;
-};
-
-enum class ImageChannels { Rgb = 3, Rgba = 4 };
-
-// 8-bit samples, rows packed (stride = channels * width): R G B, or R G B A with straight (not premultiplied) alpha.
-struct DecodedImage {
-    unsigned width = 0, height = 0;
-    ImageChannels channels = ImageChannels::Rgb;
-    std::vector<uint8_t> pixels;
-};
 
 // Malformed when the bytes are neither a PNG nor a JPEG, or their header does not parse.
 Result<ImageFileInfo> readImageInfo(std::span<const uint8_t> file);

@@ -2,6 +2,7 @@
 // anything is allocated, tjDecompress2 the pixels, tjCompress2 the snapshots. TurboJPEG returns errors (it keeps
 // libjpeg's longjmp inside itself), so no setjmp is needed here.
 #include "media/codec/formats.h"
+#include "media/codec/image_codec.h"
 
 #include <turbojpeg.h>
 

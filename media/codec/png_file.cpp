@@ -2,6 +2,7 @@
 // that call setjmp (readHeader, readRows, writeRows) hold only plain data and pointers, so the jump skips no
 // destructor; every C++ object (the handles' owners, the pixels, the row pointers) lives in their callers.
 #include "media/codec/formats.h"
+#include "media/codec/image_codec.h"
 
 #include <png.h>
 #include <zlib.h>

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The folder layering of docs/architecture.md, checked: every #include "folder/..." in a production folder must name
-a folder that the table below lets it use. A new edge is a design decision: change the table and the document
-together. Exit status 1 lists every offending include as file:line."""
+a folder that the table below lets it use, and inside a folder the includes between its files (a .cpp and its .h
+counted as one) form no cycle. A new edge is a design decision: change the table and the document together. Exit
+status 1 lists every offending include as file:line, and every cycle."""
 import os
 import re
 import sys
@@ -19,6 +20,8 @@ ALLOWED = {
     "alignment": {"base", "projection"},
     "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs"},
     "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config"},
+    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config",
+              "daemon"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.
@@ -26,6 +29,13 @@ OVERLAY_WINGS = {
     "shapes": {"shapes"},
     "raster": {"raster", "shapes", "blend"},
     "blend": {"blend", "raster", "shapes"},
+}
+# Cycles inside a folder that are still there, each a pair that needs a design change rather than a move: the layer
+# converters write into the NativeLayer that calls them, and OverlayRenderer::create makes the SceneRenderer that
+# derives from it. A new cycle fails; a listed one that is gone fails too, so that the list only shrinks.
+KNOWN_CYCLES = {
+    ("overlay/blend/layer_converters", "overlay/blend/native_layer"),
+    ("overlay/overlay_renderer", "overlay/scene_renderer"),
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
@@ -59,13 +69,60 @@ def problems(root):
     return found
 
 
+def unit(path):
+    """A file's unit: its path without the extension, so that a .cpp and its .h are one node."""
+    return os.path.splitext(path)[0]
+
+
+def cycles(root):
+    """Cycles among the units of each folder, found by a depth-first search over its own includes."""
+    edges = {}
+    for folder in ALLOWED:
+        for directory, _, files in os.walk(os.path.join(root, folder)):
+            for name in sorted(files):
+                if not name.endswith((".h", ".cpp")):
+                    continue
+                relative = os.path.relpath(os.path.join(directory, name), root)
+                targets = edges.setdefault(unit(relative), set())
+                with open(os.path.join(root, relative), encoding="utf-8") as source:
+                    for line in source:
+                        match = INCLUDE.match(line)
+                        if match and match.group(1).split("/")[0] == folder:
+                            target = unit(match.group(1))
+                            if target != unit(relative) and os.path.exists(os.path.join(root, match.group(1))):
+                                targets.add(target)
+    found, state, seen = [], {}, set()
+
+    def visit(node, stack):
+        state[node] = "open"
+        stack.append(node)
+        for target in sorted(edges.get(node, ())):
+            if state.get(target) == "open":
+                loop = stack[stack.index(target):] + [target]
+                if tuple(sorted(set(loop))) in KNOWN_CYCLES:
+                    seen.add(tuple(sorted(set(loop))))
+                else:
+                    found.append("cycle inside " + target.split(os.sep)[0] + "/: " + " -> ".join(loop))
+            elif target not in state:
+                visit(target, stack)
+        stack.pop()
+        state[node] = "done"
+
+    for node in sorted(edges):
+        if node not in state:
+            visit(node, [])
+    found += [f"the known cycle {' <-> '.join(pair)} is gone: take it off KNOWN_CYCLES" for pair in
+              sorted(KNOWN_CYCLES - seen) if all(part in edges for part in pair)]
+    return found
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
-    found = problems(os.path.abspath(root))
+    found = problems(os.path.abspath(root)) + cycles(os.path.abspath(root))
     for problem in found:
         print(problem)
     if found:
-        print(f"{len(found)} include(s) against the layering in docs/architecture.md")
+        print(f"{len(found)} include(s) or cycle(s) against the layering in docs/architecture.md")
         return 1
     print("layering ok: " + ", ".join(f"{folder} -> {{{', '.join(sorted(allowed))}}}" for folder, allowed in
                                       ALLOWED.items()))

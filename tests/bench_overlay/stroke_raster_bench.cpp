@@ -169,7 +169,7 @@ int main(int argc, char **argv)
     benchmark::RegisterBenchmark("BM_Stroke/memcpy_cold/YUYV/1920x1080", bench::memcpyBench, "YUYV", 1920u, 1080u)
         ->Unit(benchmark::kMicrosecond);
     const auto reporter = bench::runAll();
-    // Same-run ratios (CPU time: these machines are shared, see README's Speed).
+    // Same-run ratios (CPU time: these machines are shared, see docs/speed.md).
     const auto raster = reporter->cpuSeconds("BM_Stroke/raster/grid/1920x1080");
     const auto copy = reporter->cpuSeconds("BM_Stroke/memcpy_cold/YUYV/1920x1080");
     const auto fill = reporter->cpuSeconds("BM_Stroke/opencv_fill/grid/1920x1080");

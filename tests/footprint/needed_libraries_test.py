@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The shared libraries overlayd must not name (DT_NEEDED): each one loaded at every start, `overlayd --version`
-included, costs resident memory (README "Footprint") for something the daemon does without it.
+included, costs resident memory (docs/footprint.md) for something the daemon does without it.
 
   needed_libraries_test.py OVERLAYD [--deny PREFIX ...]
 

@@ -50,11 +50,12 @@ TEST(NumberArguments, APlaneWrittenLargeOrSmallIsTheSamePlane)
     const RunResult unit = runOverlayd(unproject + "\"0 -1 0 6\" -- 640 5", dir);
     ASSERT_EQ(unit.exitStatus, 0) << unit.all();
     EXPECT_NE(unit.out.find("meets the plane at ("), std::string::npos) << unit.out;
-    for (const std::string &scaled : {"\"0 -1e-300 0 6e-300\"", "\"0 -1e5 0 6e5\"", "\"0 -4.9e-324 0 2.5e-323\""}) {
+    for (const std::string scaled : {"\"0 -1e-300 0 6e-300\"", "\"0 -1e5 0 6e5\"", "\"0 -4.9e-324 0 2.5e-323\""}) {
         const RunResult run = runOverlayd(unproject + scaled + " -- 640 5", dir);
         EXPECT_EQ(run.exitStatus, 0) << scaled << ": " << run.all();
-        if (std::string(scaled).find("e-324") == std::string::npos) // 2.5e-323 / 4.9e-324 is 5, not 6
+        if (scaled.find("e-324") == std::string::npos) { // 2.5e-323 / 4.9e-324 is 5, not 6
             EXPECT_EQ(run.out, unit.out) << scaled;
+        }
     }
     const RunResult behind = runOverlayd(unproject + "\"0 0 1 -3\" -- 640 5", dir);
     const RunResult behindLarge = runOverlayd(unproject + "\"0 0 1e5 -3e5\" -- 640 5", dir);

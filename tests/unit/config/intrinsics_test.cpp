@@ -149,7 +149,7 @@ TEST(Intrinsics, PinholeOfTheSameAspectIsScaledAndSaysSo)
     EXPECT_EQ(config.camera.calibrationScaling(same->viewport()), "");
 }
 
-TEST(Intrinsics, Seed000WindowModel)
+TEST(Intrinsics, ViewingPipelineWindowModel)
 {
     const Camera camera = buildCamera(kHeader + kIdentityPose +
                                       "near = 0.5\nfar = 100\n[camera.window]\nfocal = 2\ncentre = [0.2, 0.1]\n"
@@ -170,7 +170,7 @@ TEST(Intrinsics, OrthographicBox)
     expectPixel(camera, {3, 2, 30}, (3 + 10) / 20.0 * 1280 - 0.5, (5 - 2) / 10.0 * 720 - 0.5);
 }
 
-TEST(Intrinsics, Seed000Orthographic)
+TEST(Intrinsics, WindowOrthographic)
 {
     const Camera camera = buildCamera(kHeader + kTopDown + "[camera.orthographic]\nwidth = 20\nheight = 10\n");
     expectPixel(camera, {-4, -1, 0}, (-4 + 10) / 20.0 * 1280 - 0.5, (5 + 1) / 10.0 * 720 - 0.5);

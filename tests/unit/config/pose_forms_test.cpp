@@ -78,7 +78,7 @@ TEST(PoseForms, EyeGazeUpDefaultsUpToZ)
     expectMatchesOpenCv(configWithPose("eye = " + vec(kCentre) + "\ngaze = " + vec(2.0 * kForward)));
 }
 
-TEST(PoseForms, Seed000PrpVpnVup)
+TEST(PoseForms, PrpVpnVup)
 {
     // VPN points back towards the viewer.
     expectMatchesOpenCv(configWithPose("prp = " + vec(kCentre) + "\nvpn = " + vec(-kForward) + "\nvup = [0, 0, 1]"));

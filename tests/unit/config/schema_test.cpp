@@ -294,7 +294,7 @@ TEST(Schema, UnknownPixelFormatNamesTheLineAndKey)
 
 TEST(Schema, FarInfinityOnlyWhereTheModelAllowsIt)
 {
-    // The seed 000 window model needs a finite far plane (S_far); projection/ says so at the window key.
+    // The the viewing pipeline window model needs a finite far plane (S_far); projection/ says so at the window key.
     const auto problems =
         loadInvalid("[camera]\nposition = [0, 0, 1]\nyaw = 0\nfar = \"inf\"\n[camera.window]\nfocal = 1\n"
                     "half_width = 1\nhalf_height = 1\n");

@@ -1,5 +1,5 @@
 // The command line: subcommands, the default `run`, options that fall through, and usage errors.
-#include "daemon/cli.h"
+#include "tools/cli.h"
 
 #include <unistd.h>
 

@@ -1,6 +1,6 @@
 // The `project --json` format (hand-written expected text) and render's choice of sink from the output path.
-#include "daemon/commands.h"
-#include "daemon/json_text.h"
+#include "base/json_text.h"
+#include "tools/commands.h"
 
 #include <iomanip>
 #include <sstream>

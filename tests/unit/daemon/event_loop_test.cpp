@@ -1,5 +1,5 @@
 // EventLoop: a handler that throws (a bug) is reported and skipped; the loop and the other handlers go on.
-#include "daemon/event_loop.h"
+#include "base/event_loop.h"
 
 #include <stdexcept>
 #include <string>

@@ -178,8 +178,8 @@ TEST(BadInput, FrustumAndOrthographicBounds)
     EXPECT_TRUE(fails(Projection::orthographic({2, 1, -1, 1, 0, 5}, depth), ErrorCode::InvalidArgument));
     EXPECT_TRUE(fails(Projection::orthographic({-1, 1, -1, 1, 0, kInfiniteFar}, depth), ErrorCode::InvalidArgument));
 
-    EXPECT_TRUE(fails(Projection::seed000Orthographic(0, 1, 0.1, 10, depth), ErrorCode::InvalidArgument));
-    EXPECT_TRUE(fails(Projection::seed000Orthographic(1, 1, 10, 0.1, depth), ErrorCode::InvalidArgument));
+    EXPECT_TRUE(fails(Projection::windowOrthographic(0, 1, 0.1, 10, depth), ErrorCode::InvalidArgument));
+    EXPECT_TRUE(fails(Projection::windowOrthographic(1, 1, 10, 0.1, depth), ErrorCode::InvalidArgument));
 }
 
 TEST(BadInput, WindowIntrinsics)

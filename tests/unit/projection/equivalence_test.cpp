@@ -100,7 +100,7 @@ FrustumBounds boundsOf(const Intrinsics &k, double near, double far)
             far};
 }
 
-// Seed 000's window at distance focal: the same frustum scaled from the near plane to the window plane.
+// The viewing pipeline's window at distance focal: the same frustum scaled from the near plane to the window plane.
 WindowIntrinsics windowOf(const Intrinsics &k, double focal, double near, double far)
 {
     const FrustumBounds b = boundsOf(k, near, far);
@@ -227,7 +227,7 @@ std::vector<std::pair<std::string, Result<Pose>>> allPoseForms()
     std::vector<std::pair<std::string, Result<Pose>>> poses;
     poses.emplace_back("lookAt", poseLookAt(kEye, kEye + 7.0 * forward, worldUp));
     poses.emplace_back("gaze", poseFromGaze(kEye, 0.5 * forward, worldUp));
-    // Seed 000: VPN points back towards the viewer, and VUP need not be perpendicular to it.
+    // The viewing pipeline: VPN points back towards the viewer, and VUP need not be perpendicular to it.
     poses.emplace_back("prp/vpn/vup", poseFromPrpVpnVup(kEye, -3.0 * forward, worldUp + 0.3 * forward));
     poses.emplace_back("yaw/pitch/roll", poseFromYawPitchRoll(kEye, kYawDeg, kPitchDeg, 0.0));
 
@@ -255,7 +255,7 @@ std::vector<std::pair<std::string, Result<Pose>>> allPoseForms()
 
 TEST(Equivalence, AllPoseFormsGiveTheSameViewMatrix)
 {
-    // Reference: seed 001's M_cam = [u v w e]^-1 with u right, v up, w backwards, inverted by GLM.
+    // Reference: the viewing pipeline's M_cam = [u v w e]^-1 with u right, v up, w backwards, inverted by GLM.
     const glm::dmat4 cameraToWorld(glm::dvec4(-leftAxis(), 0.0), glm::dvec4(upAxis(), 0.0),
                                    glm::dvec4(-forwardAxis(), 0.0), glm::dvec4(kEye, 1.0));
     const glm::dmat4 expected = glm::inverse(cameraToWorld);

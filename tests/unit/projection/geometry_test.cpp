@@ -1,4 +1,4 @@
-// geometry_test: seed 003's lines, rays, planes, distances, intersections and the view frustum's six planes.
+// geometry_test: the homogeneous form's lines, rays, planes, distances, intersections and the view frustum's six planes.
 #include <cmath>
 #include <random>
 
@@ -29,7 +29,7 @@ TEST_F(Geometry, LinePlaneIntersectionUsesTheCorrectedParametricLine)
     for (int i = 0; i < 200; ++i) {
         const glm::dvec3 p1 = vec(-5, 5), p2 = vec(-5, 5);
         const Plane plane = Plane::fromPointNormal(vec(-2, 2), vec(-1, 1));
-        // Seed 003's homogeneous form t = -(L.S)/(L.V), with S = (P1, 1) and V = (P2 - P1, 0).
+        // The homogeneous form t = -(L.S)/(L.V), with S = (P1, 1) and V = (P2 - P1, 0).
         const glm::dvec4 l(plane.normal, plane.d);
         const double lv = glm::dot(l, glm::dvec4(p2 - p1, 0.0));
         if (std::abs(lv) < 1e-3)
@@ -38,7 +38,7 @@ TEST_F(Geometry, LinePlaneIntersectionUsesTheCorrectedParametricLine)
         auto t = intersectLine(p1, p2, plane);
         ASSERT_TRUE(t.has_value());
         EXPECT_NEAR(*t, expected, 1e-9 * std::max(1.0, std::abs(expected)));
-        // P(t) = (1 - t) P1 + t P2 lies on the plane. The seed prints (1 - t) P1 + P2, which drops the t on P2
+        // P(t) = (1 - t) P1 + t P2 lies on the plane. The derivation prints (1 - t) P1 + P2, which drops the t on P2
         // (at t = 0 it gives P1 + P2, not P1).
         const glm::dvec3 hit = (1.0 - *t) * p1 + *t * p2;
         EXPECT_NEAR(plane.signedDistance(hit), 0.0, 1e-9 * std::max(1.0, std::abs(*t)));
@@ -68,7 +68,7 @@ TEST_F(Geometry, RayPlaneIntersection)
     for (int i = 0; i < 100; ++i) {
         const Ray ray{vec(-5, 5), glm::normalize(vec(-1, 1))};
         const Plane plane = Plane::fromPointNormal(vec(-2, 2), vec(-1, 1));
-        // The seed's t = -(N.S + D) / (N.V).
+        // The derivation's t = -(N.S + D) / (N.V).
         const double expected = -(glm::dot(plane.normal, ray.origin) + plane.d) / glm::dot(plane.normal, ray.direction);
         auto hit = intersect(ray, plane);
         if (expected < 0.0 || std::abs(glm::dot(plane.normal, ray.direction)) < 1e-3) {
@@ -101,7 +101,7 @@ TEST_F(Geometry, SignedDistancesArePositiveOnTheNormalsSide)
     EXPECT_FALSE(Plane::fromPoints({1, 2, 3}, {1, 2, 3}, {0, 1, 0}).has_value());
 }
 
-TEST_F(Geometry, PointLineDistanceMatchesSeed003)
+TEST_F(Geometry, PointLineDistanceMatchesTheHomogeneousForm)
 {
     for (int i = 0; i < 200; ++i) {
         const glm::dvec3 q = vec(-10, 10), s = vec(-10, 10), v = vec(-3, 3);
@@ -117,11 +117,11 @@ TEST_F(Geometry, PointLineDistanceMatchesSeed003)
     EXPECT_NEAR(pointLineDistance({1, 2, 3}, {1, 2, 3}, {1, 0, 0}), 0.0, 1e-15);
 }
 
-// Seed 003's planes of a camera with horizontal field of view alpha, aspect a = height / width, near n, far f:
+// The homogeneous form's planes of a camera with horizontal field of view alpha, aspect a = height / width, near n, far f:
 // e = 1 / tan(alpha / 2), left/right <+-e, 0, -1> / sqrt(e^2 + 1), bottom/top <0, +-e, -a> / sqrt(e^2 + a^2),
-// near <0, 0, -1, -n>, far <0, 0, 1, f>. The seed prints sqrt(e^2 + 2) for the left and right normals' z; that
+// near <0, 0, -1, -n>, far <0, 0, 1, f>. The derivation prints sqrt(e^2 + 2) for the left and right normals' z; that
 // would not be a unit normal: the correct value is sqrt(e^2 + 1).
-TEST_F(Geometry, FrustumPlanesOfAFovCameraMatchSeed003)
+TEST_F(Geometry, FrustumPlanesOfAFovCameraMatchTheHomogeneousForm)
 {
     const double width = 1280, height = 720;
     for (double alphaDeg : {30.0, 60.0, 90.0, 120.0}) {
@@ -133,7 +133,7 @@ TEST_F(Geometry, FrustumPlanesOfAFovCameraMatchSeed003)
                                         glm::dvec4(0, -e, -a, 0) / std::sqrt(e * e + a * a),
                                         glm::dvec4(0, 0, -1, -n),
                                         glm::dvec4(0, 0, 1, f)};
-        // The seed's misprint: 1 / sqrt(e^2 + 2) makes the left normal shorter than unit.
+        // The derivation's misprint: 1 / sqrt(e^2 + 2) makes the left normal shorter than unit.
         EXPECT_LT(std::hypot(e / std::sqrt(e * e + 1), 1 / std::sqrt(e * e + 2)), 1.0 - 1e-3);
         for (DepthRange depth : {DepthRange::MinusOneToOne, DepthRange::ZeroToOne}) {
             auto projection = Projection::perspective(FovAxis::Horizontal, alphaDeg, width / height, n, f, depth);
@@ -161,7 +161,7 @@ TEST_F(Geometry, FrustumPlanesClassifyPointsLikeTheClipCube)
         const glm::dmat4 worldToClip = projection->matrix() * pose->viewMatrix();
         const auto planes = frustumPlanes(worldToClip, depth);
         const double zMin = ndcNearDepth(depth);
-        // Seed 003: visible when the divided point lies in the cube (here [-1,1]^2 x [zMin, 1]).
+        // The viewing pipeline: visible when the divided point lies in the cube (here [-1,1]^2 x [zMin, 1]).
         int inside = 0, outside = 0;
         for (int i = 0; i < 2000; ++i) {
             const glm::dvec3 world = vec(-8, 8);

@@ -84,7 +84,7 @@ TEST(Pose, GazeAlongMinusX)
 
 TEST(Pose, PrpVpnVupWithVpnPointingBackTowardsTheViewer)
 {
-    // Seed 000: VPN points from the window back to the viewer, so the camera looks along -VPN.
+    // The viewing pipeline: VPN points from the window back to the viewer, so the camera looks along -VPN.
     expectCamera(poseFromPrpVpnVup(kEye, {0, -2, 0}, kZ), kEye, kY, kZ, kX);
     expectCamera(poseFromPrpVpnVup(kEye, kZ, kY), kEye, -kZ, kY, kX);
 }

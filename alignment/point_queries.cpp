@@ -1,16 +1,13 @@
-// `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
-#include "daemon/commands.h"
+// The projection queries of alignment/point_queries.h: `project`'s and `unproject`'s output, and /api/project's.
+#include "alignment/point_queries.h"
 
-#include "alignment/points_file.h"
-#include "base/number_text.h"
-#include "daemon/json_text.h"
-
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
+#include <optional>
 
 #include <glm/geometric.hpp>
+
+#include "base/json_text.h"
+#include "base/number_text.h"
 
 namespace overlayd {
 
@@ -121,63 +118,80 @@ std::string projectText(const Camera &camera, const std::vector<glm::dvec3> &wor
 
 namespace {
 
-// The points of --points: a file, or stdin for "-", in solve-pose's points format (its marks file works here).
-Result<std::vector<glm::dvec3>> readPoints(const std::string &path)
+std::string vec(const glm::dvec3 &v)
 {
-    std::FILE *file = path == "-" ? stdin : std::fopen(path.c_str(), "rb");
-    if (!file)
-        return makeError(ErrorCode::NotFound, "cannot open " + path + ": " + std::strerror(errno));
-    std::string text(alignment::kMaxPointsFileBytes + 1, '\0');
-    text.resize(std::fread(text.data(), 1, text.size(), file));
-    if (file != stdin)
-        std::fclose(file);
-    if (text.size() > alignment::kMaxPointsFileBytes)
-        return makeError(ErrorCode::Malformed,
-                         path + ": more than " + std::to_string(alignment::kMaxPointsFileBytes) + " bytes");
-    return alignment::parseWorldPoints(text, path == "-" ? "stdin" : path);
+    return "[" + jsonNumber(v.x) + "," + jsonNumber(v.y) + "," + jsonNumber(v.z) + "]";
+}
+
+std::string fixed(double value)
+{
+    return formatted("%.6f", value);
+}
+
+std::string readable(const glm::dvec3 &v)
+{
+    return "(" + fixed(v.x) + ", " + fixed(v.y) + ", " + fixed(v.z) + ")";
+}
+
+struct Unprojected {
+    glm::dvec2 pixel; // as the user gave it
+    std::optional<Ray> ray;
+    std::optional<glm::dvec3> hit;
+    std::string reason; // why no ray or no hit
+};
+
+Unprojected unprojectOne(const Camera &camera, const Plane &plane, const glm::dvec2 &userPixel)
+{
+    Unprojected out{userPixel, {}, {}, {}};
+    const glm::dvec2 pixel = camera.viewport().toTopLeft(userPixel);
+    auto ray = camera.unproject(pixel);
+    if (!ray) {
+        out.reason = ray.error().message;
+        return out;
+    }
+    out.ray = *ray;
+    if (const auto t = intersect(*ray, plane))
+        out.hit = ray->at(*t);
+    else
+        out.reason = std::abs(glm::dot(plane.normal, ray->direction)) < 1e-12
+                         ? "the ray runs parallel to the plane"
+                         : "the plane is behind the camera along this ray (the pixel looks above the horizon)";
+    return out;
 }
 
 } // namespace
 
-int projectCommand(const std::string &configPath, bool json, const std::vector<double> &coordinates,
-                   const std::string &pointsPath, const std::string &size, Logger &logger)
+std::string unprojectJson(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels)
 {
-    std::vector<glm::dvec3> world;
-    if (!pointsPath.empty()) {
-        if (!coordinates.empty()) {
-            logger.error("project: give the points either as coordinates or with --points, not both");
-            return kExitFailure;
-        }
-        auto points = readPoints(pointsPath);
-        if (!points) {
-            logger.error("project: " + points.error().message);
-            return kExitFailure;
-        }
-        world = std::move(*points);
-        if (world.empty()) {
-            logger.error("project: " + pointsPath + " holds no points");
-            return kExitFailure;
-        }
-    } else {
-        if (coordinates.empty() || coordinates.size() % 3 != 0) {
-            logger.error(
-                cat("project: expected X Y Z triples (or --points FILE), got ", coordinates.size(), " numbers"));
-            return kExitFailure;
-        }
-        if (const std::string why = numbersRefusal(coordinates, {"X", "Y", "Z"}, "point", kAnyMagnitude);
-            !why.empty()) {
-            logger.error("project: " + why);
-            return kExitConfigError;
-        }
-        for (size_t i = 0; i < coordinates.size(); i += 3)
-            world.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);
+    std::string output = "[";
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const Unprojected u = unprojectOne(camera, plane, pixels[i]);
+        output +=
+            std::string(i ? ",\n " : "") + "{\"pixel\":[" + jsonNumber(u.pixel.x) + "," + jsonNumber(u.pixel.y) + "]";
+        output += ",\"origin\":" + (u.ray ? vec(u.ray->origin) : "null");
+        output += ",\"direction\":" + (u.ray ? vec(u.ray->direction) : "null");
+        output += ",\"hit\":" + (u.hit ? vec(*u.hit) : "null");
+        output += ",\"reason\":" + (u.reason.empty() ? "null" : jsonString(u.reason)) + "}";
     }
-    const auto configured = loadCameraLogged(configPath, logger, size);
-    if (!configured)
-        return kExitConfigError;
-    const std::string output = json ? projectJson(configured->camera, world) : projectText(configured->camera, world);
-    std::fwrite(output.data(), 1, output.size(), stdout);
-    return kExitOk;
+    return output + "]\n";
+}
+
+std::string unprojectText(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels)
+{
+    std::string output;
+    for (const glm::dvec2 &pixel : pixels) {
+        const Unprojected u = unprojectOne(camera, plane, pixel);
+        output += "(" + fixed(u.pixel.x) + ", " + fixed(u.pixel.y) + ") -> ";
+        if (!u.ray) {
+            output += "no ray: " + u.reason + "\n";
+            continue;
+        }
+        output += "ray from " + readable(u.ray->origin) + " along " + readable(u.ray->direction) + "; ";
+        output += u.hit ? "meets the plane at " + readable(*u.hit) + ", " + fixed(glm::length(*u.hit - u.ray->origin)) +
+                              " m away\n"
+                        : "misses the plane: " + u.reason + "\n";
+    }
+    return output;
 }
 
 } // namespace overlayd

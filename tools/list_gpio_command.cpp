@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <string>
 
-#include "daemon/commands.h"
-#include "daemon/json_text.h"
+#include "base/json_text.h"
 #include "gpio/line_provider.h"
+#include "tools/commands.h"
 
 namespace overlayd {
 

@@ -1,5 +1,5 @@
 // The event loop's kernel objects: epoll, timerfd and signalfd, each owned by a UniqueFd.
-#include "daemon/event_loop.h"
+#include "base/event_loop.h"
 
 #include <cerrno>
 #include <cstring>

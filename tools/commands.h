@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "alignment/point_queries.h"
 #include "base/logger.h"
 #include "base/number_range.h"
 #include "config/daemon_config.h"
@@ -43,11 +44,6 @@ int renderCommand(const std::string &configPath, uint64_t frames, const std::str
                   std::optional<LogLevel> logLevel, Logger &logger);
 int runCommand(const DaemonOptions &options, Logger &logger);
 
-// Numbers from the command line, checked before use: "" when each lies in `range`, else the first one out named by
-// its place ("X of point 2", cycling `names` over groups of names.size() called `group`) and the range.
-std::string numbersRefusal(const std::vector<double> &values, const std::vector<std::string> &names,
-                           const std::string &group, const Range &range);
-
 // Loads a config, logging every problem as "file:line:column: key: message".
 Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger);
 
@@ -62,30 +58,5 @@ std::optional<ConfiguredCamera> loadCameraLogged(const std::string &path, Logger
 
 // `render --output PATH`: .y4m -> Y4M, .yuv/.raw -> raw frames, a %d pattern or .png/.jpg -> image snapshots.
 Result<SinkOptions> sinkForOutput(const std::string &path);
-
-// What `project` says of a point beside its pixel: how far in front of the camera it is (metres along the optical
-// axis; negative behind), and why it has no visible pixel: "behind-camera", "before-near", "beyond-far",
-// "outside-image-circle" (no pixel), "outside-viewport", "outside-scissor" (a pixel, not drawn); null when visible.
-struct PointReport {
-    double distance = 0.0;
-    const char *reason = nullptr;
-};
-PointReport explainPoint(const Camera &camera, const glm::dvec3 &world, const ProjectedPoint &point);
-
-// What `project` prints for world points (--json, or the text form), pixels in the viewport's origin; the HTTP API's
-// /api/project answers the JSON.
-std::string projectJson(const Camera &camera, const std::vector<glm::dvec3> &world);
-std::string projectText(const Camera &camera, const std::vector<glm::dvec3> &world);
-// What `unproject` prints for pixels given in the viewport's origin: each one's world ray and where it meets `plane`.
-std::string unprojectJson(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels);
-std::string unprojectText(const Camera &camera, const Plane &plane, const std::vector<glm::dvec2> &pixels);
-
-// `project --json`: [{"world":[x,y,z],"pixel":[u,v] or null,"depth":d or null,"distance":m,"visible":bool,
-// "reason":r or null}, ...]; numbers are printed in their shortest exact (round-trip) form.
-std::string projectionsJson(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
-                            const std::vector<PointReport> &reports);
-// The same for people, one line per point.
-std::string projectionsText(const std::vector<glm::dvec3> &world, const std::vector<ProjectedPoint> &points,
-                            const std::vector<PointReport> &reports);
 
 } // namespace overlayd

@@ -5,9 +5,9 @@
 
 #include "alignment/points_file.h"
 #include "alignment/pose_solver.h"
+#include "base/json_text.h"
 #include "config/live_drop_in.h"
-#include "daemon/commands.h"
-#include "daemon/json_text.h"
+#include "tools/commands.h"
 
 namespace overlayd {
 

@@ -1,5 +1,5 @@
 // `overlayd render`: N frames of the configured source through the overlay into one output, unpaced, losing none.
-#include "daemon/commands.h"
+#include "tools/commands.h"
 
 #include <poll.h>
 #include <thread>

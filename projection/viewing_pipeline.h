@@ -1,13 +1,14 @@
-// Seed 000's camera chain, one matrix per step, as the seed composes it (with its sign error corrected).
+// The classic viewing pipeline (PRP/VPN/VUP, window, viewport), one matrix per step, as its textbook derivation
+// composes it (with the derivation's sign error corrected).
 //
 // T_camera = T_raster S_raster N P_parallel P_persp S_far S_xy H R T. Projection::window() composes
-// P_persp S_far S_xy H from these; tests check each step against the seed's worked mappings.
+// P_persp S_far S_xy H from these; tests check each step against the derivation's worked mappings.
 #pragma once
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-namespace overlayd::seed000 {
+namespace overlayd::viewing_pipeline {
 
 // H: shears so that the window centre cw (camera coordinates, cw.z < 0) lies on the -Z axis.
 glm::dmat4 shear(const glm::dvec3 &cw);
@@ -16,11 +17,11 @@ glm::dmat4 scaleXY(double focal, double width, double height);
 // S_far: scales uniformly so that the far plane lands at z = -1.
 glm::dmat4 scaleFar(double far);
 // P_persp with n = near / far: maps the canonical frustum to [-1,1]^2 x [0,1], near -> 0, far -> 1.
-// The seed prints the third row as (0, 0, 1/(1-n), n/(1-n)), which sends near -> 0 but far -> -1, against
+// The derivation prints the third row as (0, 0, 1/(1-n), n/(1-n)), which sends near -> 0 but far -> -1, against
 // its own stated box [0, 1]; we negate that row so that depth grows away from the camera.
 glm::dmat4 perspective(double n);
 // P_o = S_xyz T_near for a centred width x height window; the same sign correction applies to its z scale
-// (the seed's 1/(far-near) sends the far plane to -1).
+// (the derivation's 1/(far-near) sends the far plane to -1).
 glm::dmat4 orthographic(double width, double height, double near, double far);
 // P_parallel: drops z (keepDepth = false) or keeps it as an attribute for depth testing.
 glm::dmat4 parallel(bool keepDepth);
@@ -30,4 +31,4 @@ glm::dmat4 normalize();
 glm::dmat4 rasterScale(double xres, double yres);
 glm::dmat4 rasterTranslate(double posx, double posy);
 
-} // namespace overlayd::seed000
+} // namespace overlayd::viewing_pipeline

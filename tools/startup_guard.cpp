@@ -1,5 +1,5 @@
 // StartupGuard: a thread that polls the stop signals and "start-up is over", and exits the process on the first.
-#include "daemon/startup_guard.h"
+#include "tools/startup_guard.h"
 
 #include <cerrno>
 #include <csignal>

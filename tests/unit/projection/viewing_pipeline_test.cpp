@@ -1,4 +1,4 @@
-// seed_mappings_test: the seeds' own worked mappings (seeds 000, 001, 004) hold for our matrices.
+// viewing_pipeline_test: the classic viewing pipeline's worked mappings (window, viewport, NDC) hold for our matrices.
 #include <cmath>
 #include <random>
 
@@ -10,7 +10,7 @@
 #include "projection/camera.h"
 #include "projection/pose.h"
 #include "projection/projection.h"
-#include "projection/seed000.h"
+#include "projection/viewing_pipeline.h"
 #include "projection/viewport.h"
 
 using namespace overlayd;
@@ -19,7 +19,7 @@ namespace {
 
 constexpr double kTolerance = 1e-12;
 
-// A 4x4 matrix from its rows as printed in the seeds (GLM stores columns).
+// A 4x4 matrix from its rows as the classic derivation prints them (GLM stores columns).
 glm::dmat4 fromRows(const glm::dvec4 &r0, const glm::dvec4 &r1, const glm::dvec4 &r2, const glm::dvec4 &r3)
 {
     return glm::transpose(glm::dmat4(r0, r1, r2, r3));
@@ -44,15 +44,15 @@ void expectMatNear(const glm::dmat4 &actual, const glm::dmat4 &expected, double 
             EXPECT_NEAR(actual[c][r], expected[c][r], tolerance) << "m[" << c << "][" << r << "]";
 }
 
-// Seed 000's example window: focal 2, centre CW offset (0.3, -0.2) from the optical axis, 1.6 x 0.9 wide.
+// The viewing pipeline's example window: focal 2, centre CW offset (0.3, -0.2) from the optical axis, 1.6 x 0.9 wide.
 constexpr double kFocal = 2.0, kWidth = 1.6, kHeight = 0.9, kNear = 0.5, kFar = 50.0;
 const glm::dvec3 kCw{0.3, -0.2, -kFocal};
 
-// --- Seed 000, step by step ---------------------------------------------------------------------------------------
+// --- The viewing pipeline, step by step ---------------------------------------------------------------------------------------
 
-TEST(SeedMappings, Seed000ShearMovesTheWindowCentreOntoTheMinusZAxis)
+TEST(ViewingPipeline, ShearMovesTheWindowCentreOntoTheMinusZAxis)
 {
-    const glm::dmat4 h = seed000::shear(kCw);
+    const glm::dmat4 h = viewing_pipeline::shear(kCw);
     expectVecNear(divide(h * glm::dvec4(kCw, 1.0)), {0.0, 0.0, -kFocal}, kTolerance, "H CW");
     // The seed's matrix as printed: third column -CW_x / CW_z, -CW_y / CW_z.
     expectMatNear(h, fromRows({1, 0, -kCw.x / kCw.z, 0}, {0, 1, -kCw.y / kCw.z, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}),
@@ -62,9 +62,9 @@ TEST(SeedMappings, Seed000ShearMovesTheWindowCentreOntoTheMinusZAxis)
     EXPECT_NEAR((h * glm::dvec4(0.7, -0.4, -3.0, 1.0)).z, -3.0, kTolerance);
 }
 
-TEST(SeedMappings, Seed000ScaleXYOpensTheWindowEdgesAt45Degrees)
+TEST(ViewingPipeline, ScaleXYOpensTheWindowEdgesAt45Degrees)
 {
-    const glm::dmat4 sh = seed000::scaleXY(kFocal, kWidth, kHeight) * seed000::shear(kCw);
+    const glm::dmat4 sh = viewing_pipeline::scaleXY(kFocal, kWidth, kHeight) * viewing_pipeline::shear(kCw);
     for (double sx : {-1.0, 1.0}) {
         for (double sy : {-1.0, 1.0}) {
             const glm::dvec3 corner = kCw + glm::dvec3(sx * kWidth / 2.0, sy * kHeight / 2.0, 0.0);
@@ -77,9 +77,9 @@ TEST(SeedMappings, Seed000ScaleXYOpensTheWindowEdgesAt45Degrees)
     }
 }
 
-TEST(SeedMappings, Seed000ScaleFarPutsTheFarPlaneAtMinusOne)
+TEST(ViewingPipeline, ScaleFarPutsTheFarPlaneAtMinusOne)
 {
-    const glm::dmat4 s = seed000::scaleFar(kFar);
+    const glm::dmat4 s = viewing_pipeline::scaleFar(kFar);
     EXPECT_NEAR((s * glm::dvec4(3.0, -2.0, -kFar, 1.0)).z, -1.0, kTolerance);
     EXPECT_NEAR((s * glm::dvec4(3.0, -2.0, -kNear, 1.0)).z, -kNear / kFar, kTolerance);
     // Uniform: the 45-degree edges stay at 45 degrees.
@@ -88,10 +88,10 @@ TEST(SeedMappings, Seed000ScaleFarPutsTheFarPlaneAtMinusOne)
     EXPECT_NEAR(edge.y, -edge.z, kTolerance);
 }
 
-TEST(SeedMappings, Seed000PerspectiveMapsNearToZeroAndFarToOne)
+TEST(ViewingPipeline, PerspectiveMapsNearToZeroAndFarToOne)
 {
     const double n = kNear / kFar;
-    const glm::dmat4 p = seed000::perspective(n);
+    const glm::dmat4 p = viewing_pipeline::perspective(n);
     EXPECT_NEAR(divide(p * glm::dvec4(0, 0, -n, 1)).z, 0.0, kTolerance);
     EXPECT_NEAR(divide(p * glm::dvec4(0, 0, -1, 1)).z, 1.0, kTolerance);
     // x' = x / -z and y' = y / -z: the 45-degree cone becomes the box [-1, 1]^2.
@@ -106,32 +106,32 @@ TEST(SeedMappings, Seed000PerspectiveMapsNearToZeroAndFarToOne)
         previous = depth;
     }
 
-    // The seed prints the third row as (0, 0, 1/(1-n), n/(1-n)) and claims the box [0, 1]; that row sends near to 0
+    // The derivation prints the third row as (0, 0, 1/(1-n), n/(1-n)) and claims the box [0, 1]; that row sends near to 0
     // but far to -1 (its own z' = -(z + n) / (z (1 - n)) gives -1 at z = -1). We use the negated row.
     const glm::dmat4 printed = fromRows({1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1 / (1 - n), n / (1 - n)}, {0, 0, -1, 0});
     EXPECT_NEAR(divide(printed * glm::dvec4(0, 0, -n, 1)).z, 0.0, kTolerance);
     EXPECT_NEAR(divide(printed * glm::dvec4(0, 0, -1, 1)).z, -1.0, kTolerance);
 }
 
-TEST(SeedMappings, Seed000NormalizeMapsTheSquareToTheUnitSquare)
+TEST(ViewingPipeline, NormalizeMapsTheSquareToTheUnitSquare)
 {
-    const glm::dmat4 n = seed000::normalize();
+    const glm::dmat4 n = viewing_pipeline::normalize();
     expectVecNear(divide(n * glm::dvec4(-1, -1, 0.25, 1)), {0.0, 0.0, 0.25}, kTolerance, "N(-1, -1)");
     expectVecNear(divide(n * glm::dvec4(1, 1, 0.75, 1)), {1.0, 1.0, 0.75}, kTolerance, "N(1, 1)");
     expectVecNear(divide(n * glm::dvec4(0, 0, 0, 1)), {0.5, 0.5, 0.0}, kTolerance, "N(0, 0)");
 }
 
-TEST(SeedMappings, Seed000ParallelDropsOrKeepsDepth)
+TEST(ViewingPipeline, ParallelDropsOrKeepsDepth)
 {
     const glm::dvec4 p(0.2, -0.3, 0.6, 1.0);
-    EXPECT_EQ((seed000::parallel(false) * p).z, 0.0);
-    EXPECT_EQ((seed000::parallel(true) * p).z, 0.6);
-    EXPECT_EQ((seed000::parallel(false) * p).x, 0.2);
+    EXPECT_EQ((viewing_pipeline::parallel(false) * p).z, 0.0);
+    EXPECT_EQ((viewing_pipeline::parallel(true) * p).z, 0.6);
+    EXPECT_EQ((viewing_pipeline::parallel(false) * p).x, 0.2);
 }
 
-// T_camera = T_raster S_raster N P_parallel P_persp S_far S_xy H R T: the seed's corner-based raster coordinates with
+// T_camera = T_raster S_raster N P_parallel P_persp S_far S_xy H R T: the derivation's corner-based raster coordinates with
 // a bottom-left origin are our pixel centres + 0.5.
-TEST(SeedMappings, Seed000FullChainEqualsCameraPixelsPlusHalf)
+TEST(ViewingPipeline, FullChainEqualsCameraPixelsPlusHalf)
 {
     const glm::dvec3 prp{4.0, -3.0, 2.0};
     const glm::dvec3 vpn{0.8, -0.5, 0.4}; // towards the viewer
@@ -150,9 +150,9 @@ TEST(SeedMappings, Seed000FullChainEqualsCameraPixelsPlusHalf)
     glm::dmat4 t(1.0);
     t[3] = glm::dvec4(-prp, 1.0);
 
-    const glm::dmat4 chain = seed000::rasterTranslate(posx, posy) * seed000::rasterScale(xres, yres) *
-                             seed000::normalize() * seed000::parallel(true) * seed000::perspective(kNear / kFar) *
-                             seed000::scaleFar(kFar) * seed000::scaleXY(kFocal, kWidth, kHeight) * seed000::shear(kCw) *
+    const glm::dmat4 chain = viewing_pipeline::rasterTranslate(posx, posy) * viewing_pipeline::rasterScale(xres, yres) *
+                             viewing_pipeline::normalize() * viewing_pipeline::parallel(true) * viewing_pipeline::perspective(kNear / kFar) *
+                             viewing_pipeline::scaleFar(kFar) * viewing_pipeline::scaleXY(kFocal, kWidth, kHeight) * viewing_pipeline::shear(kCw) *
                              r * t;
 
     auto projection =
@@ -181,12 +181,12 @@ TEST(SeedMappings, Seed000FullChainEqualsCameraPixelsPlusHalf)
     }
 }
 
-TEST(SeedMappings, Seed000OrthographicEqualsOrthoRHZOForACentredWindow)
+TEST(SeedMappings, WindowOrthographicEqualsOrthoRHZOForACentredWindow)
 {
     const double width = 4.0, height = 3.0, near = 0.5, far = 30.0;
-    expectMatNear(seed000::orthographic(width, height, near, far),
+    expectMatNear(viewing_pipeline::orthographic(width, height, near, far),
                   glm::orthoRH_ZO(-width / 2, width / 2, -height / 2, height / 2, near, far), kTolerance);
-    auto projection = Projection::seed000Orthographic(width, height, near, far, DepthRange::MinusOneToOne);
+    auto projection = Projection::windowOrthographic(width, height, near, far, DepthRange::MinusOneToOne);
     ASSERT_TRUE(projection.ok());
     expectMatNear(projection->matrix(), glm::orthoRH_NO(-width / 2, width / 2, -height / 2, height / 2, near, far),
                   kTolerance);
@@ -201,11 +201,11 @@ TEST(SeedMappings, Seed000OrthographicEqualsOrthoRHZOForACentredWindow)
     EXPECT_NEAR((printedScale * tNear * glm::dvec4(0, 0, -near, 1)).z, 0.0, kTolerance);
 }
 
-// --- Seed 004: pseudodepth --------------------------------------------------------------------------------------
+// --- The viewing pipeline: pseudodepth --------------------------------------------------------------------------------------
 
 TEST(SeedMappings, Seed004PseudodepthMapsNearToMinusOneAndFarToOne)
 {
-    // Seed 004 looks along +z with the near plane at z = f and the far plane at z = F; z* = (f / p)(a p + b) with
+    // The viewing pipeline looks along +z with the near plane at z = f and the far plane at z = F; z* = (f / p)(a p + b) with
     // a, b solved from z*(f) = -1, z*(F) = 1. Our camera looks down -z, so its point at depth p has z = -p.
     const double f = 0.25, bigF = 80.0;
     const double a = (bigF + f) / (f * (bigF - f));
@@ -226,7 +226,7 @@ TEST(SeedMappings, Seed004PseudodepthMapsNearToMinusOneAndFarToOne)
     EXPECT_NEAR(ndcNearDepth(DepthRange::ZeroToOne), 0.0, 0.0);
 }
 
-// --- Seed 001 ---------------------------------------------------------------------------------------------------
+// --- The viewing pipeline ---------------------------------------------------------------------------------------------------
 
 TEST(SeedMappings, Seed001ViewportMapsTheClipSquareOntoThePixelCorners)
 {

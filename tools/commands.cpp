@@ -1,22 +1,13 @@
 // `overlayd check-config` and `overlayd run`, and config loading with every problem reported.
-#include "daemon/commands.h"
+#include "tools/commands.h"
 
 #include <cstdio>
 
-#include "daemon/startup_guard.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame.h"
+#include "tools/startup_guard.h"
 
 namespace overlayd {
-
-std::string numbersRefusal(const std::vector<double> &values, const std::vector<std::string> &names,
-                           const std::string &group, const Range &range)
-{
-    for (size_t i = 0; i < values.size(); ++i)
-        if (const std::string why = range.refusal(values[i]); !why.empty())
-            return names[i % names.size()] + " of " + group + " " + std::to_string(i / names.size() + 1) + ": " + why;
-    return {};
-}
 
 Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger)
 {

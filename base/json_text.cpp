@@ -1,6 +1,6 @@
 // jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); valid UTF-8 passes through, and
 // each byte that is not (a device's card name, a file name) becomes U+FFFD, so the output is always JSON.
-#include "daemon/json_text.h"
+#include "base/json_text.h"
 
 #include "base/number_text.h"
 #include "base/utf8.h"

@@ -1,7 +1,7 @@
-// Seed 000's step matrices (column-major GLM: m[column][row]).
-#include "seed000.h"
+// The viewing pipeline's step matrices (column-major GLM: m[column][row]).
+#include "viewing_pipeline.h"
 
-namespace overlayd::seed000 {
+namespace overlayd::viewing_pipeline {
 
 glm::dmat4 shear(const glm::dvec3 &cw)
 {
@@ -78,4 +78,4 @@ glm::dmat4 rasterTranslate(double posx, double posy)
     return t;
 }
 
-} // namespace overlayd::seed000
+} // namespace overlayd::viewing_pipeline

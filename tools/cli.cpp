@@ -1,5 +1,5 @@
 // The command line, declared once with CLI11; its exceptions stay inside this file.
-#include "daemon/cli.h"
+#include "tools/cli.h"
 
 #include <CLI/CLI.hpp>
 

@@ -4,9 +4,9 @@
 #include <exception>
 
 #include "base/logger.h"
-#include "daemon/cli.h"
-#include "daemon/commands.h"
-#include "daemon/early_signals.h"
+#include "tools/cli.h"
+#include "tools/commands.h"
+#include "tools/early_signals.h"
 
 int main(int argc, char **argv)
 {

@@ -1,10 +1,10 @@
 // `overlayd list-cameras`: what a user puts under [source] — each camera's id, model, formats, sizes and rates.
 #include <string>
 
+#include "base/json_text.h"
 #include "base/number_text.h"
-#include "daemon/commands.h"
-#include "daemon/json_text.h"
 #include "drivers/camera_list.h"
+#include "tools/commands.h"
 
 namespace overlayd {
 

@@ -2,7 +2,7 @@
 // constructors of every shared library (liblttng-ust's, through libcamera, reads each loaded object for ~100 ms and
 // starts threads). What comes earlier — the kernel's exec and the loader itself — no program can cover; see
 // docs/daemon.md, "Signals".
-#include "daemon/early_signals.h"
+#include "tools/early_signals.h"
 
 #include <csignal>
 #include <initializer_list>
