@@ -15,8 +15,8 @@ enum class Durability { Synced, Unsynced };
 
 // Writes `text` to a new file of a random name in path's folder (O_CREAT|O_EXCL|O_NOFOLLOW, so an existing file or
 // symlink of that name is never opened), fsyncs it, renames it over `path` (a symlink at `path` is replaced, not
-// followed) and fsyncs the folder (Durability::Synced), so that a crash leaves the old file or the new one. An Io error naming the step
-// and the file; the temporary is removed after a failure.
+// followed) and fsyncs the folder (Durability::Synced), so that a crash leaves the old file or the new one. An Io error
+// naming the step and the file; the temporary is removed after a failure.
 Status replaceFileContents(const std::string &path, std::string_view text, Durability durability = Durability::Synced);
 
 } // namespace overlayd

@@ -31,12 +31,12 @@ struct CalibrationRegion {
 };
 
 enum class IntrinsicsForm {
-    FieldOfView,         // fovDeg across fovAxis, aspect from the viewport window (round circles)
-    Frustum,             // bounds.left..top on the near plane (glFrustum)
-    Pinhole,             // calibrated fx, fy, cx, cy, skew for an image of pinhole.width x height
-    Window,              // the viewing pipeline's window model
-    Orthographic,        // bounds.left..top box (glOrtho)
-    WindowOrthographic,  // the viewing pipeline's P_o for a centred orthoSize window
+    FieldOfView,        // fovDeg across fovAxis, aspect from the viewport window (round circles)
+    Frustum,            // bounds.left..top on the near plane (glFrustum)
+    Pinhole,            // calibrated fx, fy, cx, cy, skew for an image of pinhole.width x height
+    Window,             // the viewing pipeline's window model
+    Orthographic,       // bounds.left..top box (glOrtho)
+    WindowOrthographic, // the viewing pipeline's P_o for a centred orthoSize window
 };
 
 class CameraSpec

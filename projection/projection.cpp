@@ -170,7 +170,7 @@ Result<Projection> Projection::window(const WindowIntrinsics &w, DepthRange dept
 }
 
 Result<Projection> Projection::windowOrthographic(double width, double height, double near, double far,
-                                                   DepthRange depth)
+                                                  DepthRange depth)
 {
     if (!std::isfinite(width) || !std::isfinite(height) || width <= 0.0 || height <= 0.0)
         return makeError(ErrorCode::InvalidArgument, "orthographic window width and height must be > 0");

@@ -62,7 +62,7 @@ public:
     static Result<Projection> window(const WindowIntrinsics &w, DepthRange depth);
     // The viewing pipeline's parallel alternative P_o = S_xyz T_near for a centred width x height window.
     static Result<Projection> windowOrthographic(double width, double height, double near, double far,
-                                                  DepthRange depth);
+                                                 DepthRange depth);
 
     const glm::dmat4 &matrix() const { return matrix_; }
     DepthRange depthRange() const { return depth_; }

@@ -21,8 +21,7 @@ namespace {
 fs::path scratch(const std::string &name)
 {
     // One folder per process: two builds' test runs on one machine must not write into each other's folder.
-    const fs::path dir =
-        fs::temp_directory_path() / ("overlayd-text-watch-" + name + "-" + std::to_string(::getpid()));
+    const fs::path dir = fs::temp_directory_path() / ("overlayd-text-watch-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;

@@ -1,4 +1,5 @@
-// geometry_test: the homogeneous form's lines, rays, planes, distances, intersections and the view frustum's six planes.
+// geometry_test: the homogeneous form's lines, rays, planes, distances, intersections and the view frustum's six
+// planes.
 #include <cmath>
 #include <random>
 
@@ -117,10 +118,10 @@ TEST_F(Geometry, PointLineDistanceMatchesTheHomogeneousForm)
     EXPECT_NEAR(pointLineDistance({1, 2, 3}, {1, 2, 3}, {1, 0, 0}), 0.0, 1e-15);
 }
 
-// The homogeneous form's planes of a camera with horizontal field of view alpha, aspect a = height / width, near n, far f:
-// e = 1 / tan(alpha / 2), left/right <+-e, 0, -1> / sqrt(e^2 + 1), bottom/top <0, +-e, -a> / sqrt(e^2 + a^2),
-// near <0, 0, -1, -n>, far <0, 0, 1, f>. The derivation prints sqrt(e^2 + 2) for the left and right normals' z; that
-// would not be a unit normal: the correct value is sqrt(e^2 + 1).
+// The homogeneous form's planes of a camera with horizontal field of view alpha, aspect a = height / width, near n, far
+// f: e = 1 / tan(alpha / 2), left/right <+-e, 0, -1> / sqrt(e^2 + 1), bottom/top <0, +-e, -a> / sqrt(e^2 + a^2), near
+// <0, 0, -1, -n>, far <0, 0, 1, f>. The derivation prints sqrt(e^2 + 2) for the left and right normals' z; that would
+// not be a unit normal: the correct value is sqrt(e^2 + 1).
 TEST_F(Geometry, FrustumPlanesOfAFovCameraMatchTheHomogeneousForm)
 {
     const double width = 1280, height = 720;

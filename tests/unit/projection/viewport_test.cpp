@@ -155,8 +155,8 @@ TEST(Viewport, BottomLeftScissorInTopLeftCoordinates)
 
 TEST(Viewport, WindowAspectAccountsForNonSquarePixels)
 {
-    // The viewing pipeline: camera_ratio = xres * pixelspacing_x / (yres * pixelspacing_y). PAL 720 x 576 with 16:15 pixels is
-    // a 4:3 picture.
+    // The viewing pipeline: camera_ratio = xres * pixelspacing_x / (yres * pixelspacing_y). PAL 720 x 576 with 16:15
+    // pixels is a 4:3 picture.
     const Viewport pal = make({720, 576, std::nullopt, Origin::TopLeft, 16.0 / 15.0});
     EXPECT_NEAR(pal.windowAspect(), 4.0 / 3.0, 1e-12);
     const Viewport square = make({kW, kH, PixelRect{0, 0, 300, 200}});
