@@ -7,7 +7,14 @@
 #            clients the tests check our output with (scripts/test.sh)
 #   --demo   only what building and running the daemon needs (scripts/run.sh): about 60% of the download
 #   --arm64  adds what scripts/test-arm64.sh needs on the x86-64 host
+#
+# libcamera must be 0.3 or later (the configure refuses Debian 12's own 0.0.3): where the installed or candidate
+# libcamera is older, Debian's bookworm-backports suite (libcamera 0.3.2) is added on the mirror already in use, with
+# a pin that lets only libcamera's packages come from it (scripts/backports.sh), and libcamera is installed from it.
 set -euo pipefail
+cd "$(dirname "$0")/.."
+# shellcheck source=scripts/backports.sh
+. scripts/backports.sh
 
 demo=false
 arm64=false
@@ -32,7 +39,7 @@ packages=(
     libtomlplusplus-dev libcli11-dev libsystemd-dev libturbojpeg0-dev libyaml-cpp-dev
     libtinyxml2-dev # OpenCV's XML calibration files
     libpng-dev # PNG files (media/codec): images, replay, snapshots
-    libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
+    libcamera-dev libcamera-ipa # the libcamera source (0.3 or later, see above); the IPA modules a camera needs
     libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies
     libgpiod-dev # GPIO lines (libgpiod 1.6, the v1 API)
     systemd # on every booted Debian already; its systemd.pc says where the units install (systemd/CMakeLists.txt)
@@ -51,6 +58,7 @@ test_packages=(
 vm_packages=(
     qemu-system-x86 busybox-static cpio kmod xz-utils binutils make ustreamer
     can-utils # cansend and candump, the CAN check's other end of the bus
+    libcamera-tools # `cam`, the guest's baseline libcamera client: the same libcamera as overlayd's
 )
 if ! $demo; then
     packages+=("${test_packages[@]}")
@@ -64,16 +72,36 @@ if $arm64; then
     packages+=(crossbuild-essential-arm64 qemu-user)
 fi
 
+# libcamera older than 0.3 (Debian 12's 0.0.3) counts as missing: it is replaced from bookworm-backports.
+libcamera_min=0.3
+old_libcamera=false
 missing=()
 for p in "${packages[@]}"; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
         missing+=("$p")
+    elif [[ $p == libcamera* ]] && dpkg --compare-versions "$(dpkg-query -W -f='${Version}' "$p")" lt "$libcamera_min"; then
+        missing+=("$p")
+        old_libcamera=true
     fi
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
-echo "install-deps: installing ${missing[*]}"
 $sudo apt-get update -qq
+# Where apt itself offers no libcamera >= 0.3 (a plain Debian 12), the backports suite and its pin are added.
+candidate=$(apt-cache policy libcamera-dev 2>/dev/null | sed -n 's/^ *Candidate: //p')
+if $old_libcamera || [ -z "$candidate" ] || [ "$candidate" = "(none)" ] ||
+    dpkg --compare-versions "$candidate" lt "$libcamera_min"; then
+    echo "install-deps: libcamera $libcamera_min or later comes from $OVERLAYD_BACKPORTS_SUITE: adding it (libcamera only)"
+    overlaydBackportsSources "" | $sudo tee /etc/apt/sources.list.d/overlayd-backports.sources >/dev/null
+    overlaydBackportsPin | $sudo tee /etc/apt/preferences.d/overlayd-libcamera >/dev/null
+    $sudo apt-get update -qq
+    # Anything else the suite would move is a broken pin: stop before installing.
+    if apt-get -s dist-upgrade 2>/dev/null | grep '^Inst' | grep '~bpo' | grep -v '^Inst libcamera'; then
+        echo "install-deps: the pin would let the packages above come from $OVERLAYD_BACKPORTS_SUITE: not installing" >&2
+        exit 1
+    fi
+fi
+echo "install-deps: installing ${missing[*]}"
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

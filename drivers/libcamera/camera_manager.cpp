@@ -8,6 +8,8 @@
 #include <libcamera/logging.h>
 #include <libcamera/property_ids.h>
 
+#include "drivers/libcamera/camera_presence.h"
+
 namespace overlayd::lc {
 
 Result<std::shared_ptr<libcamera::CameraManager>> cameraManager()
@@ -40,21 +42,14 @@ std::string cameraModel(const libcamera::Camera &camera)
 Result<std::shared_ptr<libcamera::Camera>> findCamera(const libcamera::CameraManager &manager, const std::string &spec)
 {
     const auto cameras = manager.cameras();
-    const bool isIndex = !spec.empty() && spec.size() < 4 && spec.find_first_not_of("0123456789") == std::string::npos;
-    if (isIndex && std::stoul(spec) < cameras.size())
-        return cameras[std::stoul(spec)];
-    for (const auto &camera : cameras) {
-        if (camera->id() == spec)
-            return camera;
-    }
-    for (const auto &camera : cameras) {
-        if (!isIndex && cameraModel(*camera).find(spec) != std::string::npos)
-            return camera;
-    }
+    std::vector<CameraIdentity> present;
+    for (const auto &camera : cameras)
+        present.push_back({camera->id(), cameraModel(*camera)});
+    if (const auto chosen = matchCameraSpec(spec, present))
+        return cameras[*chosen];
     std::string known;
     for (size_t i = 0; i < cameras.size(); ++i)
-        known +=
-            (i ? ", " : "") + std::to_string(i) + ": '" + cameraModel(*cameras[i]) + "' (" + cameras[i]->id() + ")";
+        known += (i ? ", " : "") + std::to_string(i) + ": '" + present[i].model + "' (" + present[i].id + ")";
     return makeError(ErrorCode::NotFound,
                      "no libcamera camera matches \"" + spec + "\"" +
                          (cameras.empty() ? " (libcamera sees no camera)" : "; there are " + known));

@@ -22,8 +22,8 @@ const libcamera::ControlId *registryControl(const std::string &name)
     return nullptr;
 }
 
-// Whether the control takes an array. ControlId::isArray() arrived after Debian 12's libcamera 0.0.3; there, the
-// table's array controls (the Span<> ones of its control_ids.h) are named.
+// Whether the control takes an array. ControlId::isArray() is not in libcamera 0.3.2; there, the
+// table's array controls (the Span<> ones of 0.3.2's control_ids.h) are named.
 template<typename Id>
 bool isArrayControl(const Id &id)
 {

@@ -3,6 +3,8 @@
 
 #include <unistd.h>
 
+#include "drivers/libcamera/camera_manager.h"
+
 #include <libcamera/control_ids.h>
 
 namespace overlayd::lc {
@@ -26,17 +28,39 @@ void LibcameraSource::onRequestCompleted(libcamera::Request *request)
     signal();
 }
 
+void LibcameraSource::onDisconnected()
+{
+    events_.post(CameraEvent::Kind::Disconnected, {});
+}
+
 void LibcameraSource::onCameraRemoved(std::shared_ptr<libcamera::Camera> camera)
 {
+    events_.post(CameraEvent::Kind::Removed, camera->id());
+}
+
+void LibcameraSource::onCameraAdded(std::shared_ptr<libcamera::Camera> camera)
+{
+    std::string model;
     try {
-        std::lock_guard lock(mutex_);
-        if (camera->id() != cameraId_)
-            return;
-        lost_ = true;
+        model = cameraModel(*camera);
     } catch (...) {
-        callbackFailed_ = true;
+        // the model only helps matching by model; the id is posted without it
     }
-    signal();
+    events_.post(CameraEvent::Kind::Added, camera->id(), model);
+}
+
+bool LibcameraSource::takeEvents()
+{
+    if (events_.takeOverflow())
+        callbackFailed_ = true;
+    for (const CameraEvent &event : events_.take()) {
+        const bool wasLost = presence_.lost();
+        presence_.apply(event);
+        if (!wasLost && presence_.lost() && log_)
+            log_(describe() + (event.kind == CameraEvent::Kind::Disconnected ? " was disconnected" : " was removed") +
+                 ": waiting for it to come back");
+    }
+    return presence_.lost();
 }
 
 Result<FrameLease> LibcameraSource::nextFrame()
@@ -49,11 +73,11 @@ Result<FrameLease> LibcameraSource::nextFrame()
         return makeError(ErrorCode::DeviceLost, describe() + ": a libcamera callback failed (out of memory?)");
     uint64_t one;
     const bool woken = ::read(completions_.get(), &one, sizeof(one)) == sizeof(one);
+    if (takeEvents())
+        return makeError(ErrorCode::DeviceLost, describe() + " was unplugged");
     unsigned index = 0;
     {
         std::lock_guard lock(mutex_);
-        if (lost_)
-            return makeError(ErrorCode::DeviceLost, describe() + " was removed");
         if (!woken || completed_.empty())
             return makeError(ErrorCode::TryAgain, describe() + ": no frame ready");
         index = completed_.front();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include <sys/eventfd.h>
 #include <unistd.h>
@@ -31,19 +32,28 @@ libcamera::StreamRole roleOf(StreamRole role)
     return libcamera::StreamRole::VideoRecording;
 }
 
-libcamera::Transform transformOf(ImageTransform transform)
+// The config's transform is relative to the upright image, as libcamera 0.3's orientation is (the pipeline
+// compensates the camera's mounting rotation either way): the orientations EXIF names a flip, a mirror and a turn.
+libcamera::Orientation orientationOf(ImageTransform transform)
 {
     switch (transform) {
     case ImageTransform::HFlip:
-        return libcamera::Transform::HFlip;
+        return libcamera::Orientation::Rotate0Mirror;
     case ImageTransform::VFlip:
-        return libcamera::Transform::VFlip;
+        return libcamera::Orientation::Rotate180Mirror;
     case ImageTransform::Rot180:
-        return libcamera::Transform::Rot180;
+        return libcamera::Orientation::Rotate180;
     case ImageTransform::Identity:
         break;
     }
-    return libcamera::Transform::Identity;
+    return libcamera::Orientation::Rotate0;
+}
+
+std::string orientationName(libcamera::Orientation orientation)
+{
+    std::ostringstream out;
+    out << orientation;
+    return out.str();
 }
 
 Colorimetry colorimetryOf(const std::optional<libcamera::ColorSpace> &space, const PixelFormatInfo &format)
@@ -68,6 +78,8 @@ std::string describeStream(const std::string &format, unsigned width, unsigned h
 
 CameraSession::~CameraSession()
 {
+    if (camera)
+        camera->disconnected.disconnect(this);
     // libcamera's order: stop, free requests and buffers, then release the camera.
     if (running && camera)
         camera->stop();
@@ -80,7 +92,8 @@ CameraSession::~CameraSession()
 
 LibcameraSource::LibcameraSource(SourceOptions options, LogFunction log)
     : options_(std::move(options)), log_(std::move(log)),
-      completions_(::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK | EFD_SEMAPHORE))
+      completions_(::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK | EFD_SEMAPHORE)), events_([this] { signal(); }),
+      presence_(options_.libcamera.camera)
 {}
 
 LibcameraSource::~LibcameraSource()
@@ -98,12 +111,14 @@ Result<StreamFormat> LibcameraSource::start()
     stop();
     if (!completions_.isValid())
         return makeError(ErrorCode::Io, std::string("eventfd: ") + std::strerror(errno));
+    dropDisconnectedParked();
+    (void)events_.take(); // about a camera this source no longer holds
     auto manager = cameraManager();
     if (!manager)
         return manager.error();
     auto session = std::make_shared<CameraSession>();
     session->manager = *manager;
-    auto camera = findCamera(*session->manager, options_.libcamera.camera);
+    auto camera = chooseCamera(*session->manager);
     if (!camera)
         return camera.error();
     session->camera = *camera;
@@ -113,11 +128,11 @@ Result<StreamFormat> LibcameraSource::start()
                          describe() + ": acquire failed: " + std::strerror(-r) + " (another program has it?)");
     session->acquired = true;
     session_ = std::move(session);
+    const bool again = presence_.remembered().has_value();
+    presence_.opened({(*camera)->id(), cameraModel(**camera)});
     {
         std::lock_guard lock(mutex_);
         completed_.clear();
-        lost_ = false;
-        cameraId_ = (*camera)->id();
         lastCompletion_ = std::chrono::steady_clock::now(); // the first frame gets the same grace as any other
     }
     sequence_.restart();
@@ -130,7 +145,22 @@ Result<StreamFormat> LibcameraSource::start()
         stop();
         return started.error();
     }
+    if (again && log_)
+        log_(describe() + " is streaming again");
     return format;
+}
+
+Result<std::shared_ptr<libcamera::Camera>> LibcameraSource::chooseCamera(const libcamera::CameraManager &manager)
+{
+    const auto cameras = manager.cameras();
+    std::vector<CameraIdentity> present;
+    for (const auto &camera : cameras)
+        present.push_back({camera->id(), cameraModel(*camera)});
+    if (const auto chosen = presence_.choose(present))
+        return cameras[*chosen];
+    if (!presence_.remembered())
+        return findCamera(manager, options_.libcamera.camera); // its error lists the cameras there are
+    return makeError(ErrorCode::DeviceLost, "libcamera camera " + presence_.awaited() + " is not back yet");
 }
 
 std::string LibcameraSource::offered(const libcamera::StreamConfiguration &config) const
@@ -162,7 +192,8 @@ Result<StreamFormat> LibcameraSource::configure()
     stream.pixelFormat = *wanted;
     stream.size = {options_.width, options_.height};
     stream.bufferCount = options_.libcamera.bufferCount;
-    config->transform = transformOf(options_.libcamera.transform);
+    const libcamera::Orientation orientation = orientationOf(options_.libcamera.transform);
+    config->orientation = orientation;
 
     const auto status = config->validate();
     if (status == libcamera::CameraConfiguration::Invalid)
@@ -179,9 +210,9 @@ Result<StreamFormat> LibcameraSource::configure()
     if (status == libcamera::CameraConfiguration::Adjusted) {
         adjustment_ = "asked " + describeStream(std::string(asked.name), options_.width, options_.height) + ", got " +
                       describeStream(std::string(got->name), stream.size.width, stream.size.height);
-        if (config->transform != transformOf(options_.libcamera.transform))
-            adjustment_ += std::string(" (transform ") + transformToString(config->transform) + " instead of " +
-                           transformToString(transformOf(options_.libcamera.transform)) + ")";
+        if (config->orientation != orientation)
+            adjustment_ += " (orientation " + orientationName(config->orientation) + " instead of " +
+                           orientationName(orientation) + ")";
         if (adjustment_ != lastLogged_ && log_)
             log_(describe() + ": " + adjustment_);
         lastLogged_ = adjustment_;
@@ -251,7 +282,12 @@ Status LibcameraSource::startCamera()
         controls->set(limits, {frameUs, frameUs});
     }
     session.camera->requestCompleted.connect(this, &LibcameraSource::onRequestCompleted);
+    // The session's own flag outlives this source (a parked session); the source's slot hands the event over.
+    CameraSession *raw = &session;
+    session.camera->disconnected.connect(raw, [raw] { raw->disconnected = true; });
+    session.camera->disconnected.connect(this, &LibcameraSource::onDisconnected);
     session.manager->cameraRemoved.connect(this, &LibcameraSource::onCameraRemoved);
+    session.manager->cameraAdded.connect(this, &LibcameraSource::onCameraAdded);
     if (const int r = session.camera->start(&*controls); r < 0)
         return makeError(ErrorCode::DeviceLost, describe() + ": start failed: " + std::strerror(-r));
     session.running = true;
@@ -262,6 +298,17 @@ Status LibcameraSource::startCamera()
     return Ok{};
 }
 
+namespace {
+
+// Parked sessions: never stopped while libcamera may still assert on them; dropped once it reports them disconnected.
+std::vector<std::shared_ptr<CameraSession>> &parkedSessions()
+{
+    static auto *parked = new std::vector<std::shared_ptr<CameraSession>>;
+    return *parked;
+}
+
+} // namespace
+
 bool LibcameraSource::parkIfUnanswering()
 {
     // Three frame times, and at least a second: a camera that is merely slow is stopped as usual.
@@ -269,17 +316,21 @@ bool LibcameraSource::parkIfUnanswering()
         std::chrono::seconds(1), std::chrono::milliseconds(int64_t(3000.0 / std::max(options_.fps, 0.1))));
     {
         std::lock_guard lock(mutex_);
-        if (!session_->running || lost_ || std::chrono::steady_clock::now() - lastCompletion_ < silence)
+        if (!session_->running || session_->disconnected ||
+            std::chrono::steady_clock::now() - lastCompletion_ < silence)
             return false;
     }
-    // Never destroyed: destroying the camera would stop it (and abort); the manager stays with it, so a later
-    // start() finds the same camera and is told it is busy, and the daemon keeps showing NO SIGNAL.
-    static auto *parked = new std::vector<std::shared_ptr<CameraSession>>;
-    parked->push_back(session_);
+    parkedSessions().push_back(session_);
     if (log_)
-        log_(describe() + " stopped answering: it is left as it is (libcamera 0.0.3 aborts when asked to stop a "
-                          "camera whose device vanished unnoticed); restart overlayd to use it again");
+        log_(describe() + " stopped answering: it is left running until libcamera reports it disconnected "
+                          "(stopping a camera whose device vanished unnoticed aborts in libcamera)");
     return true;
+}
+
+void LibcameraSource::dropDisconnectedParked()
+{
+    auto &parked = parkedSessions();
+    std::erase_if(parked, [](const std::shared_ptr<CameraSession> &s) { return s->disconnected.load(); });
 }
 
 void LibcameraSource::stop()
@@ -288,21 +339,18 @@ void LibcameraSource::stop()
         return;
     if (session_->recycler)
         session_->recycler->detach();
-    if (session_->running && parkIfUnanswering()) {
-        session_->camera->requestCompleted.disconnect(this);
-        session_->manager->cameraRemoved.disconnect(this);
-        session_.reset();
-        std::lock_guard lock(mutex_);
-        completed_.clear();
-        return;
-    }
-    if (session_->running) {
+    session_->camera->requestCompleted.disconnect(this);
+    session_->camera->disconnected.disconnect(this);
+    session_->manager->cameraRemoved.disconnect(this);
+    session_->manager->cameraAdded.disconnect(this);
+    if (session_->running && !session_->disconnected && !parkIfUnanswering()) {
         session_->camera->stop();
         session_->running = false;
     }
-    session_->camera->requestCompleted.disconnect(this);
-    session_->manager->cameraRemoved.disconnect(this);
+    // A disconnected camera is not stopped here: libcamera refuses (-ENODEV) and keeps it "running"; ~CameraSession
+    // asks again, harmlessly, when the last lease lets go.
     session_.reset(); // the camera is released when the last lease is given back
+    presence_.closed();
     std::lock_guard lock(mutex_);
     completed_.clear();
     uint64_t drained;

@@ -17,6 +17,8 @@
 
 #include "base/unique_fd.h"
 #include "drivers/frame_source.h"
+#include "drivers/libcamera/camera_event_queue.h"
+#include "drivers/libcamera/camera_presence.h"
 #include "drivers/libcamera/mapped_frame_buffer.h"
 #include "drivers/libcamera/request_recycler.h"
 #include "drivers/source_options.h"
@@ -36,6 +38,9 @@ struct CameraSession {
     std::vector<MappedFrameBuffer> buffers; // by request index
     std::unique_ptr<RequestRecycler> recycler;
     bool acquired = false, running = false;
+    // Set on libcamera's thread by Camera::disconnected. libcamera then refuses stop() (-ENODEV) instead of asserting
+    // in PipelineHandler::stop over requests a vanished device never completes, so the session may be dropped.
+    std::atomic<bool> disconnected{false};
 
     ~CameraSession();
 };
@@ -48,9 +53,10 @@ public:
 
     Result<StreamFormat> start() override;
     // Stops the camera: requests in flight complete as cancelled; leases still out become no-ops when given back.
-    // A camera that stopped answering is parked instead (see parkIfUnanswering).
+    // A disconnected camera is let go without stopping it; one that stopped answering without libcamera reporting
+    // it disconnected is parked (see parkIfUnanswering).
     void stop() override;
-    // An eventfd (semaphore mode) counting completed requests, written on libcamera's thread.
+    // An eventfd (semaphore mode) counting completed requests and camera events, written on libcamera's thread.
     int eventFd() const override { return completions_.get(); }
     Result<FrameLease> nextFrame() override;
     std::string describe() const override;
@@ -63,15 +69,22 @@ private:
     Status allocate(const libcamera::Stream &stream);
     Status startCamera();
     std::string offered(const libcamera::StreamConfiguration &config) const;
-    // libcamera's thread: only the queue, the flag and the eventfd are touched there.
+    Result<std::shared_ptr<libcamera::Camera>> chooseCamera(const libcamera::CameraManager &manager);
+    // libcamera's thread: only the queues and the eventfd are touched there.
     void onRequestCompleted(libcamera::Request *request);
+    void onDisconnected();
     void onCameraRemoved(std::shared_ptr<libcamera::Camera> camera);
+    void onCameraAdded(std::shared_ptr<libcamera::Camera> camera);
     void signal();
-    // libcamera 0.0.3 aborts the process in Camera::stop() when the device vanished without libcamera noticing
-    // (STREAMOFF fails, its requests never complete, PipelineHandler::stop asserts). A camera that has not completed
-    // a request for a while is therefore never stopped: it is parked for the life of the process, and the source
-    // reports it as lost. True when it parked.
+    // The loop: applies the handed-over camera events; true when the open camera is gone.
+    bool takeEvents();
+    // libcamera (0.3.2 as 0.0.3) asserts in PipelineHandler::stop when the device vanished and libcamera has not
+    // yet marked the camera disconnected (STREAMOFF fails with ENODEV, its requests never complete). A camera that
+    // has not completed a request for a while and is not known disconnected is therefore not stopped: it is
+    // parked until libcamera reports it disconnected (then it is dropped, see dropDisconnectedParked), and the
+    // source reports it as lost. True when it parked.
     bool parkIfUnanswering();
+    static void dropDisconnectedParked();
 
     SourceOptions options_;
     LogFunction log_;
@@ -81,11 +94,11 @@ private:
     StreamFormat format_{};
     std::string name_;
 
-    std::mutex mutex_; // guards completed_, lost_, cameraId_ and lastCompletion_ against libcamera's thread
-    std::string cameraId_;
+    std::mutex mutex_; // guards completed_ and lastCompletion_ against libcamera's thread
     std::chrono::steady_clock::time_point lastCompletion_{};
     std::deque<unsigned> completed_;
-    bool lost_ = false;
+    CameraEventQueue events_;
+    CameraPresence presence_; // the loop's only
     // A callback on libcamera's thread failed (an exception cannot cross into libcamera): the loop then treats the
     // camera as lost and starts it again.
     std::atomic<bool> callbackFailed_{false};

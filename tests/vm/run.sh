@@ -7,7 +7,8 @@
 #
 # Defaults: build/daemon/overlayd and build/vm-work/ (guest.log, the staged overlayd, the guest's artifacts).
 #
-# Environment: OVERLAYD_SKIP_VM=1 skips; OVERLAYD_VM_CACHE (default ~/.cache/overlayd-vm) keeps downloads and
+# Environment: OVERLAYD_LIBCAMERA_ROOT=DIR stages the libcamera unpacked in DIR (DIR/usr/...) instead of the
+# installed one; OVERLAYD_SKIP_VM=1 skips; OVERLAYD_VM_CACHE (default ~/.cache/overlayd-vm) keeps downloads and
 # built pieces per kernel version; OVERLAYD_VM_ACCEL=auto|kvm|tcg; OVERLAYD_VM_TIMEOUT (s, default 1200).
 set -euo pipefail
 VM_HERE=$(cd "$(dirname "$0")" && pwd)
@@ -41,6 +42,13 @@ VM_CACHE=${OVERLAYD_VM_CACHE:-$HOME/.cache/overlayd-vm}
 mkdir -p "$VM_CACHE" "$VM_WORK"
 VM_WORK=$(cd "$VM_WORK" && pwd)
 [ -x "$overlayd" ] && overlayd=$(readlink -f "$overlayd")
+# A libcamera unpacked beside the system's (dpkg -x of bookworm-backports' packages, docs/libcamera.md): overlayd
+# was built against it, so its libraries, IPA modules and `cam` are what the guest gets.
+VM_LIBCAMERA_ROOT=${OVERLAYD_LIBCAMERA_ROOT:-}
+if [ -n "$VM_LIBCAMERA_ROOT" ]; then
+    VM_LIBCAMERA_ROOT=$(readlink -f "$VM_LIBCAMERA_ROOT")
+    export LD_LIBRARY_PATH=$VM_LIBCAMERA_ROOT/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+fi
 
 started=$(vmNow)
 vmStage "host tools" vmInstallHostTools

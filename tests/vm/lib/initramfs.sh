@@ -56,13 +56,17 @@ vmRunInitramfs() {
 
 # libcamera's vimc pipeline at run time: the IPA module is loaded with dlopen (ldd of overlayd does not list it)
 # and only with its signature file beside it (so it is copied as it is, never stripped), its proxy, its data, and
-# `cam` as a baseline client.
+# `cam` as a baseline client. From VM_LIBCAMERA_ROOT (run.sh: OVERLAYD_LIBCAMERA_ROOT) when set, into the guest's
+# standard paths, where that libcamera looks for its IPA modules and data.
 vmStageLibcamera() {
-    local root=$1 lib=/usr/lib/x86_64-linux-gnu/libcamera
-    [ -e "$lib/ipa_vimc.so" ] || return 0
-    vmCopyWithLibraries "$root" /usr/bin/cam "$lib/ipa_vimc.so" "$lib/vimc_ipa_proxy"
-    cp "$lib/ipa_vimc.so.sign" "$root$lib/"
-    mkdir -p "$root/usr/share/libcamera/ipa" && cp -r /usr/share/libcamera/ipa/vimc "$root/usr/share/libcamera/ipa/"
+    local root=$1 from=${VM_LIBCAMERA_ROOT:-} lib=/usr/lib/x86_64-linux-gnu/libcamera file
+    [ -e "$from$lib/ipa_vimc.so" ] || return 0
+    for file in /usr/bin/cam "$lib/ipa_vimc.so" "$lib/vimc_ipa_proxy"; do
+        vmCopyIfChanged "$from$file" "$root$file"
+        vmCopyLibraries "$root" "$from$file"
+    done
+    cp "$from$lib/ipa_vimc.so.sign" "$root$lib/"
+    mkdir -p "$root/usr/share/libcamera/ipa" && cp -r "$from/usr/share/libcamera/ipa/vimc" "$root/usr/share/libcamera/ipa/"
 }
 
 # Debian's gpiod tools (libgpiod 1.6): the independent client of gpio-sim in checks/70-gpio.sh.

@@ -1,13 +1,17 @@
-# libcamera: vimc's camera through Debian's libcamera 0.0.3 (vimc pipeline handler and IPA) into the real overlayd.
-# list-cameras lists the sensor; render writes a Y4M at the asked size (the host's ffprobe reads it) with the axes
-# where `overlayd project` puts them over Sensor B's black test pattern; a format vimc lacks is adjusted and logged
-# once; unbinding vimc while `run` streams gives NO SIGNAL frames and the daemon stays up (libcamera 0.0.3 does not
-# let it pick the camera up again: see the end).
+# libcamera: vimc's camera through libcamera 0.3.2 (Debian bookworm-backports: vimc pipeline handler and IPA) into
+# the real overlayd. list-cameras lists the sensor; render writes a Y4M at the asked size (the host's ffprobe reads
+# it) with the axes where `overlayd project` puts them over Sensor B's black test pattern; a format vimc lacks is
+# adjusted and logged once; vimc unbound and bound again five times while `run` streams: NO SIGNAL after each unbind,
+# the overlaid camera again after each bind, in the same process, with no fd or thread growth; SIGTERM during a
+# re-plug exits 0.
 . /vm/lib.sh
 
 have_overlayd || { fail libcamera "no overlayd binary was staged (build the overlayd target)"; exit 0; }
 [ -e /usr/lib/x86_64-linux-gnu/libcamera/ipa_vimc.so ] || { fail libcamera "libcamera's vimc IPA was not staged"; exit 0; }
 mkdir -p "$ART"
+# The libcamera overlayd was built against (0.3, libcamera.so.0.3), staged with its IPA modules.
+ls /usr/lib/x86_64-linux-gnu/libcamera.so.0.3 >/dev/null 2>&1
+verdict libcamera-version $? "the guest's libcamera: $(ls /usr/lib/x86_64-linux-gnu/ | grep '^libcamera.*\.so' | tr '\n' ' ')"
 
 udev_start
 echo "-- udevd running: $UDEVD"
@@ -102,49 +106,68 @@ grep -E 'v4l2|zero|frames out' /tmp/lc-run.log | tail -3
 cp /tmp/lc-run.log "$ART/libcamera-run.log"
 rmmod vivid
 
-# Unplug: unbind vimc under a running overlayd, then bind it again.
+# Unplug and re-plug, five times, under one running overlayd. libcamera (with udevd's events) reports the camera
+# disconnected; overlayd shows NO SIGNAL within the stall timeout (no_signal_timeout = 2 s, plus the first NO SIGNAL
+# frame's pacing), and when vimc is bound again the same process finds Sensor B, configures and starts it again.
+# Each sysfs write is watched, not waited for (sysfs_write): a write stuck in the kernel is a FAIL, never a hang.
 rmmod vimc && modprobe vimc && sleep 1 && udev_initialise # the default colour bars again
 OUT=/tmp/lc-unplug.y4m
 rm -f $OUT
 overlayd run --config /vm/configs/libcamera-unplug.toml >/tmp/lc-unplug.log 2>&1 &
 pid=$!
 PROBE_X=10 PROBE_Y=340 # low on vimc's leftmost colour bar
+UNBIND=/sys/bus/platform/drivers/vimc/unbind BIND=/sys/bus/platform/drivers/vimc/bind
+fds() { ls /proc/$pid/fd 2>/dev/null | wc -l; }
+threads() { ls /proc/$pid/task 2>/dev/null | wc -l; }
 
 wait_for 60 is_live
-verdict libcamera-unplug-streaming $? "before: $(frames) frames, last pixel ($(probe))"
-echo "-- unbinding vimc at $(uptime_s)s"
-timeout 20 sh -c 'echo vimc.0 >/sys/bus/platform/drivers/vimc/unbind' || echo "-- unbind failed or hung"
-n0=$(frames)
-wait_for 20 is_nosignal
-ns=$?
-sleep 2
-n1=$(frames)
-kill -0 $pid 2>/dev/null && [ $ns = 0 ] && [ "$n1" -gt "$n0" ]
-verdict libcamera-unplug-no-signal $? "vimc unbound at frame $n0; $n1 frames 2+ s later, last pixel ($(probe))"
+verdict libcamera-unplug-streaming $? "before: $(frames) frames, last pixel ($(probe)); $(fds) fds, $(threads) threads"
+cycles=0 stuck="" detail=""
+for i in 1 2 3 4 5; do
+    echo "-- cycle $i: unbinding vimc at $(uptime_s)s"
+    sysfs_write $UNBIND vimc.0 20
+    w=$?
+    [ $w = 0 ] || { stuck="unbind $i: $([ $w = 2 ] && echo 'still in the kernel after 20 s' || echo failed)"; break; }
+    n0=$(frames)
+    wait_for 8 is_nosignal
+    ns=$?
+    n1=$(frames)
+    echo "-- cycle $i: binding vimc at $(uptime_s)s"
+    sysfs_write $BIND vimc.0 20
+    w=$?
+    [ $w = 0 ] || { stuck="bind $i: $([ $w = 2 ] && echo 'still in the kernel after 20 s' || echo failed)"; break; }
+    [ "$UDEVD" = 1 ] || udev_initialise
+    wait_for 60 is_live
+    live=$?
+    kill -0 $pid 2>/dev/null
+    alive=$?
+    [ $i = 1 ] && fd1=$(fds) th1=$(threads)
+    detail="$detail [$i: nosignal=$ns frames $n0->$n1 live=$live alive=$alive fds=$(fds) threads=$(threads)]"
+    [ $ns = 0 ] && [ "$n1" -gt "$n0" ] && [ $live = 0 ] && [ $alive = 0 ] && cycles=$((cycles + 1))
+done
+[ -z "$stuck" ]
+verdict libcamera-replug-sysfs $? "${stuck:-every unbind and bind returned}"
+[ $cycles = 5 ]
+verdict libcamera-replug-5-cycles $? "$cycles of 5 cycles NO SIGNAL then live in pid $pid:$detail"
+fd5=$(fds) th5=$(threads)
+[ -n "$fd1" ] && [ "$fd5" -le "$fd1" ] && [ "$th5" -le "$th1" ]
+verdict libcamera-replug-no-growth $? "after cycle 1: ${fd1:-?} fds, ${th1:-?} threads; after cycle 5: $fd5 fds, $th5 threads"
+grep -q 'was disconnected\|was removed\|was unplugged' /tmp/lc-unplug.log && grep -q 'is streaming again' /tmp/lc-unplug.log
+verdict libcamera-replug-logged $? "$(grep -c 'streaming again' /tmp/lc-unplug.log) re-acquisitions logged;" \
+    "$(grep -m1 'disconnected\|removed' /tmp/lc-unplug.log | cut -c1-120)"
+! grep -q 'stopped answering' /tmp/lc-unplug.log
+verdict libcamera-replug-none-parked $? "no camera was parked (libcamera reported each unplug before the stall timeout)"
 
-kill -0 $pid 2>/dev/null
-verdict libcamera-unplug-still-running $? "overlayd still runs (NO SIGNAL) while the camera is gone"
-grep -q 'stopped answering: it is left as it is' /tmp/lc-unplug.log
-verdict libcamera-unplug-parked $? "the log says why: $(grep -m1 'stopped answering' /tmp/lc-unplug.log | cut -c1-120)"
-
-# What this libcamera cannot do: libcamera 0.0.3 neither notices vimc going away (no cameraRemoved, even with
-# udevd's events) nor survives being asked to stop it (PipelineHandler::stop asserts), and binding vimc again under
-# the process that holds the parked camera has crashed it (SIGSEGV in libcamera's thread) or hung the bind. So the
-# recovery proven here is the one a unit gets from systemd's Restart=: the old process stops on SIGTERM, vimc is
-# bound again, and a new overlayd finds the camera and streams.
+# SIGTERM while the camera is being picked up again: unbind, bind, and the signal at once.
+if [ -z "$stuck" ]; then
+    sysfs_write $UNBIND vimc.0 20 && wait_for 8 is_nosignal && sysfs_write $BIND vimc.0 20
+    [ "$UDEVD" = 1 ] || udev_initialise
+fi
 stop_overlayd $pid
 rc=$?
 [ $rc = 0 ]
-verdict libcamera-unplug-stops $? "overlayd with the parked camera exited $rc after SIGTERM"
-echo "-- binding vimc at $(uptime_s)s"
-timeout 20 sh -c 'echo vimc.0 >/sys/bus/platform/drivers/vimc/bind' || echo "-- bind failed or hung"
-sleep 1 && timeout 40 sh -c '. /vm/lib.sh; UDEVD='"$UDEVD"' udev_initialise'
-rm -f $OUT
-overlayd run --config /vm/configs/libcamera-unplug.toml >/tmp/lc-replug.log 2>&1 &
-pid=$!
-wait_for 60 is_live
-verdict libcamera-replug-new-process $? "a new overlayd after the re-bind: $(frames) frames, last pixel ($(probe))"
-stop_overlayd $pid
-grep -i -E 'signal|lost|retry|back|libcamera' /tmp/lc-unplug.log | head -10
-timeout 20 rmmod vimc || echo "-- rmmod vimc failed"
+verdict libcamera-replug-sigterm $? "overlayd exited $rc after SIGTERM during a re-plug"
+grep -i -E 'signal|lost|retry|back|libcamera|disconnect' /tmp/lc-unplug.log | head -20
+cp /tmp/lc-unplug.log "$ART/libcamera-unplug.log"
+[ -z "$stuck" ] && { timeout 20 rmmod vimc || echo "-- rmmod vimc failed"; }
 exit 0
