@@ -307,6 +307,13 @@ std::vector<std::shared_ptr<CameraSession>> &parkedSessions()
     return *parked;
 }
 
+// Whether libcamera hears of unplugs: its udev enumerator gets them from udevd (whose control socket this is);
+// without udevd it enumerates sysfs once and never learns that a device went away.
+bool unplugsReported()
+{
+    return ::access("/run/udev/control", F_OK) == 0;
+}
+
 } // namespace
 
 bool LibcameraSource::parkIfUnanswering()
@@ -320,6 +327,11 @@ bool LibcameraSource::parkIfUnanswering()
             std::chrono::steady_clock::now() - lastCompletion_ < silence)
             return false;
     }
+    // With udevd, libcamera marks a vanished camera disconnected within milliseconds (and stop() is then refused,
+    // not asserted), long before a stall timeout: a silent camera that is still connected is there, merely stalled
+    // or slow to start, and is stopped as usual.
+    if (unplugsReported())
+        return false;
     parkedSessions().push_back(session_);
     if (log_)
         log_(describe() + " stopped answering: it is left running until libcamera reports it disconnected "

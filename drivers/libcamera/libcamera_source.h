@@ -79,8 +79,8 @@ private:
     // The loop: applies the handed-over camera events; true when the open camera is gone.
     bool takeEvents();
     // libcamera (0.3.2 as 0.0.3) asserts in PipelineHandler::stop when the device vanished and libcamera has not
-    // yet marked the camera disconnected (STREAMOFF fails with ENODEV, its requests never complete). A camera that
-    // has not completed a request for a while and is not known disconnected is therefore not stopped: it is
+    // marked the camera disconnected (STREAMOFF fails with ENODEV, its requests never complete), which is what
+    // happens without udevd. There, a camera that has not completed a request for a while is not stopped: it is
     // parked until libcamera reports it disconnected (then it is dropped, see dropDisconnectedParked), and the
     // source reports it as lost. True when it parked.
     bool parkIfUnanswering();

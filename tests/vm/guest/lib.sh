@@ -181,16 +181,17 @@ wait_for() {
     return 1
 }
 
-# sysfs_write FILE VALUE SECONDS: a write that may hang in the kernel (an unbind in a slow guest has stayed in D
-# state, where `timeout` cannot kill the writer and waits for ever): the write runs in the background and is only
-# watched. 0: done; 1: the write failed; 2: still not done after SECONDS (the writer is left behind).
-sysfs_write() {
-    _r=/tmp/sysfs_write.$$.rc
+# watched SECONDS COMMAND...: a command that may hang in the kernel (an unbind or an rmmod in a slow guest has
+# stayed in D state, where `timeout` cannot kill it and waits for ever) runs in the background and is only watched.
+# 0: done; 1: it failed; 2: still not done after SECONDS (it is left behind).
+watched() {
+    _r=/tmp/watched.$$.rc
+    _t=$(($1 * 10))
+    shift
     rm -f $_r
-    # The writer reports through a file: whether a finished background child still "exists" (a zombie until the
+    # The command reports through a file: whether a finished background child still "exists" (a zombie until the
     # shell reaps it) is not a question kill -0 answers.
-    (echo "$2" >"$1" 2>/dev/null; echo $? >$_r.tmp && mv $_r.tmp $_r) &
-    _t=$(($3 * 10))
+    ("$@" 2>/dev/null; echo $? >$_r.tmp && mv $_r.tmp $_r) &
     while [ $_t -gt 0 ]; do
         if [ -s $_r ]; then
             _rc=$(cat $_r)
@@ -203,6 +204,8 @@ sysfs_write() {
     done
     return 2
 }
+# sysfs_write FILE VALUE SECONDS: echo VALUE >FILE, watched.
+sysfs_write() { watched "$3" sh -c 'echo "$1" >"$2"' sysfs_write "$2" "$1"; }
 
 # libcamera only enumerates devices udev has initialised, and hears of unplugs only from udevd: udev_start runs
 # Debian's udevd (staged by the harness) once per boot, as a real system does, and sets UDEVD=1; without it,

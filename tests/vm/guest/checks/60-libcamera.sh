@@ -42,10 +42,12 @@ FRAMES=3
 for FMT in RGB24 BGR24; do
     name=capture-libcamera-$FMT-1278x720 cfg=/tmp/lc-$FMT.toml out=/tmp/lc-$FMT.y4m
     config_for libcamera.toml "$cfg" "format=\"$FMT\""
+    t0=$(uptime_s)
     if ! timeout 120 overlayd render --config "$cfg" --frames $FRAMES --output "$out" >/tmp/$name.log 2>&1; then
         fail "$name" "overlayd render exited non-zero: $(tail -3 /tmp/$name.log | tr '\n' ' ')"
         continue
     fi
+    echo "-- render of $FRAMES frames: $t0 s to $(uptime_s) s"
     set -- $(y4m_geometry "$out")
     want=$(($4 + FRAMES * ($5 + 6)))
     size=$(wc -c <"$out")
@@ -104,13 +106,15 @@ else
 fi
 grep -E 'v4l2|zero|frames out' /tmp/lc-run.log | tail -3
 cp /tmp/lc-run.log "$ART/libcamera-run.log"
-rmmod vivid
+watched 20 rmmod vivid || echo "-- rmmod vivid failed or hung"
 
 # Unplug and re-plug, five times, under one running overlayd. libcamera (with udevd's events) reports the camera
 # disconnected; overlayd shows NO SIGNAL within the stall timeout (no_signal_timeout = 2 s, plus the first NO SIGNAL
 # frame's pacing), and when vimc is bound again the same process finds Sensor B, configures and starts it again.
 # Each sysfs write is watched, not waited for (sysfs_write): a write stuck in the kernel is a FAIL, never a hang.
-rmmod vimc && modprobe vimc && sleep 1 && udev_initialise # the default colour bars again
+# vimc again, for its default colour bars.
+watched 30 rmmod vimc || { fail libcamera-unplug-streaming "rmmod vimc failed or hung in the kernel"; exit 0; }
+watched 30 modprobe vimc && sleep 1 && udev_initialise
 OUT=/tmp/lc-unplug.y4m
 rm -f $OUT
 overlayd run --config /vm/configs/libcamera-unplug.toml >/tmp/lc-unplug.log 2>&1 &
@@ -169,5 +173,5 @@ rc=$?
 verdict libcamera-replug-sigterm $? "overlayd exited $rc after SIGTERM during a re-plug"
 grep -i -E 'signal|lost|retry|back|libcamera|disconnect' /tmp/lc-unplug.log | head -20
 cp /tmp/lc-unplug.log "$ART/libcamera-unplug.log"
-[ -z "$stuck" ] && { timeout 20 rmmod vimc || echo "-- rmmod vimc failed"; }
+[ -z "$stuck" ] && { watched 20 rmmod vimc || echo "-- rmmod vimc failed or hung"; }
 exit 0
