@@ -123,6 +123,12 @@ PROBE_X=10 PROBE_Y=340 # low on vimc's leftmost colour bar
 UNBIND=/sys/bus/platform/drivers/vimc/unbind BIND=/sys/bus/platform/drivers/vimc/bind
 fds() { ls /proc/$pid/fd 2>/dev/null | wc -l; }
 threads() { ls /proc/$pid/task 2>/dev/null | wc -l; }
+# The camera's device nodes overlayd holds open: after an unplug, 0 once it let the old camera go.
+devfds() { ls -l /proc/$pid/fd 2>/dev/null | grep -c -E '/dev/(video|media|v4l-subdev)'; }
+released() { [ "$(devfds)" = 0 ]; }
+# A kernel hang in vimc's unbind or bind is reported on the console (hung-task warnings after 20 s).
+dmesg -n 7 2>/dev/null
+echo 20 >/proc/sys/kernel/hung_task_timeout_secs 2>/dev/null
 
 wait_for 60 is_live
 verdict libcamera-unplug-streaming $? "before: $(frames) frames, last pixel ($(probe)); $(fds) fds, $(threads) threads"
@@ -136,6 +142,12 @@ for i in 1 2 3 4 5; do
     wait_for 8 is_nosignal
     ns=$?
     n1=$(frames)
+    # Bound again while the old instance's nodes are still open, vimc's bind has hung in the kernel: wait for the
+    # daemon to let the old camera go (what the unplug hand-off is for).
+    wait_for 10 released
+    rel=$?
+    echo "-- cycle $i: NO SIGNAL $ns, frames $n0 -> $n1, device fds $(devfds) (released $rel); overlayd says:"
+    tail -n 4 /tmp/lc-unplug.log | cut -c1-200
     echo "-- cycle $i: binding vimc at $(uptime_s)s"
     sysfs_write $BIND vimc.0 20
     w=$?
@@ -146,8 +158,9 @@ for i in 1 2 3 4 5; do
     kill -0 $pid 2>/dev/null
     alive=$?
     [ $i = 1 ] && fd1=$(fds) th1=$(threads)
-    detail="$detail [$i: nosignal=$ns frames $n0->$n1 live=$live alive=$alive fds=$(fds) threads=$(threads)]"
-    [ $ns = 0 ] && [ "$n1" -gt "$n0" ] && [ $live = 0 ] && [ $alive = 0 ] && cycles=$((cycles + 1))
+    detail="$detail [$i: nosignal=$ns frames $n0->$n1 released=$rel live=$live alive=$alive fds=$(fds) threads=$(threads)]"
+    echo "-- cycle $i: live $live at $(uptime_s)s"
+    [ $ns = 0 ] && [ "$n1" -gt "$n0" ] && [ $rel = 0 ] && [ $live = 0 ] && [ $alive = 0 ] && cycles=$((cycles + 1))
 done
 [ -z "$stuck" ]
 verdict libcamera-replug-sysfs $? "${stuck:-every unbind and bind returned}"
