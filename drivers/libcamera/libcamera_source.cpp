@@ -111,7 +111,6 @@ Result<StreamFormat> LibcameraSource::start()
     stop();
     if (!completions_.isValid())
         return makeError(ErrorCode::Io, std::string("eventfd: ") + std::strerror(errno));
-    dropDisconnectedParked();
     (void)events_.take(); // about a camera this source no longer holds
     auto manager = cameraManager();
     if (!manager)
@@ -300,7 +299,11 @@ Status LibcameraSource::startCamera()
 
 namespace {
 
-// Parked sessions: never stopped while libcamera may still assert on them; dropped once it reports them disconnected.
+// Sessions kept for the life of the process (never destroyed, not even at exit): cameras libcamera cannot stop.
+// A camera disconnected while running is refused stop() (-ENODEV), so its pipeline handler never stops its IPA;
+// destroying it then destroys the IPA proxy's running Thread, whose std::thread is still joinable:
+// std::terminate (libcamera 0.3.2, every pipeline with an in-process IPA: vimc, rkisp1, ipu3, rpi, simple's soft
+// ISP). A silent camera without udevd (see parkIfUnanswering) is kept for the same kind of reason.
 std::vector<std::shared_ptr<CameraSession>> &parkedSessions()
 {
     static auto *parked = new std::vector<std::shared_ptr<CameraSession>>;
@@ -334,15 +337,10 @@ bool LibcameraSource::parkIfUnanswering()
         return false;
     parkedSessions().push_back(session_);
     if (log_)
-        log_(describe() + " stopped answering: it is left running until libcamera reports it disconnected "
-                          "(stopping a camera whose device vanished unnoticed aborts in libcamera)");
+        log_(describe() + " stopped answering and libcamera cannot hear of unplugs (no udevd): it is left as it is "
+                          "(stopping a camera whose device vanished unnoticed aborts in libcamera); restart overlayd "
+                          "to use it again");
     return true;
-}
-
-void LibcameraSource::dropDisconnectedParked()
-{
-    auto &parked = parkedSessions();
-    std::erase_if(parked, [](const std::shared_ptr<CameraSession> &s) { return s->disconnected.load(); });
 }
 
 void LibcameraSource::stop()
@@ -355,12 +353,17 @@ void LibcameraSource::stop()
     session_->camera->disconnected.disconnect(this);
     session_->manager->cameraRemoved.disconnect(this);
     session_->manager->cameraAdded.disconnect(this);
-    if (session_->running && !session_->disconnected && !parkIfUnanswering()) {
+    if (session_->running && session_->disconnected) {
+        // Not stopped (libcamera refuses) and never destroyed (see parkedSessions): its camera manager stays with
+        // it, so the next start() uses that manager, which hears of the camera coming back from udevd.
+        parkedSessions().push_back(session_);
+        if (log_)
+            log_(describe() + " is kept as it is until overlayd exits (libcamera 0.3.2 can neither stop nor safely "
+                              "destroy a camera disconnected while streaming)");
+    } else if (session_->running && !parkIfUnanswering()) {
         session_->camera->stop();
         session_->running = false;
     }
-    // A disconnected camera is not stopped here: libcamera refuses (-ENODEV) and keeps it "running"; ~CameraSession
-    // asks again, harmlessly, when the last lease lets go.
     session_.reset(); // the camera is released when the last lease is given back
     presence_.closed();
     std::lock_guard lock(mutex_);

@@ -39,7 +39,8 @@ struct CameraSession {
     std::unique_ptr<RequestRecycler> recycler;
     bool acquired = false, running = false;
     // Set on libcamera's thread by Camera::disconnected. libcamera then refuses stop() (-ENODEV) instead of asserting
-    // in PipelineHandler::stop over requests a vanished device never completes, so the session may be dropped.
+    // in PipelineHandler::stop over requests a vanished device never completes; the session is then kept (see
+    // parkedSessions in libcamera_source.cpp), never destroyed.
     std::atomic<bool> disconnected{false};
 
     ~CameraSession();
@@ -53,8 +54,8 @@ public:
 
     Result<StreamFormat> start() override;
     // Stops the camera: requests in flight complete as cancelled; leases still out become no-ops when given back.
-    // A disconnected camera is let go without stopping it; one that stopped answering without libcamera reporting
-    // it disconnected is parked (see parkIfUnanswering).
+    // A camera disconnected while streaming is kept as it is (libcamera 0.3.2 can neither stop nor destroy it); one
+    // that stopped answering where libcamera cannot hear of unplugs is parked (see parkIfUnanswering).
     void stop() override;
     // An eventfd (semaphore mode) counting completed requests and camera events, written on libcamera's thread.
     int eventFd() const override { return completions_.get(); }
@@ -81,10 +82,8 @@ private:
     // libcamera (0.3.2 as 0.0.3) asserts in PipelineHandler::stop when the device vanished and libcamera has not
     // marked the camera disconnected (STREAMOFF fails with ENODEV, its requests never complete), which is what
     // happens without udevd. There, a camera that has not completed a request for a while is not stopped: it is
-    // parked until libcamera reports it disconnected (then it is dropped, see dropDisconnectedParked), and the
-    // source reports it as lost. True when it parked.
+    // parked for the life of the process, and the source reports it as lost. True when it parked.
     bool parkIfUnanswering();
-    static void dropDisconnectedParked();
 
     SourceOptions options_;
     LogFunction log_;
