@@ -67,8 +67,10 @@ Result<FrameLease> LibcameraSource::nextFrame()
 {
     if (!session_ || !session_->running)
         return makeError(ErrorCode::DeviceLost, describe() + " is not streaming");
-    if (auto failed = session_->recycler->takeError())
+    if (auto failed = session_->recycler->takeError()) {
+        suspect_ = true;
         return *failed;
+    }
     if (callbackFailed_.exchange(false))
         return makeError(ErrorCode::DeviceLost, describe() + ": a libcamera callback failed (out of memory?)");
     uint64_t one;
@@ -87,17 +89,21 @@ Result<FrameLease> LibcameraSource::nextFrame()
     if (index >= session.requests.size())
         return makeError(ErrorCode::TryAgain, describe() + ": a request that is not ours");
     libcamera::Request &request = *session.requests[index];
-    if (request.status() == libcamera::Request::RequestCancelled)
+    if (request.status() == libcamera::Request::RequestCancelled) {
+        suspect_ = true;
         return makeError(ErrorCode::DeviceLost, describe() + ": the camera cancelled a request");
+    }
     const libcamera::FrameBuffer *buffer = request.buffers().begin()->second;
     const libcamera::FrameMetadata &bufferMetadata = buffer->metadata();
     if (bufferMetadata.status != libcamera::FrameMetadata::FrameSuccess) {
+        suspect_ = true; // a vanishing device fails its buffers before libcamera hears that it went
         ++dropped_;
         session.recycler->lend();
         session.recycler->giveBack(index);
         return makeError(ErrorCode::TryAgain, describe() + ": frame marked failed by the camera");
     }
 
+    suspect_ = false;
     dropped_ += sequence_.advance(bufferMetadata.sequence);
 
     FrameMetadata metadata;

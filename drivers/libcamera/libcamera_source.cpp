@@ -111,6 +111,7 @@ Result<StreamFormat> LibcameraSource::start()
     stop();
     if (!completions_.isValid())
         return makeError(ErrorCode::Io, std::string("eventfd: ") + std::strerror(errno));
+    settlePending();
     (void)events_.take(); // about a camera this source no longer holds
     auto manager = cameraManager();
     if (!manager)
@@ -310,6 +311,23 @@ std::vector<std::shared_ptr<CameraSession>> &parkedSessions()
     return *parked;
 }
 
+// How long a camera that failed (and may be vanishing) is given for libcamera to report it disconnected before it
+// is taken to be there and stopped. udevd's remove event has been seen to come 1.4 s after vimc's unbind in a slow
+// guest, after the failed buffers: stopping at the first failure asserted in PipelineHandler::stop.
+constexpr std::chrono::seconds kUnplugGrace{5};
+
+struct PendingSession {
+    std::shared_ptr<CameraSession> session;
+    std::chrono::steady_clock::time_point deadline;
+};
+
+// Sessions waiting for libcamera's verdict (the loop's only, like every stop and start).
+std::vector<PendingSession> &pendingSessions()
+{
+    static auto *pending = new std::vector<PendingSession>;
+    return *pending;
+}
+
 // Whether libcamera hears of unplugs: its udev enumerator gets them from udevd (whose control socket this is);
 // without udevd it enumerates sysfs once and never learns that a device went away.
 bool unplugsReported()
@@ -319,22 +337,40 @@ bool unplugsReported()
 
 } // namespace
 
+void LibcameraSource::settlePending()
+{
+    auto &pending = pendingSessions();
+    const auto now = std::chrono::steady_clock::now();
+    std::erase_if(pending, [now](PendingSession &p) {
+        if (p.session->disconnected) {
+            parkedSessions().push_back(std::move(p.session));
+            return true;
+        }
+        if (now < p.deadline)
+            return false;
+        p.session->camera->stop(); // still connected after the grace: its device is there
+        p.session->running = false;
+        return true;
+    });
+}
+
 bool LibcameraSource::parkIfUnanswering()
 {
     // Three frame times, and at least a second: a camera that is merely slow is stopped as usual.
     const auto silence = std::max<std::chrono::steady_clock::duration>(
         std::chrono::seconds(1), std::chrono::milliseconds(int64_t(3000.0 / std::max(options_.fps, 0.1))));
+    bool silent;
     {
         std::lock_guard lock(mutex_);
-        if (!session_->running || session_->disconnected ||
-            std::chrono::steady_clock::now() - lastCompletion_ < silence)
-            return false;
+        silent = std::chrono::steady_clock::now() - lastCompletion_ >= silence;
     }
-    // With udevd, libcamera marks a vanished camera disconnected within milliseconds (and stop() is then refused,
-    // not asserted), long before a stall timeout: a silent camera that is still connected is there, merely stalled
-    // or slow to start, and is stopped as usual.
-    if (unplugsReported())
+    if (!session_->running || session_->disconnected || (!silent && !suspect_))
         return false;
+    if (unplugsReported()) {
+        // libcamera will say within the grace whether the device went; until then the session waits, unstopped.
+        pendingSessions().push_back({session_, std::chrono::steady_clock::now() + kUnplugGrace});
+        return true;
+    }
     parkedSessions().push_back(session_);
     if (log_)
         log_(describe() + " stopped answering and libcamera cannot hear of unplugs (no udevd): it is left as it is "
@@ -365,6 +401,7 @@ void LibcameraSource::stop()
         session_->running = false;
     }
     session_.reset(); // the camera is released when the last lease is given back
+    suspect_ = false;
     presence_.closed();
     std::lock_guard lock(mutex_);
     completed_.clear();

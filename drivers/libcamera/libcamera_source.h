@@ -80,10 +80,14 @@ private:
     // The loop: applies the handed-over camera events; true when the open camera is gone.
     bool takeEvents();
     // libcamera (0.3.2 as 0.0.3) asserts in PipelineHandler::stop when the device vanished and libcamera has not
-    // marked the camera disconnected (STREAMOFF fails with ENODEV, its requests never complete), which is what
-    // happens without udevd. There, a camera that has not completed a request for a while is not stopped: it is
-    // parked for the life of the process, and the source reports it as lost. True when it parked.
+    // marked the camera disconnected yet (STREAMOFF fails with ENODEV, its requests never complete). A camera that
+    // failed (suspect_) or went silent is therefore not stopped at once: with udevd it waits, unstopped, for
+    // libcamera's verdict (settlePending); without udevd, where libcamera never hears of unplugs, it is parked for
+    // the life of the process. The source reports it as lost either way. True when it was not stopped.
     bool parkIfUnanswering();
+    // The loop, at start(): pending sessions that libcamera since marked disconnected are kept for good; those
+    // still connected after kUnplugGrace are stopped (their device is there: stopping them is safe).
+    static void settlePending();
 
     SourceOptions options_;
     LogFunction log_;
@@ -101,6 +105,8 @@ private:
     // A callback on libcamera's thread failed (an exception cannot cross into libcamera): the loop then treats the
     // camera as lost and starts it again.
     std::atomic<bool> callbackFailed_{false};
+    // The loop's: the last frame failed, or the camera failed a request or a re-queue (the device may be going).
+    bool suspect_ = false;
 
     SequenceCounter sequence_;
     uint64_t dropped_ = 0;
