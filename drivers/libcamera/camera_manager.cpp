@@ -12,24 +12,62 @@
 
 namespace overlayd::lc {
 
+namespace {
+
+// `mutex` also covers a manager's stop and deletion (its deleter), so that a new manager is never created while the
+// last one is still being deleted: libcamera aborts at a second CameraManager. A shared_ptr to a manager is never
+// dropped while `mutex` is held (it may be the last one; its deleter takes the mutex).
+struct SharedManager {
+    std::mutex mutex;
+    std::weak_ptr<libcamera::CameraManager> manager;
+    bool retired = false;
+};
+
+SharedManager &sharedManager()
+{
+    static auto *shared = new SharedManager; // never destroyed: a manager may be let go during exit
+    return *shared;
+}
+
+} // namespace
+
+void retireCameraManager()
+{
+    SharedManager &shared = sharedManager();
+    std::lock_guard lock(shared.mutex);
+    shared.retired = !shared.manager.expired();
+}
+
 Result<std::shared_ptr<libcamera::CameraManager>> cameraManager()
 {
-    static std::mutex mutex;
-    static std::weak_ptr<libcamera::CameraManager> shared;
-    std::lock_guard lock(mutex);
-    if (auto manager = shared.lock())
+    SharedManager &shared = sharedManager();
+    std::shared_ptr<libcamera::CameraManager> manager;
+    std::unique_lock lock(shared.mutex);
+    manager = shared.manager.lock();
+    if (manager && !shared.retired)
         return manager;
+    if (manager) {
+        lock.unlock();
+        manager.reset(); // outside the lock: it may be the last holder
+        return makeError(ErrorCode::DeviceLost, "libcamera's previous camera manager is still held (a frame of the "
+                                                "stopped camera is still out); a fresh one starts once it is let go");
+    }
+    shared.retired = false;
     // libcamera logs every start at INFO on stderr; its own LIBCAMERA_LOG_LEVELS still wins when a user sets it.
     if (!std::getenv("LIBCAMERA_LOG_LEVELS"))
         libcamera::logSetLevel("*", "WARN");
-    // Stopped before it is deleted, as libcamera asks.
-    std::shared_ptr<libcamera::CameraManager> manager(new libcamera::CameraManager, [](libcamera::CameraManager *m) {
+    // Stopped before it is deleted, as libcamera asks; under the mutex (see SharedManager).
+    manager.reset(new libcamera::CameraManager, [](libcamera::CameraManager *m) {
+        std::lock_guard deleting(sharedManager().mutex);
         m->stop();
         delete m;
     });
-    if (const int r = manager->start(); r < 0)
+    if (const int r = manager->start(); r < 0) {
+        lock.unlock();
+        manager.reset();
         return makeError(ErrorCode::Io, std::string("starting libcamera's camera manager: ") + std::strerror(-r));
-    shared = manager;
+    }
+    shared.manager = manager;
     return manager;
 }
 

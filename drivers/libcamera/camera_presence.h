@@ -31,6 +31,9 @@ public:
     explicit CameraPresence(std::string spec) : spec_(std::move(spec)) {}
 
     void opened(const CameraIdentity &camera);
+    // The camera an earlier source of the same spec opened in this process: the daemon makes a new source for every
+    // retry, and the retry must open the camera that went away, as if this presence had opened it.
+    void remember(const CameraIdentity &camera) { remembered_ = camera; }
     // The source stopped on its own account (not a loss): a later open chooses by the spec again.
     void closed();
     void apply(const CameraEvent &event);

@@ -21,7 +21,6 @@ void LibcameraSource::onRequestCompleted(libcamera::Request *request)
     try {
         std::lock_guard lock(mutex_);
         completed_.push_back(unsigned(request->cookie()));
-        lastCompletion_ = std::chrono::steady_clock::now();
     } catch (...) {
         callbackFailed_ = true; // a completion lost (out of memory): the loop restarts the camera
     }
@@ -67,10 +66,8 @@ Result<FrameLease> LibcameraSource::nextFrame()
 {
     if (!session_ || !session_->running)
         return makeError(ErrorCode::DeviceLost, describe() + " is not streaming");
-    if (auto failed = session_->recycler->takeError()) {
-        suspect_ = true;
+    if (auto failed = session_->recycler->takeError())
         return *failed;
-    }
     if (callbackFailed_.exchange(false))
         return makeError(ErrorCode::DeviceLost, describe() + ": a libcamera callback failed (out of memory?)");
     uint64_t one;
@@ -89,21 +86,17 @@ Result<FrameLease> LibcameraSource::nextFrame()
     if (index >= session.requests.size())
         return makeError(ErrorCode::TryAgain, describe() + ": a request that is not ours");
     libcamera::Request &request = *session.requests[index];
-    if (request.status() == libcamera::Request::RequestCancelled) {
-        suspect_ = true;
+    if (request.status() == libcamera::Request::RequestCancelled)
         return makeError(ErrorCode::DeviceLost, describe() + ": the camera cancelled a request");
-    }
     const libcamera::FrameBuffer *buffer = request.buffers().begin()->second;
     const libcamera::FrameMetadata &bufferMetadata = buffer->metadata();
     if (bufferMetadata.status != libcamera::FrameMetadata::FrameSuccess) {
-        suspect_ = true; // a vanishing device fails its buffers before libcamera hears that it went
         ++dropped_;
         session.recycler->lend();
         session.recycler->giveBack(index);
         return makeError(ErrorCode::TryAgain, describe() + ": frame marked failed by the camera");
     }
 
-    suspect_ = false;
     dropped_ += sequence_.advance(bufferMetadata.sequence);
 
     FrameMetadata metadata;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include <sys/eventfd.h>
@@ -14,6 +16,7 @@
 #include "drivers/libcamera/camera_manager.h"
 #include "drivers/libcamera/libcamera_controls.h"
 #include "drivers/libcamera/libcamera_formats.h"
+#include "drivers/libcamera/vanished_device_ioctl.h"
 
 namespace overlayd::lc {
 
@@ -90,11 +93,46 @@ CameraSession::~CameraSession()
         camera->release();
 }
 
+namespace {
+
+// The camera each spec last opened, for the life of the process: the daemon makes a new source for every retry
+// (SourceSupervisor::open), and CameraPresence's choice of the camera that went away must outlive the source.
+struct OpenedCameras {
+    std::mutex mutex;
+    std::map<std::string, CameraIdentity> bySpec;
+};
+
+OpenedCameras &openedCameras()
+{
+    static auto *opened = new OpenedCameras; // never destroyed: sources may stop during exit
+    return *opened;
+}
+
+std::optional<CameraIdentity> recallOpened(const std::string &spec)
+{
+    OpenedCameras &opened = openedCameras();
+    std::lock_guard lock(opened.mutex);
+    const auto found = opened.bySpec.find(spec);
+    return found == opened.bySpec.end() ? std::nullopt : std::optional<CameraIdentity>(found->second);
+}
+
+void storeOpened(const std::string &spec, const CameraIdentity &camera)
+{
+    OpenedCameras &opened = openedCameras();
+    std::lock_guard lock(opened.mutex);
+    opened.bySpec[spec] = camera;
+}
+
+} // namespace
+
 LibcameraSource::LibcameraSource(SourceOptions options, LogFunction log)
     : options_(std::move(options)), log_(std::move(log)),
       completions_(::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK | EFD_SEMAPHORE)), events_([this] { signal(); }),
       presence_(options_.libcamera.camera)
-{}
+{
+    if (const auto earlier = recallOpened(options_.libcamera.camera))
+        presence_.remember(*earlier);
+}
 
 LibcameraSource::~LibcameraSource()
 {
@@ -111,7 +149,6 @@ Result<StreamFormat> LibcameraSource::start()
     stop();
     if (!completions_.isValid())
         return makeError(ErrorCode::Io, std::string("eventfd: ") + std::strerror(errno));
-    settlePending();
     (void)events_.take(); // about a camera this source no longer holds
     auto manager = cameraManager();
     if (!manager)
@@ -130,10 +167,10 @@ Result<StreamFormat> LibcameraSource::start()
     session_ = std::move(session);
     const bool again = presence_.remembered().has_value();
     presence_.opened({(*camera)->id(), cameraModel(**camera)});
+    storeOpened(options_.libcamera.camera, *presence_.remembered());
     {
         std::lock_guard lock(mutex_);
         completed_.clear();
-        lastCompletion_ = std::chrono::steady_clock::now(); // the first frame gets the same grace as any other
     }
     sequence_.restart();
     auto format = configure();
@@ -282,7 +319,7 @@ Status LibcameraSource::startCamera()
         controls->set(limits, {frameUs, frameUs});
     }
     session.camera->requestCompleted.connect(this, &LibcameraSource::onRequestCompleted);
-    // The session's own flag outlives this source (a parked session); the source's slot hands the event over.
+    // The session's own flag (its destructor's guide); the source's slot hands the event over to the loop.
     CameraSession *raw = &session;
     session.camera->disconnected.connect(raw, [raw] { raw->disconnected = true; });
     session.camera->disconnected.connect(this, &LibcameraSource::onDisconnected);
@@ -298,87 +335,6 @@ Status LibcameraSource::startCamera()
     return Ok{};
 }
 
-namespace {
-
-// Sessions kept for the life of the process (never destroyed, not even at exit): cameras libcamera cannot stop.
-// A camera disconnected while running is refused stop() (-ENODEV), so its pipeline handler never stops its IPA;
-// destroying it then destroys the IPA proxy's running Thread, whose std::thread is still joinable:
-// std::terminate (libcamera 0.3.2, every pipeline with an in-process IPA: vimc, rkisp1, ipu3, rpi, simple's soft
-// ISP). A silent camera without udevd (see parkIfUnanswering) is kept for the same kind of reason.
-std::vector<std::shared_ptr<CameraSession>> &parkedSessions()
-{
-    static auto *parked = new std::vector<std::shared_ptr<CameraSession>>;
-    return *parked;
-}
-
-// How long a camera that failed (and may be vanishing) is given for libcamera to report it disconnected before it
-// is taken to be there and stopped. udevd's remove event has been seen to come 1.4 s after vimc's unbind in a slow
-// guest, after the failed buffers: stopping at the first failure asserted in PipelineHandler::stop.
-constexpr std::chrono::seconds kUnplugGrace{5};
-
-struct PendingSession {
-    std::shared_ptr<CameraSession> session;
-    std::chrono::steady_clock::time_point deadline;
-};
-
-// Sessions waiting for libcamera's verdict (the loop's only, like every stop and start).
-std::vector<PendingSession> &pendingSessions()
-{
-    static auto *pending = new std::vector<PendingSession>;
-    return *pending;
-}
-
-// Whether libcamera hears of unplugs: its udev enumerator gets them from udevd (whose control socket this is);
-// without udevd it enumerates sysfs once and never learns that a device went away.
-bool unplugsReported()
-{
-    return ::access("/run/udev/control", F_OK) == 0;
-}
-
-} // namespace
-
-void LibcameraSource::settlePending()
-{
-    auto &pending = pendingSessions();
-    const auto now = std::chrono::steady_clock::now();
-    std::erase_if(pending, [now](PendingSession &p) {
-        if (p.session->disconnected) {
-            parkedSessions().push_back(std::move(p.session));
-            return true;
-        }
-        if (now < p.deadline)
-            return false;
-        p.session->camera->stop(); // still connected after the grace: its device is there
-        p.session->running = false;
-        return true;
-    });
-}
-
-bool LibcameraSource::parkIfUnanswering()
-{
-    // Three frame times, and at least a second: a camera that is merely slow is stopped as usual.
-    const auto silence = std::max<std::chrono::steady_clock::duration>(
-        std::chrono::seconds(1), std::chrono::milliseconds(int64_t(3000.0 / std::max(options_.fps, 0.1))));
-    bool silent;
-    {
-        std::lock_guard lock(mutex_);
-        silent = std::chrono::steady_clock::now() - lastCompletion_ >= silence;
-    }
-    if (!session_->running || session_->disconnected || (!silent && !suspect_))
-        return false;
-    if (unplugsReported()) {
-        // libcamera will say within the grace whether the device went; until then the session waits, unstopped.
-        pendingSessions().push_back({session_, std::chrono::steady_clock::now() + kUnplugGrace});
-        return true;
-    }
-    parkedSessions().push_back(session_);
-    if (log_)
-        log_(describe() + " stopped answering and libcamera cannot hear of unplugs (no udevd): it is left as it is "
-                          "(stopping a camera whose device vanished unnoticed aborts in libcamera); restart overlayd "
-                          "to use it again");
-    return true;
-}
-
 void LibcameraSource::stop()
 {
     if (!session_)
@@ -389,19 +345,20 @@ void LibcameraSource::stop()
     session_->camera->disconnected.disconnect(this);
     session_->manager->cameraRemoved.disconnect(this);
     session_->manager->cameraAdded.disconnect(this);
-    if (session_->running && session_->disconnected) {
-        // Not stopped (libcamera refuses) and never destroyed (see parkedSessions): its camera manager stays with
-        // it, so the next start() uses that manager, which hears of the camera coming back from udevd.
-        parkedSessions().push_back(session_);
-        if (log_)
-            log_(describe() + " is kept as it is until overlayd exits (libcamera 0.3.2 can neither stop nor safely "
-                              "destroy a camera disconnected while streaming)");
-    } else if (session_->running && !parkIfUnanswering()) {
+    if (session_->running && !session_->disconnected) {
+        // A device that vanished unnoticed by libcamera (every pipeline but uvcvideo) answers STREAMOFF and QBUF
+        // with ENODEV; the ioctl shim reports them done, so the stop completes instead of asserting.
+        const uint64_t vanishedBefore = vanishedDeviceCalls();
         session_->camera->stop();
         session_->running = false;
+        if (vanishedDeviceCalls() != vanishedBefore && log_)
+            log_(describe() + " was unplugged (its device is gone): stopped, waiting for it to come back");
     }
-    session_.reset(); // the camera is released when the last lease is given back
-    suspect_ = false;
+    // A camera libcamera marked disconnected refuses stop() and release() (-ENODEV): it is dropped as it is
+    // (uvcvideo, the only pipeline that reports unplugs in 0.3.2, runs no IPA thread, so destroying it is safe).
+    session_.reset(); // the camera is released, and the manager let go, when the last lease is given back
+    // The manager may still list the camera that went away; a retry must get a fresh one (see retireCameraManager).
+    retireCameraManager();
     presence_.closed();
     std::lock_guard lock(mutex_);
     completed_.clear();

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <atomic>
-#include <chrono>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -38,9 +37,7 @@ struct CameraSession {
     std::vector<MappedFrameBuffer> buffers; // by request index
     std::unique_ptr<RequestRecycler> recycler;
     bool acquired = false, running = false;
-    // Set on libcamera's thread by Camera::disconnected. libcamera then refuses stop() (-ENODEV) instead of asserting
-    // in PipelineHandler::stop over requests a vanished device never completes; the session is then kept (see
-    // parkedSessions in libcamera_source.cpp), never destroyed.
+    // Set on libcamera's thread by Camera::disconnected; libcamera then refuses stop() and release() (-ENODEV).
     std::atomic<bool> disconnected{false};
 
     ~CameraSession();
@@ -53,9 +50,9 @@ public:
     ~LibcameraSource() override;
 
     Result<StreamFormat> start() override;
-    // Stops the camera: requests in flight complete as cancelled; leases still out become no-ops when given back.
-    // A camera disconnected while streaming is kept as it is (libcamera 0.3.2 can neither stop nor destroy it); one
-    // that stopped answering where libcamera cannot hear of unplugs is parked (see parkIfUnanswering).
+    // Stops the camera, also one whose device vanished (see vanished_device_ioctl.h): requests in flight complete as
+    // cancelled; leases still out become no-ops when given back. The camera manager is retired: the next start()
+    // enumerates afresh (see retireCameraManager).
     void stop() override;
     // An eventfd (semaphore mode) counting completed requests and camera events, written on libcamera's thread.
     int eventFd() const override { return completions_.get(); }
@@ -79,15 +76,6 @@ private:
     void signal();
     // The loop: applies the handed-over camera events; true when the open camera is gone.
     bool takeEvents();
-    // libcamera (0.3.2 as 0.0.3) asserts in PipelineHandler::stop when the device vanished and libcamera has not
-    // marked the camera disconnected yet (STREAMOFF fails with ENODEV, its requests never complete). A camera that
-    // failed (suspect_) or went silent is therefore not stopped at once: with udevd it waits, unstopped, for
-    // libcamera's verdict (settlePending); without udevd, where libcamera never hears of unplugs, it is parked for
-    // the life of the process. The source reports it as lost either way. True when it was not stopped.
-    bool parkIfUnanswering();
-    // The loop, at start(): pending sessions that libcamera since marked disconnected are kept for good; those
-    // still connected after kUnplugGrace are stopped (their device is there: stopping them is safe).
-    static void settlePending();
 
     SourceOptions options_;
     LogFunction log_;
@@ -97,16 +85,13 @@ private:
     StreamFormat format_{};
     std::string name_;
 
-    std::mutex mutex_; // guards completed_ and lastCompletion_ against libcamera's thread
-    std::chrono::steady_clock::time_point lastCompletion_{};
+    std::mutex mutex_; // guards completed_ against libcamera's thread
     std::deque<unsigned> completed_;
     CameraEventQueue events_;
     CameraPresence presence_; // the loop's only
     // A callback on libcamera's thread failed (an exception cannot cross into libcamera): the loop then treats the
     // camera as lost and starts it again.
     std::atomic<bool> callbackFailed_{false};
-    // The loop's: the last frame failed, or the camera failed a request or a re-queue (the device may be going).
-    bool suspect_ = false;
 
     SequenceCounter sequence_;
     uint64_t dropped_ = 0;

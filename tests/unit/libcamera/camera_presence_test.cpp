@@ -108,5 +108,18 @@ TEST(CameraPresence, AStopThatIsNoLossForgetsNothingButWaitsForNothing)
     EXPECT_EQ(presence.choose({kSensorA, kSensorB}), 1u);
 }
 
+TEST(CameraPresence, ARememberedCameraIsChosenAsIfThisPresenceHadOpenedIt)
+{
+    // The daemon's next retry is a new source: it is told which camera the last one opened.
+    CameraPresence presence("0");
+    presence.remember(kSensorB);
+    EXPECT_EQ(presence.state(), CameraPresence::State::Closed);
+    EXPECT_EQ(presence.choose({kSensorA}), std::nullopt); // not whatever is first now
+    EXPECT_EQ(presence.choose({kSensorA, kSensorB}), 1u);
+    EXPECT_EQ(presence.awaited(), "'Sensor B' (platform/vimc.0 Sensor B)");
+    presence.opened(kSensorB);
+    EXPECT_EQ(presence.state(), CameraPresence::State::Streaming);
+}
+
 } // namespace
 } // namespace overlayd::lc
