@@ -53,9 +53,13 @@ Result<std::shared_ptr<libcamera::CameraManager>> cameraManager()
                                                 "stopped camera is still out); a fresh one starts once it is let go");
     }
     shared.retired = false;
-    // libcamera logs every start at INFO on stderr; its own LIBCAMERA_LOG_LEVELS still wins when a user sets it.
-    if (!std::getenv("LIBCAMERA_LOG_LEVELS"))
-        libcamera::logSetLevel("*", "WARN");
+    // libcamera logs every start (and every configure) at INFO on stderr, in its "Camera" category; a retry starts a
+    // manager every few seconds. logSetLevel() matches an existing category by its exact name (0.3.2: "*" matches
+    // none, and a category exists once first used), so it is set again after the start: the process's first start
+    // is logged, later ones are not. libcamera's own LIBCAMERA_LOG_LEVELS still wins when a user sets it.
+    const bool quiet = !std::getenv("LIBCAMERA_LOG_LEVELS");
+    if (quiet)
+        libcamera::logSetLevel("Camera", "WARN");
     // Stopped before it is deleted, as libcamera asks; under the mutex (see SharedManager).
     manager.reset(new libcamera::CameraManager, [](libcamera::CameraManager *m) {
         std::lock_guard deleting(sharedManager().mutex);
@@ -67,6 +71,8 @@ Result<std::shared_ptr<libcamera::CameraManager>> cameraManager()
         manager.reset();
         return makeError(ErrorCode::Io, std::string("starting libcamera's camera manager: ") + std::strerror(-r));
     }
+    if (quiet)
+        libcamera::logSetLevel("Camera", "WARN");
     shared.manager = manager;
     return manager;
 }

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The shared CameraManager (libcamera's own, no camera needed): shared while not retired; once retired it is not
 // handed out again, and a fresh manager starts when its last holder let go.
+#include <cstdlib>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "drivers/libcamera/camera_manager.h"
@@ -42,6 +45,22 @@ TEST(CameraManager, RetiringWhenNoneRunsRetiresNothing)
     ASSERT_TRUE(manager) << manager.error().message;
     auto again = cameraManager();
     ASSERT_TRUE(again) << again.error().message;
+}
+
+TEST(CameraManager, OnlyTheFirstStartIsLoggedByLibcamera)
+{
+    // A retry starts a fresh manager every few seconds: libcamera's "libcamera v0.3.2" INFO line once, not each time.
+    {
+        auto first = cameraManager();
+        ASSERT_TRUE(first) << first.error().message;
+    }
+    ::testing::internal::CaptureStderr();
+    {
+        auto again = cameraManager();
+        ASSERT_TRUE(again) << again.error().message;
+    }
+    const std::string logged = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(logged.find("libcamera v"), std::string::npos) << logged;
 }
 
 } // namespace
