@@ -149,7 +149,7 @@ for i in 1 2 3 4 5; do
     n1=$(frames)
     # The old instance's nodes, closed once overlayd stopped and released the camera and let its manager go:
     # required before the bind (a manager still listing the camera aborts when it comes back).
-    wait_for 3 released
+    wait_for 10 released
     rel=$?
     echo "-- cycle $i: NO SIGNAL $ns, frames $n0 -> $n1, device fds $(devfds) (released $rel); overlayd says:"
     tail -n 4 /tmp/lc-unplug.log | cut -c1-200
