@@ -74,6 +74,8 @@ Result<FrameLease> LibcameraSource::nextFrame()
     const bool woken = ::read(completions_.get(), &one, sizeof(one)) == sizeof(one);
     if (takeEvents())
         return makeError(ErrorCode::DeviceLost, describe() + " was unplugged");
+    if (removal_.takeRemoval(devices_))
+        return makeError(ErrorCode::DeviceLost, describe() + " was unplugged (its device node went away)");
     unsigned index = 0;
     {
         std::lock_guard lock(mutex_);

@@ -8,10 +8,12 @@
 #include <optional>
 #include <sstream>
 
+#include <sys/epoll.h>
 #include <sys/eventfd.h>
 #include <unistd.h>
 
 #include <libcamera/control_ids.h>
+#include <libcamera/property_ids.h>
 
 #include "drivers/libcamera/camera_manager.h"
 #include "drivers/libcamera/libcamera_controls.h"
@@ -132,6 +134,17 @@ LibcameraSource::LibcameraSource(SourceOptions options, LogFunction log)
 {
     if (const auto earlier = recallOpened(options_.libcamera.camera))
         presence_.remember(*earlier);
+    // One fd for the loop: completions and camera events, and the kernel's device removals.
+    if (removal_.fd() >= 0 && completions_.isValid()) {
+        poller_ = UniqueFd(::epoll_create1(EPOLL_CLOEXEC));
+        for (const int fd : {completions_.get(), removal_.fd()}) {
+            epoll_event event{};
+            event.events = EPOLLIN;
+            event.data.fd = fd;
+            if (poller_.isValid() && ::epoll_ctl(poller_.get(), EPOLL_CTL_ADD, fd, &event) < 0)
+                poller_.reset();
+        }
+    }
 }
 
 LibcameraSource::~LibcameraSource()
@@ -164,6 +177,10 @@ Result<StreamFormat> LibcameraSource::start()
         return makeError(ErrorCode::DeviceLost,
                          describe() + ": acquire failed: " + std::strerror(-r) + " (another program has it?)");
     session->acquired = true;
+    devices_.clear();
+    if (const auto nodes = (*camera)->properties().get(libcamera::properties::SystemDevices))
+        for (const int64_t node : *nodes)
+            devices_.push_back(dev_t(node));
     session_ = std::move(session);
     const bool again = presence_.remembered().has_value();
     presence_.opened({(*camera)->id(), cameraModel(**camera)});

@@ -18,6 +18,7 @@
 #include "drivers/frame_source.h"
 #include "drivers/libcamera/camera_event_queue.h"
 #include "drivers/libcamera/camera_presence.h"
+#include "drivers/libcamera/device_removal_watch.h"
 #include "drivers/libcamera/mapped_frame_buffer.h"
 #include "drivers/libcamera/request_recycler.h"
 #include "drivers/source_options.h"
@@ -54,8 +55,9 @@ public:
     // cancelled; leases still out become no-ops when given back. The camera manager is retired: the next start()
     // enumerates afresh (see retireCameraManager).
     void stop() override;
-    // An eventfd (semaphore mode) counting completed requests and camera events, written on libcamera's thread.
-    int eventFd() const override { return completions_.get(); }
+    // Readable when a request completed or a camera event came (an eventfd in semaphore mode, written on
+    // libcamera's thread) or a kernel uevent came (the removal watch): an epoll set of both.
+    int eventFd() const override { return poller_.isValid() ? poller_.get() : completions_.get(); }
     Result<FrameLease> nextFrame() override;
     std::string describe() const override;
 
@@ -80,6 +82,9 @@ private:
     SourceOptions options_;
     LogFunction log_;
     UniqueFd completions_;
+    DeviceRemovalWatch removal_;
+    UniqueFd poller_;
+    std::vector<dev_t> devices_; // the open camera's device nodes (libcamera's SystemDevices)
     std::shared_ptr<CameraSession> session_;
     libcamera::Stream *stream_ = nullptr;
     StreamFormat format_{};

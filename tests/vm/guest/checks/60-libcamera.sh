@@ -182,6 +182,11 @@ verdict libcamera-replug-logged $? "$(grep -c 'streaming again' /tmp/lc-unplug.l
 gone=$(grep -c 'was unplugged (its device is gone): stopped' /tmp/lc-unplug.log)
 [ "$gone" -ge 5 ]
 verdict libcamera-replug-stopped $? "$gone stops of a camera whose device was gone (5 wanted)"
+# Each loss came from the kernel's removal of the camera's node (its uevent), not from the stall timeout.
+prompt=$(grep -c 'was unplugged (its device node went away)' /tmp/lc-unplug.log)
+[ "$prompt" -ge 5 ]
+verdict libcamera-replug-uevent $? "$prompt losses reported on the node's removal uevent, $(grep -c 'no frame for' \
+    /tmp/lc-unplug.log) on the stall timeout (5 and 0 wanted)"
 
 # SIGTERM while the camera is being picked up again: unbind, bind, and the signal at once.
 if [ -z "$stuck" ]; then
