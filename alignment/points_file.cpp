@@ -14,7 +14,7 @@
 #include <sstream>
 #include <utility>
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 namespace {
 
@@ -144,4 +144,4 @@ Result<std::vector<Correspondence>> readPointsFile(const std::string &path)
     return parsePoints(text, path);
 }
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 namespace {
 
@@ -147,4 +147,4 @@ Result<std::vector<Correspondence>> parsePointsJson(const std::string &text, con
     return points;
 }
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -70,19 +70,19 @@ Result<CameraSpec> cameraFromJson(std::string_view json, const CameraSpec &live,
         return makeError(ErrorCode::InvalidArgument, "camera: " + why);
     const toml::table &table = *converted->as_table();
 
-    config::Problems problems("request");
-    config::TableReader camera(table, "camera", problems);
+    Problems problems("request");
+    TableReader camera(table, "camera", problems);
     CameraSpec spec = live;
     for (std::string_view refused : {"calibration", "frame"})
         if (camera.has(refused))
             camera.problem(refused, "not through the API: it names a file or frame of the config file");
     bool posed = false;
-    for (std::string_view key : config::kPoseKeys)
+    for (std::string_view key : kPoseKeys)
         posed = posed || table.contains(key);
     if (posed)
-        config::readPose(camera, spec.pose);
-    config::CameraKeys keys;
-    config::readIntrinsics(camera, ".", spec, keys);
+        readPose(camera, spec.pose);
+    CameraKeys keys;
+    readIntrinsics(camera, ".", spec, keys);
     camera.finish();
     if (problems.empty()) {
         if (auto built = spec.build(width, height); !built)

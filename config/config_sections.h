@@ -8,7 +8,7 @@
 #include "config/daemon_config.h"
 #include "config/toml_reader.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 class SceneImages;
 
@@ -33,12 +33,12 @@ void readDaemon(TableReader &root, DaemonSettings &out);
 void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
 void readSinks(TableReader &root, std::vector<SinkOptions> &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
-void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
+void readGpio(TableReader &root, const std::vector<Annotation> &annotations, GpioOptions &out);
 // [[input.text]] (after the annotations: their text slots are what inputs may feed).
 void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
-                inputs::InputOptions &out);
+                InputOptions &out);
 // [http]: the server's options (see http/http_options.h).
-void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out);
+void readHttp(TableReader &root, const std::string &baseDirectory, HttpOptions &out);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
 bool readPose(TableReader &camera, Pose &out);
@@ -58,4 +58,4 @@ Shape readFrustumShape(TableReader &table, const std::string &baseDirectory);
 Shape readImageShape(TableReader &table, const std::string &baseDirectory, SceneImages &images);
 std::optional<Style> readStyle(TableReader &style, const Style &base);
 
-} // namespace overlayd::config
+} // namespace overlayd

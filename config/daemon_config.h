@@ -28,9 +28,9 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
-    gpio::GpioOptions gpio;
-    http::HttpOptions http;
-    inputs::InputOptions inputs;
+    GpioOptions gpio;
+    HttpOptions http;
+    InputOptions inputs;
     DaemonSettings daemon;
 };
 

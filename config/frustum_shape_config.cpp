@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace overlayd::config {
+namespace overlayd {
 
 Shape readFrustumShape(TableReader &t, const std::string &baseDirectory)
 {
@@ -34,4 +34,4 @@ Shape readFrustumShape(TableReader &t, const std::string &baseDirectory)
     return s;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

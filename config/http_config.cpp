@@ -6,42 +6,42 @@
 #include "http/listen_address.h"
 #include "http/token_file.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
-void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out)
+void readHttp(TableReader &root, const std::string &baseDirectory, HttpOptions &out)
 {
     auto table = root.table("http");
     if (!table)
         return;
-    if (!http::httpBuiltIn()) { // refused here, so that check-config refuses what run could not do
+    if (!httpBuiltIn()) { // refused here, so that check-config refuses what run could not do
         root.problem("http", "this overlayd was built without the HTTP server (CMake option OVERLAYD_HTTP, "
                              "libmicrohttpd): [http] is not available");
         return;
     }
     out.enabled = true;
-    std::optional<http::ListenAddress> address;
+    std::optional<ListenAddress> address;
     if (auto listen = table->string("listen")) {
         out.listen = *listen;
-        if (auto parsed = http::parseListenAddress(*listen))
+        if (auto parsed = parseListenAddress(*listen))
             address = *parsed;
         else
             table->problem("listen", parsed.error().message);
-        if (Status folder = address ? http::checkListenFolder(*address) : Status(Ok{}); !folder)
+        if (Status folder = address ? checkListenFolder(*address) : Status(Ok{}); !folder)
             table->problem("listen", "'" + *listen + "': " + folder.error().message);
     } else {
-        address = *http::parseListenAddress(out.listen);
+        address = *parseListenAddress(out.listen);
     }
-    if (auto clients = table->integer("max_clients", 1, http::kMaxClients))
+    if (auto clients = table->integer("max_clients", 1, kMaxClients))
         out.maxClients = unsigned(*clients);
-    if (auto fps = table->positive("stream_fps", http::kMaxStreamFps))
+    if (auto fps = table->positive("stream_fps", kMaxStreamFps))
         out.streamFps = *fps;
     if (auto quality = table->integer("jpeg_quality", 1, 100))
         out.jpegQuality = int(*quality);
-    if (auto control = table->choice<http::ControlMode>(
+    if (auto control = table->choice<ControlMode>(
             "control",
-            {{"off", http::ControlMode::Off}, {"token", http::ControlMode::Token}, {"open", http::ControlMode::Open}}))
+            {{"off", ControlMode::Off}, {"token", ControlMode::Token}, {"open", ControlMode::Open}}))
         out.control = *control;
-    if (out.control == http::ControlMode::Open && address && !address->isLocal())
+    if (out.control == ControlMode::Open && address && !address->isLocal())
         table->problem("control", "\"open\" lets anyone who can connect change the scene: only on loopback or a "
                                   "unix socket, not " +
                                       address->describe() + " (use \"token\")");
@@ -49,13 +49,13 @@ void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOpt
         out.pageDirectory = resolvePath(baseDirectory, *page);
     if (auto tokenFile = table->string("token_file"))
         out.tokenFile = resolvePath(baseDirectory, *tokenFile);
-    if (out.control == http::ControlMode::Token) {
+    if (out.control == ControlMode::Token) {
         if (out.tokenFile.empty())
             table->problem("token_file", "missing: control = \"token\" needs the file that holds the token");
-        else if (auto token = http::readTokenFile(out.tokenFile); !token)
+        else if (auto token = readTokenFile(out.tokenFile); !token)
             table->problem("token_file", token.error().message); // what the server would refuse when it starts
     }
     table->finish();
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

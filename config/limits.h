@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-namespace overlayd::config {
+namespace overlayd {
 
 // Counts: the first entry over the limit is refused at its own position, before anything is built from it.
 inline constexpr size_t kMaxFrames = 256;       // [[frame]]
@@ -13,10 +13,10 @@ inline constexpr size_t kMaxSinks = 16;         // [[sink]]
 inline constexpr size_t kMaxDashEntries = 16;   // style.dash
 inline constexpr size_t kMaxDistanceMarks = 32; // guide-lines distance_marks
 inline constexpr size_t kMaxColours = 16;       // any list of colours
-inline constexpr size_t kMaxCoefficients = 16;  // lists of numbers with a fixed meaning (window, distortion)
+inline constexpr size_t kMaxFixedListEntries = 16;  // lists of numbers with a fixed meaning (window, distortion)
 
 // Lengths in bytes.
-inline constexpr size_t kMaxTextBytes = 1024; // a label's or a text annotation's text
+inline constexpr size_t kMaxAnnotationTextBytes = 1024; // a label's or a text annotation's text
 inline constexpr size_t kMaxNameBytes = 256;  // names of annotations, frames, layers
 
 // Image annotations: each file, and what all of a scene's image annotations decode to together (4 images of 4096 x
@@ -37,4 +37,4 @@ inline constexpr double kMinStatsIntervalSec = 0.1; // daemon.stats_interval, wh
 // translations stays finite and keeps the precision a projection needs.
 inline constexpr double kMaxComposedMagnitude = 1e9;
 
-} // namespace overlayd::config
+} // namespace overlayd

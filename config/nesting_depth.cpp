@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -207,4 +207,4 @@ std::optional<TooDeep> findTooDeep(std::string_view text, TextSyntax syntax, siz
     return positionOf(text, *offset);
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -7,7 +7,7 @@
 
 #include "projection/pose.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -194,4 +194,4 @@ bool readPose(TableReader &camera, Pose &out)
     return true;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -8,7 +8,7 @@
 #include "config/scene_images.h"
 #include "overlay/shapes/scene_checks.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -117,4 +117,4 @@ void readAnnotations(TableReader &root, const std::string &baseDirectory, std::v
     }
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

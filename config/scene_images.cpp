@@ -11,7 +11,7 @@
 #include "config/limits.h"
 #include "media/codec/image_codec.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -104,4 +104,4 @@ std::shared_ptr<const ImagePixels> SceneImages::load(TableReader &table, const s
     return image;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include "config/toml_reader.h"
 #include "overlay/shapes/annotation.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 class SceneImages
 {
@@ -31,4 +31,4 @@ private:
     bool full_ = false;
 };
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -6,7 +6,7 @@
 
 #include "config/limits.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -104,7 +104,7 @@ Shape readLabel(TableReader &t)
 {
     LabelShape s;
     s.anchor = t.vec3("anchor").value_or(s.anchor);
-    s.text = t.string("text", kMaxTextBytes).value_or("");
+    s.text = t.string("text", kMaxAnnotationTextBytes).value_or("");
     s.offsetPx = t.vec2("offset_px").value_or(s.offsetPx);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
@@ -137,7 +137,7 @@ Shape readGuideLines(TableReader &t)
 Shape readScreenText(TableReader &t)
 {
     ScreenTextShape s;
-    s.text = t.string("text", kMaxTextBytes).value_or("");
+    s.text = t.string("text", kMaxAnnotationTextBytes).value_or("");
     s.position = t.vec2("position").value_or(s.position);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
@@ -211,4 +211,4 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
     table.ignoreRest(); // the shape keys cannot be judged without a known type
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -14,7 +14,7 @@
 #include "media/frame.h"
 #include "media/pixel_format.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -346,4 +346,4 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out)
     }
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

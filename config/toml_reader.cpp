@@ -6,7 +6,7 @@
 
 #include "base/utf8.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 const char *typeName(const toml::node &node)
 {
@@ -202,4 +202,4 @@ void TableReader::finish()
     }
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -6,7 +6,7 @@
 #include <cctype>
 #include <string>
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -233,4 +233,4 @@ std::vector<TableReader> TableReader::tables(std::string_view key, size_t maxCou
     return out;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

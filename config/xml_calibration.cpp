@@ -13,7 +13,7 @@
 
 #include <tinyxml2.h>
 
-namespace overlayd::detail {
+namespace overlayd {
 
 namespace {
 
@@ -197,4 +197,4 @@ Result<Calibration> loadOpenCvXmlCalibration(const std::string &path, const std:
     }
 }
 
-} // namespace overlayd::detail
+} // namespace overlayd

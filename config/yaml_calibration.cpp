@@ -8,7 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-namespace overlayd::detail {
+namespace overlayd {
 
 namespace {
 
@@ -167,4 +167,4 @@ Result<Calibration> loadYamlCalibration(const std::string &path, const std::stri
     }
 }
 
-} // namespace overlayd::detail
+} // namespace overlayd

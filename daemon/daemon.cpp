@@ -137,11 +137,11 @@ uint64_t Daemon::sinkFailures() const
     return failures;
 }
 
-std::vector<inputs::InputHealth> Daemon::inputHealth() const
+std::vector<InputHealth> Daemon::inputHealth() const
 {
-    std::vector<inputs::InputHealth> out = textInputs_.health();
+    std::vector<InputHealth> out = textInputs_.health();
     out.insert(out.end(), pathInputs_.health().begin(), pathInputs_.health().end());
-    for (inputs::InputHealth &can : canInputs_.health())
+    for (InputHealth &can : canInputs_.health())
         out.push_back(std::move(can));
     return out;
 }

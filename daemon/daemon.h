@@ -75,7 +75,7 @@ public:
     const CanInputs &canInputs() const override { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
     // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
-    std::vector<inputs::InputHealth> inputHealth() const override;
+    std::vector<InputHealth> inputHealth() const override;
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }

@@ -28,7 +28,7 @@ public:
     virtual const PathInputs &pathInputs() const = 0;
     virtual const CanInputs &canInputs() const = 0;
     // Every live input's health, whatever its kind: what /state and /metrics report of the inputs.
-    virtual std::vector<inputs::InputHealth> inputHealth() const = 0;
+    virtual std::vector<InputHealth> inputHealth() const = 0;
 
 protected:
     ~DaemonStatus() = default;

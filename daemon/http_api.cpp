@@ -23,8 +23,6 @@
 namespace overlayd {
 
 namespace {
-
-using http::HttpResponse;
 using nlohmann::json;
 
 constexpr size_t kMaxApiPoints = 4096; // /api/project and /api/unproject, per request
@@ -94,12 +92,12 @@ std::string utcTime(std::chrono::system_clock::time_point time)
 }
 
 // One input's health, the same fields for every kind of input.
-json inputHealthJson(const inputs::InputHealth &input, std::chrono::steady_clock::time_point now)
+json inputHealthJson(const InputHealth &input, std::chrono::steady_clock::time_point now)
 {
     return {{"kind", input.kind},
             {"name", input.name},
             {"source", input.source},
-            {"state", inputs::inputStateName(input.state)},
+            {"state", inputStateName(input.state)},
             {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
             {"errors", input.errors},
             {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
@@ -128,11 +126,11 @@ std::optional<std::vector<double>> numberList(const std::string &text)
 
 } // namespace
 
-HttpApi::HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<http::HttpCounters()> counters)
+HttpApi::HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<HttpCounters()> counters)
     : scene_(scene), status_(status), counters_(std::move(counters))
 {}
 
-HttpResponse HttpApi::handle(const http::HttpRequest &request)
+HttpResponse HttpApi::handle(const HttpRequest &request)
 {
     const std::string &path = request.path;
     const bool get = request.method == "GET" || request.method == "HEAD";
@@ -201,7 +199,7 @@ HttpResponse HttpApi::state()
                          {"dropped", counters.dropped},
                          {"failed", counters.failed}});
     }
-    const http::HttpCounters http = counters_();
+    const HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
     json out = {{"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()},
@@ -242,7 +240,7 @@ HttpResponse HttpApi::state()
     }
     const CanInputs &can = status_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
-        const inputs::CanInputOptions &options = can.options(i);
+        const CanInputOptions &options = can.options(i);
         const CanInputs::Reading &reading = can.reading(i);
         const bool any = reading.state != CanInputs::State::NoData;
         json entry = {
@@ -250,7 +248,7 @@ HttpResponse HttpApi::state()
             {"name", options.name},
             {"interface", options.interface},
             {"id", options.id.id},
-            {"target", options.target.kind == inputs::CanTarget::Kind::Slot ? "slot:" + options.target.name
+            {"target", options.target.kind == CanTarget::Kind::Slot ? "slot:" + options.target.name
                                                                             : options.target.name + ".steering"},
             {"value", any ? json(reading.value) : json(nullptr)},
             {"unit", options.unit},
@@ -267,7 +265,7 @@ HttpResponse HttpApi::state()
     if (!inputs.empty())
         out["inputs"] = inputs;
     json health = json::array();
-    for (const inputs::InputHealth &input : status_.inputHealth())
+    for (const InputHealth &input : status_.inputHealth())
         health.push_back(inputHealthJson(input, now));
     if (!health.empty())
         out["input_health"] = health;
@@ -276,7 +274,7 @@ HttpResponse HttpApi::state()
 
 HttpResponse HttpApi::metrics()
 {
-    const http::HttpCounters http = counters_();
+    const HttpCounters http = counters_();
     std::string text;
     const auto metric = [&text](const char *name, const char *type, const char *help, double value,
                                 const std::string &labels = {}) {
@@ -311,14 +309,14 @@ HttpResponse HttpApi::metrics()
                reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
     }
     // One loop per metric: a family's samples stay together, as the text format wants.
-    const std::vector<inputs::InputHealth> inputHealth = status_.inputHealth();
-    const auto inputLabel = [](const inputs::InputHealth &input) {
+    const std::vector<InputHealth> inputHealth = status_.inputHealth();
+    const auto inputLabel = [](const InputHealth &input) {
         return "kind=" + writeJson(json(input.kind)) + ",input=" + writeJson(json(input.name));
     };
-    for (const inputs::InputHealth &input : inputHealth)
+    for (const InputHealth &input : inputHealth)
         metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
-               input.state == inputs::InputHealth::State::Following ? 1.0 : 0.0, inputLabel(input));
-    for (const inputs::InputHealth &input : inputHealth)
+               input.state == InputHealth::State::Following ? 1.0 : 0.0, inputLabel(input));
+    for (const InputHealth &input : inputHealth)
         metric("overlayd_input_errors_total", "counter",
                "Errors an input met (its folder or interface gone, a version refused).", double(input.errors),
                inputLabel(input));
@@ -332,7 +330,7 @@ HttpResponse HttpApi::metrics()
     return response;
 }
 
-HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
+HttpResponse HttpApi::putCamera(const HttpRequest &request)
 {
     SceneControl &scene = scene_;
     const StreamFormat &format = status_.pipeline().format();
@@ -346,7 +344,7 @@ HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
     return HttpResponse::json(200, writeJson(cameraJson(scene.camera(), scene.cameraFor(width, height))));
 }
 
-HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest &request)
+HttpResponse HttpApi::putLayer(const std::string &layer, const HttpRequest &request)
 {
     SceneControl &scene = scene_;
     const auto names = scene.layerNames();
@@ -363,7 +361,7 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
     return HttpResponse::json(200, writeJson(json({{"name", layer}, {"visible", visible}})));
 }
 
-HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &request)
+HttpResponse HttpApi::putText(const std::string &slot, const HttpRequest &request)
 {
     const auto slots = textSlotNames(scene_.scene());
     if (std::find(slots.begin(), slots.end(), slot) == slots.end())
@@ -379,7 +377,7 @@ HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &
     return HttpResponse::json(200, writeJson(json({{"slot", slot}, {"text", text}})));
 }
 
-HttpResponse HttpApi::project(const http::HttpRequest &request)
+HttpResponse HttpApi::project(const HttpRequest &request)
 {
     const auto it = request.query.find("points");
     const auto numbers = it == request.query.end() ? std::nullopt : numberList(it->second);
@@ -398,7 +396,7 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
     return HttpResponse::json(200, projectJson(*camera, world));
 }
 
-HttpResponse HttpApi::unproject(const http::HttpRequest &request)
+HttpResponse HttpApi::unproject(const HttpRequest &request)
 {
     const auto body = parseJsonBody(request.body);
     if (!body)

@@ -4,10 +4,10 @@ namespace overlayd {
 
 namespace {
 
-http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
+JpegFeed &feedOrAbort(std::unique_ptr<JpegFeed> &feed)
 {
     if (!feed) {
-        auto created = http::JpegFeed::create();
+        auto created = JpegFeed::create();
         // An eventfd that cannot be made means the process is out of fds at start-up: nothing else would work.
         if (!created)
             std::abort();
@@ -19,7 +19,7 @@ http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
 } // namespace
 
 HttpFront::HttpFront(Logger &logger, SceneControl &scene, const DaemonStatus &status)
-    : logger_(logger), api_(scene, status, [this] { return server_ ? server_->counters() : http::HttpCounters{}; }),
+    : logger_(logger), api_(scene, status, [this] { return server_ ? server_->counters() : HttpCounters{}; }),
       rawTap_(feedOrAbort(feed_), quality_)
 {}
 
@@ -28,13 +28,13 @@ HttpFront::~HttpFront()
     removeFromLoop();
 }
 
-Result<std::unique_ptr<http::HttpServer>> HttpFront::startServer(const http::HttpOptions &options)
+Result<std::unique_ptr<HttpServer>> HttpFront::startServer(const HttpOptions &options)
 {
-    return http::HttpServer::start(
-        options, *feed_, [this](const http::HttpRequest &request) { return api_.handle(request); }, logger_);
+    return HttpServer::start(
+        options, *feed_, [this](const HttpRequest &request) { return api_.handle(request); }, logger_);
 }
 
-Status HttpFront::configure(const http::HttpOptions &options)
+Status HttpFront::configure(const HttpOptions &options)
 {
     if (options == options_ && (server_ != nullptr) == options.enabled)
         return Ok{};
@@ -47,7 +47,7 @@ Status HttpFront::configure(const http::HttpOptions &options)
         }
     }
     // The old server lets go of its address first: the new one usually listens on the same.
-    const http::HttpOptions previous = options_;
+    const HttpOptions previous = options_;
     const bool wasRunning = server_ != nullptr;
     removeFromLoop();
     server_.reset();

@@ -86,7 +86,7 @@ StageFactories defaultStageFactories()
 {
     return StageFactories{
         [](const SourceOptions &options, const Camera *sceneCamera) { return makeSource(options, sceneCamera); },
-        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, gpio::makeLineProvider};
+        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, makeLineProvider};
 }
 
 } // namespace overlayd

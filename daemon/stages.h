@@ -26,7 +26,7 @@ struct StageFactories {
     // May return a null renderer: nothing to draw. SceneControl calls it with the live scene and camera.
     RendererFactory renderer;
     // Where GPIO lines come from (libgpiod); null: no [[gpio.*]] line can be requested.
-    std::function<std::unique_ptr<gpio::LineProvider>()> gpio;
+    std::function<std::unique_ptr<LineProvider>()> gpio;
 };
 
 // makeSource, makeSink, and OverlayRenderer::create for the negotiated stream.

@@ -8,7 +8,7 @@
 
 #include "gpio/line_provider.h"
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 namespace {
 
@@ -242,4 +242,4 @@ Result<std::vector<ChipInfo>> listChips()
     return chips;
 }
 
-} // namespace overlayd::gpio
+} // namespace overlayd

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cctype>
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 namespace {
 
@@ -35,4 +35,4 @@ bool LineAddress::sameLine(const LineAddress &other) const
     return name == other.name && offset == other.offset && chipDevice(chip) == chipDevice(other.chip);
 }
 
-} // namespace overlayd::gpio
+} // namespace overlayd

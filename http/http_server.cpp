@@ -16,7 +16,7 @@
 #include "http/percent_decoding.h"
 #include "http/token_file.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -567,4 +567,4 @@ ssize_t HttpServer::fillStream(StreamClient &client, char *buffer, size_t max)
     return ssize_t(copied);
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -21,7 +21,7 @@
 struct MHD_Daemon;
 struct MHD_Connection;
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct HttpRequest {
     std::string method;
@@ -118,4 +118,4 @@ private:
     HttpCounters counters_;
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -13,7 +13,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -158,4 +158,4 @@ Result<UniqueFd> openListeningSocket(const ListenAddress &address, int backlog)
     return fd;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

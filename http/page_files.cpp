@@ -4,7 +4,7 @@
 #include <sstream>
 #include <string_view>
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -62,4 +62,4 @@ std::string defaultPageDirectory()
     return OVERLAYD_PAGE_DIRECTORY;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct PageFile {
     std::string contentType;
@@ -18,4 +18,4 @@ std::optional<PageFile> readPageFile(const std::string &directory, const std::st
 // The installed page folder (the build tree's http/www unless the package set another).
 std::string defaultPageDirectory();
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -14,7 +14,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -89,4 +89,4 @@ Result<bool> CanSocket::read(CanFrame &frame)
     return true;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

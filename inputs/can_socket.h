@@ -11,7 +11,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 struct CanId {
     uint32_t id = 0;
@@ -48,4 +48,4 @@ private:
     UniqueFd fd_;
 };
 
-} // namespace overlayd::inputs
+} // namespace overlayd

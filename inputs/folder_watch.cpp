@@ -6,7 +6,7 @@
 #include <sys/inotify.h>
 #include <unistd.h>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -117,4 +117,4 @@ void FolderWatch::drop(int &wd)
     wd = -1;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

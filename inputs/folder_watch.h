@@ -10,7 +10,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 class FolderWatch
 {
@@ -51,4 +51,4 @@ private:
     std::string problem_;
 };
 
-} // namespace overlayd::inputs
+} // namespace overlayd

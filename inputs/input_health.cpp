@@ -2,7 +2,7 @@
 
 #include <utility>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 bool InputHealth::enter(State next, Clock::time_point now)
 {
@@ -38,4 +38,4 @@ const char *inputStateName(InputHealth::State state)
     return "?";
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include "base/regular_file.h"
 #include "base/utf8.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -77,4 +77,4 @@ std::string TextFileWatch::readPrefix(size_t maxBytes) const
     return content;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -6,11 +6,14 @@
 
 #include <glm/vec2.hpp>
 
-namespace overlayd::formulas {
+namespace overlayd {
+
+// The formulas, one static function each.
+struct DistortionFormulas {
 
 // OpenCV's 5-coefficient model (k1, k2, p1, p2, k3). Identical to rational() with k4 = k5 = k6 = 0, whose
 // denominator is then exactly 1, minus the division.
-inline glm::dvec2 radialTangential(const std::array<double, 8> &c, double x, double y)
+static glm::dvec2 radialTangential(const std::array<double, 8> &c, double x, double y)
 {
     const double k1 = c[0], k2 = c[1], p1 = c[2], p2 = c[3], k3 = c[4];
     const double r2 = x * x + y * y;
@@ -21,7 +24,7 @@ inline glm::dvec2 radialTangential(const std::array<double, 8> &c, double x, dou
 }
 
 // OpenCV's 8-coefficient rational model (k1, k2, p1, p2, k3, k4, k5, k6), in OpenCV's order of operations.
-inline glm::dvec2 rational(const std::array<double, 8> &c, double x, double y)
+static glm::dvec2 rational(const std::array<double, 8> &c, double x, double y)
 {
     const auto [k1, k2, p1, p2, k3, k4, k5, k6] = c;
     const double r2 = x * x + y * y;
@@ -32,14 +35,14 @@ inline glm::dvec2 rational(const std::array<double, 8> &c, double x, double y)
 }
 
 // theta_d = theta (1 + k1 theta^2 + k2 theta^4 + k3 theta^6 + k4 theta^8).
-inline double fisheyeTheta(const std::array<double, 8> &c, double theta)
+static double fisheyeTheta(const std::array<double, 8> &c, double theta)
 {
     const double t2 = theta * theta;
     return theta * (1.0 + t2 * (c[0] + t2 * (c[1] + t2 * (c[2] + t2 * c[3]))));
 }
 
 // OpenCV's fisheye (equidistant) model on theta = atan(r).
-inline glm::dvec2 fisheye(const std::array<double, 8> &c, double x, double y)
+static glm::dvec2 fisheye(const std::array<double, 8> &c, double x, double y)
 {
     const double r = std::sqrt(x * x + y * y);
     // OpenCV uses the same guard: below 1e-8 the ratio theta_d / r tends to 1.
@@ -47,4 +50,6 @@ inline glm::dvec2 fisheye(const std::array<double, 8> &c, double x, double y)
     return {x * scale, y * scale};
 }
 
-} // namespace overlayd::formulas
+};
+
+} // namespace overlayd

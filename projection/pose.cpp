@@ -11,7 +11,6 @@
 
 namespace overlayd {
 
-using checks::str;
 
 glm::dmat4 Pose::viewMatrix() const
 {
@@ -64,7 +63,7 @@ Pose poseFromBasis(const glm::dvec3 &eye, const glm::dvec3 &u, const glm::dvec3 
 
 Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const glm::dvec3 &up)
 {
-    if (!checks::finite(eye) || !checks::finite(gaze) || !checks::finite(up))
+    if (!Checks::finite(eye) || !Checks::finite(gaze) || !Checks::finite(up))
         return makeError(ErrorCode::InvalidArgument, "eye, gaze and up must be finite");
     const auto gazeDirection = unitDirection(gaze);
     const auto upDirection = unitDirection(up);
@@ -74,7 +73,7 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
         return makeError(ErrorCode::DegenerateBasis, "up vector is the zero vector");
     const glm::dvec3 w = -*gazeDirection;
     const glm::dvec3 side = glm::cross(*upDirection, w);
-    if (glm::length(side) <= checks::kDegenerate)
+    if (glm::length(side) <= Checks::kDegenerate)
         return makeError(ErrorCode::DegenerateBasis,
                          "up " + str(up) + " is parallel to the gaze direction " + str(gaze));
     const glm::dvec3 u = glm::normalize(side);
@@ -85,7 +84,7 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
 Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const glm::dvec3 &up)
 {
     // Non-finite first: infinite eye and target compare equal but are not "the same point".
-    if (!checks::finite(eye) || !checks::finite(target) || !checks::finite(up))
+    if (!Checks::finite(eye) || !Checks::finite(target) || !Checks::finite(up))
         return makeError(ErrorCode::InvalidArgument, "eye, target and up must be finite");
     if (eye == target)
         return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + str(eye));
@@ -94,7 +93,7 @@ Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const g
 
 Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, const glm::dvec3 &vup)
 {
-    if (!checks::finite(prp) || !checks::finite(vpn) || !checks::finite(vup))
+    if (!Checks::finite(prp) || !Checks::finite(vpn) || !Checks::finite(vup))
         return makeError(ErrorCode::InvalidArgument, "PRP, VPN and VUP must be finite");
     const auto vpnDirection = unitDirection(vpn);
     const auto vupDirection = unitDirection(vup);
@@ -104,7 +103,7 @@ Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, con
         return makeError(ErrorCode::DegenerateBasis, "VUP is the zero vector");
     const glm::dvec3 zAxis = *vpnDirection;
     const glm::dvec3 side = glm::cross(*vupDirection, zAxis);
-    if (glm::length(side) <= checks::kDegenerate)
+    if (glm::length(side) <= Checks::kDegenerate)
         return makeError(ErrorCode::DegenerateBasis, "VUP " + str(vup) + " is parallel to VPN " + str(vpn));
     const glm::dvec3 xAxis = glm::normalize(side);
     const glm::dvec3 yAxis = glm::cross(zAxis, xAxis);
@@ -114,9 +113,9 @@ Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, con
 Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &worldFromAxes, CameraAxes axes)
 {
     const double norm = std::sqrt(glm::dot(worldFromAxes, worldFromAxes));
-    if (!std::isfinite(norm) || !checks::finite(position))
+    if (!std::isfinite(norm) || !Checks::finite(position))
         return makeError(ErrorCode::InvalidArgument, "position and orientation must be finite");
-    if (std::abs(norm - 1.0) > checks::kOrthonormal)
+    if (std::abs(norm - 1.0) > Checks::kOrthonormal)
         return makeError(ErrorCode::NotOrthonormal,
                          "orientation quaternion is not of unit length (|q| = " + str(norm) + ")");
     const glm::dmat3 worldFromGivenAxes = glm::mat3_cast(worldFromAxes / norm);
@@ -155,9 +154,9 @@ YawPitchRoll yawPitchRollOf(const Pose &pose)
 
 Result<Pose> poseFromRt(const glm::dmat3 &rotation, const glm::dvec3 &translation)
 {
-    if (auto status = checks::requireRotation(rotation, "extrinsic rotation R"); !status)
+    if (auto status = Checks::requireRotation(rotation, "extrinsic rotation R"); !status)
         return status.error();
-    if (!checks::finite(translation))
+    if (!Checks::finite(translation))
         return makeError(ErrorCode::InvalidArgument, "extrinsic translation t must be finite");
     // x_internal = F x_optical with F = diag(1, -1, -1): exact, no rounding is introduced.
     const glm::dmat3 flip = internalFromAxes(CameraAxes::Optical);
@@ -179,7 +178,7 @@ glm::dmat3 rotationFromRodrigues(const glm::dvec3 &rvec)
 
 Result<Pose> poseFromRodrigues(const glm::dvec3 &rvec, const glm::dvec3 &tvec)
 {
-    if (!checks::finite(rvec))
+    if (!Checks::finite(rvec))
         return makeError(ErrorCode::InvalidArgument, "rvec must be finite");
     return poseFromRt(rotationFromRodrigues(rvec), tvec);
 }

@@ -8,7 +8,6 @@
 
 namespace overlayd {
 
-using checks::str;
 
 double ndcNearDepth(DepthRange depth)
 {
@@ -162,9 +161,9 @@ Result<Projection> Projection::window(const WindowIntrinsics &w, DepthRange dept
     if (auto status = checkNearFar(w.near, w.far, false); !status)
         return status.error();
     const glm::dvec3 cw(w.centre, -w.focal);
-    const glm::dmat4 zeroToOne = viewing_pipeline::perspective(w.near / w.far) * viewing_pipeline::scaleFar(w.far) *
-                                 viewing_pipeline::scaleXY(w.focal, 2.0 * w.halfWidth, 2.0 * w.halfHeight) *
-                                 viewing_pipeline::shear(cw);
+    const glm::dmat4 zeroToOne = ViewingPipeline::perspective(w.near / w.far) * ViewingPipeline::scaleFar(w.far) *
+                                 ViewingPipeline::scaleXY(w.focal, 2.0 * w.halfWidth, 2.0 * w.halfHeight) *
+                                 ViewingPipeline::shear(cw);
     const glm::dmat4 m = depth == DepthRange::ZeroToOne ? zeroToOne : zeroToOneToMinusOneToOne() * zeroToOne;
     return Projection(m, depth, true, true);
 }
@@ -177,7 +176,7 @@ Result<Projection> Projection::windowOrthographic(double width, double height, d
     if (!std::isfinite(near) || !std::isfinite(far) || far <= near)
         return makeError(ErrorCode::InvalidArgument,
                          "far must be greater than near (near " + str(near) + ", far " + str(far) + ")");
-    const glm::dmat4 zeroToOne = viewing_pipeline::orthographic(width, height, near, far);
+    const glm::dmat4 zeroToOne = ViewingPipeline::orthographic(width, height, near, far);
     const glm::dmat4 m = depth == DepthRange::ZeroToOne ? zeroToOne : zeroToOneToMinusOneToOne() * zeroToOne;
     return Projection(m, depth, false, true);
 }

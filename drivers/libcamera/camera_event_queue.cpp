@@ -3,7 +3,7 @@
 
 #include <utility>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 void CameraEventQueue::post(CameraEvent::Kind kind, const std::string &cameraId, const std::string &model) noexcept
 {
@@ -23,4 +23,4 @@ std::vector<CameraEvent> CameraEventQueue::take()
     return std::exchange(events_, {});
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

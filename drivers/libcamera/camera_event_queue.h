@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // What libcamera said about a camera; `cameraId` is libcamera's id ("platform/vimc.0 Sensor B").
 struct CameraEvent {
@@ -42,4 +42,4 @@ private:
     std::atomic<bool> overflow_{false};
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

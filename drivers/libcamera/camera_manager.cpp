@@ -10,7 +10,7 @@
 
 #include "drivers/libcamera/camera_presence.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -99,4 +99,4 @@ Result<std::shared_ptr<libcamera::Camera>> findCamera(const libcamera::CameraMan
                          (cameras.empty() ? " (libcamera sees no camera)" : "; there are " + known));
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

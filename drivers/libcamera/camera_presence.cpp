@@ -1,7 +1,7 @@
 // CameraPresence: the re-acquire decisions, free of libcamera types so that they are tested without a camera.
 #include "drivers/libcamera/camera_presence.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -98,4 +98,4 @@ std::string CameraPresence::awaited() const
     return "'" + remembered_->model + "' (" + remembered_->id + ")";
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

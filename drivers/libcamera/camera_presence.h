@@ -7,7 +7,7 @@
 
 #include "drivers/libcamera/camera_event_queue.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // A camera as the choice needs it: libcamera's id and the sensor's model.
 struct CameraIdentity {
@@ -60,4 +60,4 @@ private:
     bool cameBack_ = false;
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

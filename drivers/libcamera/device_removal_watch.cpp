@@ -11,7 +11,7 @@
 
 #include <linux/netlink.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -79,4 +79,4 @@ bool DeviceRemovalWatch::takeRemoval(const std::vector<dev_t> &devices)
     return removed;
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -10,7 +10,7 @@
 
 #include "base/unique_fd.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // The device number a kernel uevent removes ("remove@..." with MAJOR= and MINOR=), or nullopt for any other event.
 std::optional<dev_t> removedDevice(std::string_view uevent);
@@ -34,4 +34,4 @@ private:
     UniqueFd socket_;
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -69,7 +69,6 @@ std::optional<ControlValueKind> libcameraControlKind(const std::string &name)
     }
 }
 
-namespace lc {
 
 namespace {
 
@@ -153,18 +152,16 @@ std::string checkRange(const libcamera::ControlValue &value, const libcamera::Co
 
 } // namespace
 
-} // namespace lc
 
 std::string libcameraControlProblem(const ControlSetting &setting)
 {
     const libcamera::ControlId *id = registryControl(setting.name);
     if (!id)
         return "unknown libcamera control";
-    const auto value = lc::toControlValue(*id, setting);
+    const auto value = toControlValue(*id, setting);
     return value ? std::string() : value.error().message;
 }
 
-namespace lc {
 
 Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &settings,
                                              const libcamera::ControlInfoMap &camera)
@@ -197,6 +194,5 @@ Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &
     return list;
 }
 
-} // namespace lc
 
 } // namespace overlayd

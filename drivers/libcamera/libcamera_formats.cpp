@@ -8,7 +8,7 @@
 
 #include <libcamera/formats.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -57,4 +57,4 @@ std::string formatName(const libcamera::PixelFormat &format)
     return format.toString();
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

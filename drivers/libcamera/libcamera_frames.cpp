@@ -7,7 +7,7 @@
 
 #include <libcamera/control_ids.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 void LibcameraSource::signal()
 {
@@ -119,4 +119,4 @@ Result<FrameLease> LibcameraSource::nextFrame()
     return FrameLease(mapped.view(), metadata, std::shared_ptr<LeaseOwner>(session_, session_->recycler.get()), index);
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -20,7 +20,7 @@
 #include "drivers/libcamera/libcamera_formats.h"
 #include "drivers/libcamera/vanished_device_ioctl.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -384,4 +384,4 @@ void LibcameraSource::stop()
     }
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -107,4 +107,4 @@ void MappedFrameBuffer::unmap()
     mappings_.clear();
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

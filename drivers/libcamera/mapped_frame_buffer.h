@@ -10,7 +10,7 @@
 #include "base/result.h"
 #include "media/frame.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 class MappedFrameBuffer
 {
@@ -45,4 +45,4 @@ private:
     FrameView view_{};
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

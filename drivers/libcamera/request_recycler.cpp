@@ -4,7 +4,7 @@
 #include <cstring>
 #include <string>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 void RequestRecycler::giveBack(unsigned index)
 {
@@ -42,4 +42,4 @@ void RequestRecycler::detach()
     detached_ = true;
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

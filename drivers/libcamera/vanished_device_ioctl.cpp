@@ -11,7 +11,7 @@
 
 #include <linux/videodev2.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -103,8 +103,7 @@ bool vanishedDeviceIoctlInstalled()
     return ::dlsym(RTLD_DEFAULT, "ioctl") == reinterpret_cast<void *>(&::ioctl);
 }
 
-} // namespace overlayd::lc
-
+} // namespace overlayd
 // Defined in the executable, so it comes first in the global lookup scope: libcamera.so's (and every library's)
 // calls to ioctl reach it. The C library reads the third argument as a pointer in the same way.
 extern "C" int ioctl(int fd, unsigned long request, ...) noexcept
@@ -114,8 +113,8 @@ extern "C" int ioctl(int fd, unsigned long request, ...) noexcept
     void *arg = va_arg(args, void *);
     va_end(args);
     const int saved = errno;
-    const int result = overlayd::lc::nextIoctl.load()(fd, request, arg);
-    if (result < 0 && errno == ENODEV && overlayd::lc::rewriteVanished(request, __builtin_return_address(0))) {
+    const int result = overlayd::nextIoctl.load()(fd, request, arg);
+    if (result < 0 && errno == ENODEV && overlayd::rewriteVanished(request, __builtin_return_address(0))) {
         errno = saved;
         return 0;
     }

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // libcamera 0.3.2 cannot stop a camera whose device vanished under it (an unplugged or unbound device answers every
 // ioctl with ENODEV, and only the uvcvideo pipeline tells libcamera of an unplug: vimc, rkisp1, ipu3, Raspberry Pi
@@ -37,4 +37,4 @@ uint64_t vanishedDeviceCalls();
 // Whether the dynamic linker binds `ioctl` to the shim (libcamera's calls then go through it).
 bool vanishedDeviceIoctlInstalled();
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -15,10 +15,6 @@ namespace overlayd {
 
 namespace {
 
-using scene::Hit;
-using scene::SceneTracer;
-using scene::Square;
-
 constexpr unsigned kBlock = 4; // pixels per side of the blocks tried as one colour first
 
 const uint8_t *colourOf(const Square &square)

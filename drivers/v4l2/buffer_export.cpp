@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 Result<std::vector<UniqueFd>> BufferPool::exportDmabufs()
 {
@@ -45,4 +45,4 @@ void BufferPool::attachDmabuf(unsigned index, unsigned memoryPlane, int fd)
     }
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

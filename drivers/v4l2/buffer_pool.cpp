@@ -7,7 +7,7 @@
 
 #include "drivers/v4l2/frame_split.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 Result<std::unique_ptr<BufferPool>> BufferPool::create(const VideoDevice &device, unsigned count,
                                                        const DeviceFormat &format, const PixelFormatInfo *info)
@@ -105,4 +105,4 @@ int BufferPool::dequeue(Dequeued &out)
     return 0;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

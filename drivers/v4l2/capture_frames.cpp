@@ -5,7 +5,7 @@
 #include <cerrno>
 #include <utility>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 Result<FrameLease> V4l2CaptureSource::nextFrame()
 {
@@ -86,4 +86,4 @@ void V4l2CaptureSource::requeue(unsigned index)
         hub_->giveBack(index);
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -3,7 +3,7 @@
 
 #include <utility>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 V4l2CaptureSource::V4l2CaptureSource(Syscalls &syscalls, SourceOptions options, LogFunction log)
     : syscalls_(syscalls), options_(std::move(options)), log_(std::move(log))
@@ -151,4 +151,4 @@ std::vector<UniqueFd> V4l2CaptureSource::exportBuffers()
     return {};
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

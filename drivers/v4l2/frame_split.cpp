@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <string>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -52,4 +52,4 @@ Result<FrameView> splitFrame(const PixelFormatInfo &info, const DeviceFormat &fo
     return view;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -3,7 +3,7 @@
 
 #include <cerrno>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 void LeaseHub::giveBack(unsigned index)
 {
@@ -46,4 +46,4 @@ void LeaseHub::detach()
     pool_ = nullptr;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

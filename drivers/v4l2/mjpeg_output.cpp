@@ -3,7 +3,7 @@
 
 #include <linux/videodev2.h>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 const PixelFormatInfo &mjpegOutputFormat(const PixelFormatInfo *requested)
 {
@@ -13,4 +13,4 @@ const PixelFormatInfo &mjpegOutputFormat(const PixelFormatInfo *requested)
     return *pixelFormatFromFourcc(V4L2_PIX_FMT_YUV420);
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

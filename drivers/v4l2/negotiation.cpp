@@ -10,7 +10,7 @@
 
 #include "drivers/v4l2/device_format.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -139,4 +139,4 @@ std::string describeMode(unsigned width, unsigned height, double fps, const std:
     return formatted("%ux%u@%g %s", width, height, fps, format.c_str());
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

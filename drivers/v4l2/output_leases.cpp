@@ -3,7 +3,7 @@
 
 #include <cerrno>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 bool V4l2OutputSink::takesLease(const FrameView &frame) const
 {
@@ -88,4 +88,4 @@ uint64_t V4l2OutputSink::heldLeases() const
     return held;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

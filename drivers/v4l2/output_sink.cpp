@@ -4,7 +4,7 @@
 #include <cerrno>
 #include <cstring>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -162,4 +162,4 @@ Status V4l2OutputSink::write(const FrameView &frame, const FrameMetadata &)
     return Ok{};
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

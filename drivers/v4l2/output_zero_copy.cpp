@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 void V4l2OutputSink::placePlanes(const PixelFormatInfo &info, unsigned width, unsigned height)
 {
@@ -131,4 +131,4 @@ bool V4l2OutputSink::dmabufPlanes(const FrameView &frame, std::array<DmabufPlane
     return true;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -12,7 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -71,4 +71,4 @@ Syscalls &realSyscalls()
     return instance;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -4,7 +4,7 @@
 #include <cerrno>
 #include <cstring>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -165,4 +165,4 @@ int VideoDevice::dequeue(uint32_t memory, unsigned count, v4l2_buffer &buffer,
     return buffer.index < count ? 0 : -EINVAL;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

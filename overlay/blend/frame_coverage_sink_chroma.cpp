@@ -9,8 +9,6 @@
 
 namespace overlayd {
 
-using namespace sink_lanes;
-
 namespace {
 
 template<unsigned Step>

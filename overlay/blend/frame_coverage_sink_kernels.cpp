@@ -11,9 +11,6 @@
 
 namespace overlayd {
 
-using namespace sink_lanes;
-using namespace sink_steps;
-
 void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {
     // Whole windows of four macropixels from the run's first, as long as they end inside the row and before a

@@ -11,7 +11,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 constexpr int kWidth = 640, kHeight = 480;
@@ -77,4 +77,4 @@ TEST(Alignment, ShiftedGridIsCaughtByTheSameMeasure)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

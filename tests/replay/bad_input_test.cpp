@@ -6,7 +6,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 struct BadConfig {
@@ -114,4 +114,4 @@ show_layers = ["guides"]
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

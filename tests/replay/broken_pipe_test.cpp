@@ -8,7 +8,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 TEST(BrokenPipe, ReaderGoingAwayDoesNotKillTheDaemon)
@@ -31,4 +31,4 @@ TEST(BrokenPipe, ReaderGoingAwayDoesNotKillTheDaemon)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

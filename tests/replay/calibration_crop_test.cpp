@@ -11,7 +11,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string config(const std::string &crop)
@@ -62,4 +62,4 @@ TEST(CalibrationCrop, CheckConfigRefusesARegionOfAnotherAspectAtItsKey)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

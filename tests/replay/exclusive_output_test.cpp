@@ -9,7 +9,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string config(const std::string &sinks)
@@ -74,4 +74,4 @@ TEST(ExclusiveOutputs, ASecondDaemonOnTheSameFileIsRefusedNamingTheFirst)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -9,7 +9,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string ffprobe(const std::string &path)
@@ -58,4 +58,4 @@ INSTANTIATE_TEST_SUITE_P(Formats, Ffprobe,
                          [](const auto &param) { return std::string(param.param.scene); });
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

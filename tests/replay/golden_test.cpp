@@ -19,7 +19,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 struct Scene {
@@ -98,4 +98,4 @@ TEST(Origins, BottomLeftSceneEqualsTopLeftSceneOutsideTheText)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

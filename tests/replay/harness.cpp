@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::replay {
+namespace overlayd::test {
 
 namespace fs = std::filesystem;
 
@@ -171,4 +171,4 @@ cv::Mat renderFrameBgr(const std::string &config, const std::string &format, int
     return rawToBgr(bytes, frameSize * index, format, width, height);
 }
 
-} // namespace overlayd::replay
+} // namespace overlayd::test

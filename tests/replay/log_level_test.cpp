@@ -7,7 +7,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 // A golden scene's config with its log level replaced.
@@ -47,4 +47,4 @@ TEST(LogLevel, CommandLineOverridesTheConfig)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -7,7 +7,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string example()
@@ -92,4 +92,4 @@ TEST(NumberArguments, PointsFilesRefuseHugeNumbersAtTheirLine)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -7,7 +7,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string examples(const std::string &name)
@@ -105,4 +105,4 @@ TEST(PointsJson, RefusesBadFilesNamingTheLineAndElement)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

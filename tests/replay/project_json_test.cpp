@@ -10,7 +10,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 struct Expected {
@@ -149,4 +149,4 @@ TEST(ProjectJson, OutsideTheScissorAndOutsideTheImageCircleSaySo)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

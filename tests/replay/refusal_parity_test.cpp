@@ -15,7 +15,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -173,4 +173,4 @@ TEST(BoundedSuggestions, HugeAndManyUnknownKeysGetAShortAnswer)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -13,7 +13,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -183,4 +183,4 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto &param) { return std::string(param.param.name); });
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -13,7 +13,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -87,4 +87,4 @@ TEST(SceneControl, ReloadedPoseMovesTheMarkerWhereProjectSays)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -11,7 +11,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -61,4 +61,4 @@ TEST(Sighup, BadConfigIsRefusedAndGoodConfigSwitchesSinks)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -15,7 +15,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -155,4 +155,4 @@ TEST(StopWhileStarting, AFifoAsTheConfigNoLongerBlocks)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 using namespace overlayd;
-using namespace overlayd::http;
 
 namespace {
 

@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-using namespace overlayd::inputs;
+using namespace overlayd;
 
 namespace {
 

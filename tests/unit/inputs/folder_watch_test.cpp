@@ -14,7 +14,7 @@
 
 #include "inputs/text_file_watch.h"
 
-using namespace overlayd::inputs;
+using namespace overlayd;
 namespace fs = std::filesystem;
 
 namespace {

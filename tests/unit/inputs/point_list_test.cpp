@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::inputs {
+namespace overlayd {
 namespace {
 
 TEST(PointList, ReadsSpacesCommasCommentsAndSigns)
@@ -67,4 +67,4 @@ TEST(PointList, HoldsAtMostTheLimit)
 }
 
 } // namespace
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -13,7 +13,7 @@
 #include "drivers/libcamera/camera_event_queue.h"
 #include "drivers/libcamera/camera_presence.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 // The source's wake-up: a semaphore eventfd, as LibcameraSource::signal writes it.
@@ -104,4 +104,4 @@ TEST(CameraEventQueue, ManyPostersLoseNothing)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

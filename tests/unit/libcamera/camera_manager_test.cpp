@@ -8,7 +8,7 @@
 
 #include "drivers/libcamera/camera_manager.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 TEST(CameraManager, SharedWhileHeld)
@@ -64,4 +64,4 @@ TEST(CameraManager, OnlyTheFirstStartIsLoggedByLibcamera)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include "drivers/libcamera/camera_presence.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 const CameraIdentity kSensorB{"platform/vimc.0 Sensor B", "Sensor B"};
@@ -122,4 +122,4 @@ TEST(CameraPresence, ARememberedCameraIsChosenAsIfThisPresenceHadOpenedIt)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

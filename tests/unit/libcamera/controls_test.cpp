@@ -7,7 +7,7 @@
 
 #include "drivers/libcamera/libcamera_controls.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 namespace c = libcamera::controls;
@@ -94,4 +94,4 @@ TEST(Controls, ValuesNoCameraCouldTakeAreRefusedWithoutACamera)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

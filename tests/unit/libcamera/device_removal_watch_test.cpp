@@ -8,7 +8,7 @@
 
 #include "drivers/libcamera/device_removal_watch.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 using namespace std::string_literals;
@@ -52,4 +52,4 @@ TEST(DeviceRemovalWatch, NothingWaitingIsNoRemoval)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

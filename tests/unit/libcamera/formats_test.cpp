@@ -7,7 +7,7 @@
 
 #include "drivers/libcamera/libcamera_formats.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 // "XRGB8888" -> "XRGB": the components from the word's top bits down.
@@ -76,4 +76,4 @@ TEST(Formats, FormatsOverlaydCannotUseHaveNoEntry)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

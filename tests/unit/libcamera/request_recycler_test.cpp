@@ -10,7 +10,7 @@
 
 #include "drivers/libcamera/request_recycler.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 struct QueueLog {
@@ -86,4 +86,4 @@ TEST(RequestRecycler, GiveBacksFromManyThreadsEachQueueOnce)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

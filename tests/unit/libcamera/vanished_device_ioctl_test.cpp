@@ -14,7 +14,7 @@
 
 #include "drivers/libcamera/vanished_device_ioctl.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 struct Call {
@@ -130,4 +130,4 @@ TEST(VanishedDeviceIoctlLibc, RealCallsReachTheCLibrary)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

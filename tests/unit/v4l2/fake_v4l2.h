@@ -15,7 +15,7 @@
 
 #include "drivers/v4l2/v4l2_syscalls.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 struct FakeFormat {
     uint32_t fourcc = 0;
@@ -135,4 +135,4 @@ inline uint32_t fakeOffset(unsigned index, unsigned plane)
     return (index * 4 + plane) << 12;
 }
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

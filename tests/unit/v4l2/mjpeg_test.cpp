@@ -9,7 +9,7 @@
 #include "media/frame_buffer.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 constexpr int kWidth = 96, kHeight = 64;
@@ -182,4 +182,4 @@ TEST(V4l2Mjpeg, YuyvRequestDecodesToYuyv)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

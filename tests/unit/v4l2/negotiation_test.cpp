@@ -4,7 +4,7 @@
 #include "drivers/v4l2/negotiation.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 TEST(V4l2Negotiation, ValidRequestIsUsedAsItIsAndNotLogged)
@@ -124,4 +124,4 @@ TEST(V4l2Negotiation, MjpegIsPickedOnlyWhenTheFormatIsNotOffered)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test
