@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "base/regular_file.h"
 #include "base/replace_file.h"
 #include "config/config_sections.h"
@@ -16,6 +17,9 @@
 namespace overlayd {
 
 namespace {
+
+// The header's pose, for a person to read: 0.1 um and 1e-7 degree (the keys below keep every bit).
+constexpr int kCommentDecimals = 7;
 
 std::string numberText(double value)
 {
@@ -224,13 +228,17 @@ Result<std::string> liveDropInText(const CameraSpec &camera, std::string_view ex
     putCamera(camera, merged);
 
     const YawPitchRoll ypr = yawPitchRollOf(camera.pose);
-    std::string text = "# Written by overlayd (" + std::string(writer) +
-                       "): the live camera, read after the main config file; its keys replace the main file's.\n"
-                       "# Delete this file to go back to the main file's camera.\n"
-                       "# The pose in the mount frame '" +
-                       camera.mountFrame + "': position = " + tomlText(vectorArray(ypr.position)) +
-                       ", yaw = " + numberText(ypr.yawDeg) + ", pitch = " + numberText(ypr.pitchDeg) +
-                       ", roll = " + numberText(ypr.rollDeg) + " (degrees)\n";
+    std::string text =
+        "# Written by overlayd (" + std::string(writer) +
+        "): the live camera, read after the main config file; its keys replace the main file's.\n"
+        "# Delete this file to go back to the main file's camera.\n"
+        "# The pose in the mount frame '" +
+        camera.mountFrame + "': position = " +
+        tomlText(numbers({roundedTo(ypr.position.x, kCommentDecimals), roundedTo(ypr.position.y, kCommentDecimals),
+                          roundedTo(ypr.position.z, kCommentDecimals)})) +
+        ", yaw = " + numberText(roundedTo(ypr.yawDeg, kCommentDecimals)) +
+        ", pitch = " + numberText(roundedTo(ypr.pitchDeg, kCommentDecimals)) +
+        ", roll = " + numberText(roundedTo(ypr.rollDeg, kCommentDecimals)) + " (degrees)\n";
     for (const auto &[key, value] : *root)
         if (key.str() != "camera")
             text += keyText(key.str()) + " = " + tomlText(value) + "\n";

@@ -294,9 +294,14 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out)
 {
     std::map<std::string, std::string> writers; // output identity -> the first sink's key, "sink[0].path"
     std::string holder;                         // the sink with zero_copy = "on", "sink[0].zero_copy"
+    std::map<std::string, std::string> names;   // sink name -> the key that gave it, "sink[0].name"
     for (TableReader &sink : root.tables("sink", kMaxSinks)) {
         const size_t before = sink.problems().size();
         SinkOptions options;
+        options.name = sink.string("name", kMaxNameBytes).value_or("sink[" + std::to_string(out.size()) + "]");
+        if (const auto [first, added] = names.emplace(options.name, sink.keyPath("name")); !added)
+            sink.problem("name", "'" + options.name + "' is the name of " + first->second +
+                                     " already: /state and /metrics tell sinks apart by name");
         if (auto kind = sink.choice<SinkKind>("kind", {{"y4m", SinkKind::Y4m},
                                                        {"raw", SinkKind::Raw},
                                                        {"snapshot", SinkKind::Snapshot},

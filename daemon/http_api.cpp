@@ -44,9 +44,20 @@ const char *stateName(DaemonStatus::State state)
     return "?";
 }
 
+// What the numbers a person reads are rounded to: a micrometre, a millionth of a degree or of a pixel, a
+// millisecond; well below what a camera or a click can tell, well above the arithmetic's noise (-6.000000000000003).
+constexpr int kShownDecimals = 6;
+constexpr int kShownSecondsDecimals = 3;
+constexpr int kShownQuaternionDecimals = 7; // about 1e-5 degree
+
+double shown(double value)
+{
+    return roundedTo(value, kShownDecimals);
+}
+
 json vec3(const glm::dvec3 &v)
 {
-    return json::array({v.x, v.y, v.z});
+    return json::array({shown(v.x), shown(v.y), shown(v.z)});
 }
 
 json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
@@ -56,27 +67,33 @@ json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
     json out = {{"frame", spec.mountFrame},
                 {"origin", spec.viewport.origin == Origin::TopLeft ? "top-left" : "bottom-left"},
                 {"position", vec3(ypr.position)},
-                {"yaw", ypr.yawDeg},
-                {"pitch", ypr.pitchDeg},
-                {"roll", ypr.rollDeg},
+                {"yaw", shown(ypr.yawDeg)},
+                {"pitch", shown(ypr.pitchDeg)},
+                {"roll", shown(ypr.rollDeg)},
                 {"pose",
                  {{"position", vec3(ypr.position)},
-                  {"orientation", json::array({orientation.w, orientation.x, orientation.y, orientation.z})},
+                  {"orientation", json::array({roundedTo(orientation.w, kShownQuaternionDecimals),
+                                               roundedTo(orientation.x, kShownQuaternionDecimals),
+                                               roundedTo(orientation.y, kShownQuaternionDecimals),
+                                               roundedTo(orientation.z, kShownQuaternionDecimals)})},
                   {"axes", "opengl"}}}};
     if (camera) {
-        // The pinhole the stream is drawn with (any intrinsics form, scaled to the stream's frame).
+        // The pinhole the stream is drawn with (any intrinsics form, scaled to the stream's frame), in
+        // [camera.pinhole]'s convention: pixel centres at integers, so pasting these values draws the same overlay.
+        // The inverse of Projection::pinhole's matrix.
         const glm::dmat4 &p = camera->projection().matrix();
         const Viewport &viewport = camera->viewport();
         const double width = viewport.window().width, height = viewport.window().height;
         const double fx = p[0][0] * width / 2.0, fy = p[1][1] * height / 2.0;
-        out["intrinsics"] = {{"fx", fx},
-                             {"fy", fy},
-                             {"cx", (1.0 - p[2][0]) * width / 2.0},
-                             {"cy", (1.0 + p[2][1]) * height / 2.0},
+        out["intrinsics"] = {{"fx", shown(fx)},
+                             {"fy", shown(fy)},
+                             {"cx", shown((1.0 - p[2][0]) * width / 2.0 - 0.5)},
+                             {"cy", shown((1.0 + p[2][1]) * height / 2.0 - 0.5)},
+                             {"skew", shown(-p[1][0] * width / 2.0)},
                              {"width", width},
                              {"height", height},
-                             {"hfov", glm::degrees(2.0 * std::atan(width / (2.0 * fx)))},
-                             {"vfov", glm::degrees(2.0 * std::atan(height / (2.0 * fy)))}};
+                             {"hfov", shown(glm::degrees(2.0 * std::atan(width / (2.0 * fx))))},
+                             {"vfov", shown(glm::degrees(2.0 * std::atan(height / (2.0 * fy))))}};
     }
     return out;
 }
@@ -179,7 +196,7 @@ HttpResponse HttpApi::state()
     json source = {{"kind", std::string(sourceKindName(config.source.kind))},
                    {"state", stateName(status_.state())},
                    {"frames", status_.pipeline().framesIn()},
-                   {"fps_measured", measuredFps()}};
+                   {"fps_measured", roundedTo(measuredFps(), kShownSecondsDecimals)}};
     if (config.source.kind == SourceKind::V4l2)
         source["device"] = config.source.v4l2.device;
     if (format.format)
@@ -196,7 +213,8 @@ HttpResponse HttpApi::state()
     json sinks = json::array();
     for (const auto &sink : status_.pipeline().sinks()) {
         const SinkCounters counters = sink->counters();
-        sinks.push_back({{"name", sink->describe()},
+        sinks.push_back({{"name", sink->options().name},
+                         {"describe", sink->describe()},
                          {"written", counters.written},
                          {"dropped", counters.dropped},
                          {"failed", counters.failed}});
@@ -204,18 +222,20 @@ HttpResponse HttpApi::state()
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
-    json out = {{"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()},
-                {"source", source},
-                {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
-                {"layers", layers},
-                {"text_slots", slots},
-                {"sinks", sinks},
-                {"http",
-                 {{"connections", http.connections},
-                  {"stream_clients", http.streamClients},
-                  {"stream_fps", http.streamFps},
-                  {"parts_sent", http.partsSent},
-                  {"requests", http.requests}}}};
+    json out = {
+        {"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
+                               kShownSecondsDecimals)},
+        {"source", source},
+        {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
+        {"layers", layers},
+        {"text_slots", slots},
+        {"sinks", sinks},
+        {"http",
+         {{"connections", http.connections},
+          {"stream_clients", http.streamClients},
+          {"stream_fps", http.streamFps},
+          {"parts_sent", http.partsSent},
+          {"requests", http.requests}}}};
     if (!status_.gpio().empty())
         out["gpio"] = status_.gpio().describe();
     json inputs = json::array();
@@ -293,7 +313,7 @@ HttpResponse HttpApi::metrics()
            status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
     for (const auto &sink : status_.pipeline().sinks()) {
         const SinkCounters counters = sink->counters();
-        std::string label = "sink=" + writeJson(json(sink->describe()));
+        const std::string label = "sink=" + writeJson(json(sink->options().name));
         metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
         metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
                label);
@@ -350,8 +370,13 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
 {
     SceneControl &scene = scene_;
     const auto names = scene.layerNames();
-    if (std::find(names.begin(), names.end(), layer) == names.end())
-        return HttpResponse::error(404, "no layer '" + layer + "' in the scene");
+    if (std::find(names.begin(), names.end(), layer) == names.end()) {
+        std::string known;
+        for (const std::string &name : names)
+            known += (known.empty() ? "" : ", ") + name;
+        return HttpResponse::error(404, "no layer '" + layer +
+                                            "' in the scene; its layers: " + (known.empty() ? "none" : known));
+    }
     const auto body = parseJsonBody(request.body);
     if (!body)
         return HttpResponse::error(400, body.error().message);

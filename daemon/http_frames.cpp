@@ -8,7 +8,7 @@ Status encodeInto(std::optional<JpegEncoder> &encoder, http::JpegFeed &feed, int
                   const FrameMetadata &metadata, bool raw)
 {
     if (!encoder) {
-        auto created = JpegEncoder::create();
+        auto created = JpegEncoder::create(JpegChroma::Halved); // what MJPEG viewers get from any server
         if (!created)
             return created.error();
         encoder.emplace(std::move(*created));

@@ -1,8 +1,12 @@
 #include "daemon/http_front.h"
 
+#include "base/utf8.h"
+
 namespace overlayd {
 
 namespace {
+
+constexpr size_t kMaxLoggedBodyBytes = 512; // of a change's request and answer, in its log line
 
 http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
 {
@@ -31,7 +35,30 @@ HttpFront::~HttpFront()
 Result<std::unique_ptr<http::HttpServer>> HttpFront::startServer(const http::HttpOptions &options)
 {
     return http::HttpServer::start(
-        options, *feed_, [this](const http::HttpRequest &request) { return api_.handle(request); }, logger_);
+        options, *feed_,
+        [this](const http::HttpRequest &request) {
+            http::HttpResponse response = api_.handle(request);
+            logChange(request, response);
+            return response;
+        },
+        logger_);
+}
+
+void HttpFront::logChange(const http::HttpRequest &request, const http::HttpResponse &response)
+{
+    // A change (PUT) or a save, whoever made it and what it was; a refused one at info, with why.
+    const bool save = request.method == "POST" && request.path == "/api/save";
+    if (request.method != "PUT" && !save)
+        return;
+    const std::string what = cat(request.peer, " ", request.method, " ", request.path,
+                                 save ? std::string() : " " + quotable(request.body, kMaxLoggedBodyBytes));
+    std::string_view answer = response.body;
+    while (!answer.empty() && answer.back() == '\n')
+        answer.remove_suffix(1);
+    if (response.status == 200)
+        logger_.notice(cat("http: ", what, " -> ", quotable(answer, kMaxLoggedBodyBytes)));
+    else
+        logger_.info(cat("http: ", what, " refused (", response.status, "): ", quotable(answer, kMaxLoggedBodyBytes)));
 }
 
 Status HttpFront::configure(const http::HttpOptions &options)
@@ -125,6 +152,7 @@ void HttpFront::pump()
 std::unique_ptr<SinkWorker> HttpFront::makeSink()
 {
     SinkOptions options;
+    options.name = "http";
     options.path = "http";
     options.queueDepth = 1; // the newest frame is the one worth encoding
     options.dropPolicy = DropPolicy::DropOldest;

@@ -35,6 +35,8 @@ public:
 
 private:
     Result<std::unique_ptr<http::HttpServer>> startServer(const http::HttpOptions &options);
+    // The log line of a control request that changes something (PUT, POST /api/save): who and what.
+    void logChange(const http::HttpRequest &request, const http::HttpResponse &response);
     void addToLoop();
     void removeFromLoop();
     void pump(); // libmicrohttpd's work, then its next deadline on the timer

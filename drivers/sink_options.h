@@ -26,6 +26,8 @@ enum class DropPolicy { DropOldest, DropNewest };
 enum class ZeroCopy { Auto, On, Off };
 
 struct SinkOptions {
+    // A stable identity for /state and /metrics labels: the config's `name`, else "sink[N]" (its table's place).
+    std::string name;
     SinkKind kind = SinkKind::Null;
     std::string path;          // file, "-" for stdout, or device
     unsigned every = 1;        // Snapshot: one image per `every` frames

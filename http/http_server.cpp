@@ -434,6 +434,8 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
         return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));
     if (reading && url == "/stream")
         return startStream(connection);
+    if (!reading && (url == "/stream" || url == "/snapshot")) // before the token check: no token makes it right
+        return answer(connection, HttpResponse::error(405, "GET " + url));
     if (reading && url == "/snapshot") {
         exchange.raw = request.query.count("raw") && request.query["raw"] != "0";
         return answerSnapshot(connection, exchange);
@@ -447,6 +449,8 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
             response.headers.emplace_back("Content-Security-Policy", "default-src 'self'; img-src 'self' blob:");
             return answer(connection, response);
         }
+    } else if (url == "/api/unproject") {
+        // A POST only for its body of pixels: it changes nothing, so a viewer may ask it as a GET would.
     } else if (auto refused = refuseControl(connection)) {
         return answer(connection, *refused);
     }
@@ -495,6 +499,11 @@ int HttpServer::startStream(MHD_Connection *connection)
     client->server = this;
     client->connection = connection;
     client->nextDue = Clock::now();
+    // The first part is a frame encoded after the client came: the feed may hold one from long ago (nobody watched,
+    // so nothing was encoded since). Only a source that sends nothing for kIdleResend gets the old one.
+    const auto latest = feed_.latest();
+    client->lastGeneration = latest ? latest->generation : 0;
+    client->lastSent = client->nextDue;
     MHD_Response *r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, kStreamBlockBytes, &MhdCallbacks::readStream,
                                                         client, &MhdCallbacks::freeStream);
     if (!r) {

@@ -43,6 +43,7 @@ test_packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     gpiod # the gpiod tools: the independent GPIO client in tests/vm
     ffmpeg v4l-utils
+    libjpeg-turbo-progs # cjpeg: libjpeg's own defaults, what the stream's JPEG size is compared with
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3
 )

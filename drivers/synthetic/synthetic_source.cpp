@@ -123,9 +123,12 @@ Result<FrameLease> SyntheticSource::nextFrame()
     }
     FrameMetadata metadata;
     metadata.sequence = sequence_;
-    metadata.timestamp = std::chrono::nanoseconds(std::llround(double(sequence_) * 1e9 / format_.fps));
+    // The time the frame was made, on CLOCK_MONOTONIC as a camera's is (latency is measured from it); the wall
+    // clock the overlay prints advances by the stream's frame period, so a render's text does not depend on speed.
+    metadata.timestamp = std::chrono::steady_clock::now().time_since_epoch();
     metadata.wallClock =
-        startWall_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(metadata.timestamp);
+        startWall_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                         std::chrono::nanoseconds(std::llround(double(sequence_) * 1e9 / format_.fps)));
     metadata.colorimetry = format_.colorimetry;
     ++sequence_;
     return pool_->lend(*index, metadata);

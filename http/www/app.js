@@ -175,17 +175,27 @@ function placeSlider(key, value) {
     range.value = String(value);
 }
 
+// The pose in the fields, or why it is not sent: a value outside its field's range is refused here, named, rather
+// than sent and come back as another pose (pitch 120 is the same camera as yaw - 180, pitch 60, roll 180).
 function readPose() {
     const values = POSE_KEYS.map((key) => number(key).valueAsNumber);
-    if (values.some((value) => !Number.isFinite(value))) return null;
+    if (values.some((value) => !Number.isFinite(value))) return {error: 'Every pose field needs a number.'};
+    for (const key of POSE_KEYS) {
+        const field = number(key), value = field.valueAsNumber;
+        const min = field.min === '' ? -Infinity : Number(field.min), max = field.max === '' ? Infinity : Number(field.max);
+        if (value < min || value > max) {
+            const name = key.length === 1 ? key : key[0].toUpperCase() + key.slice(1);
+            return {error: `${name} ${value} is outside ${field.min}..${field.max}: not sent.`};
+        }
+    }
     const [x, y, z, yaw, pitch, roll] = values;
-    return {position: [x, y, z], yaw, pitch, roll};
+    return {pose: {position: [x, y, z], yaw, pitch, roll}};
 }
 
 async function sendPose() {
-    const body = readPose();
-    if (!body) {
-        setStatus('pose-status', 'Every pose field needs a number.', true);
+    const {pose: body, error} = readPose();
+    if (error) {
+        setStatus('pose-status', error, true);
         return;
     }
     try {

@@ -207,6 +207,46 @@ def hide_layer(page, base):
     print(f'layer {name!r} hidden through its checkbox')
 
 
+def out_of_range_pitch(page, base):
+    """Pitch 120 typed into the field (range -90..90) is refused on the page, naming the field, and never sent: the
+    camera stays as it was (the server would take it as another pose)."""
+    before = get_state(base)['camera']
+    page.evaluate("""(() => {
+        const field = document.getElementById('pitch');
+        field.value = '120';
+        field.dispatchEvent(new Event('input', {bubbles: true}));
+        field.dispatchEvent(new Event('change', {bubbles: true}));
+    })()""")
+    said = page.wait_for("(() => { const s = document.getElementById('pose-status');"
+                         " return s.classList.contains('error') && s.textContent; })()", 5, 'the page to refuse pitch 120')
+    if 'Pitch' not in said or '120' not in said:
+        raise Failure(f'the page refused pitch 120 without naming it: {said!r}')
+    time.sleep(1.0)  # longer than the page's send delay
+    after = get_state(base)['camera']
+    if any(abs(after[key] - before[key]) > 1e-9 for key in ('yaw', 'pitch', 'roll')):
+        raise Failure(f'pitch 120 was sent anyway: {before} became {after}')
+    page.evaluate(f"""(() => {{
+        const field = document.getElementById('pitch');
+        field.value = '{before['pitch']}';
+        field.dispatchEvent(new Event('change', {{bubbles: true}}));
+    }})()""")
+    print(f'pitch 120 refused on the page: {said!r}')
+
+
+def shown_intrinsics(page, base, centred):
+    """The page shows /state's intrinsics, those the camera draws with: cx, cy in [camera.pinhole]'s convention."""
+    k = get_state(base)['camera']['intrinsics']
+    shown = page.wait_for("(() => { const cx = document.getElementById('cx').textContent;"
+                          " return cx && cx !== '–' && {cx, cy: document.getElementById('cy').textContent}; })()",
+                          5, 'the intrinsics on the page')
+    if abs(float(shown['cx']) - k['cx']) > 0.006 or abs(float(shown['cy']) - k['cy']) > 0.006:
+        raise Failure(f'the page shows cx {shown["cx"]}, cy {shown["cy"]}; the camera uses {k["cx"]}, {k["cy"]}')
+    width, height = get_state(base)['source']['width'], get_state(base)['source']['height']
+    if centred and abs(k['cx'] - (width - 1) / 2) > 1e-6 or abs(k['cy'] - (height - 1) / 2) > 1e-6:
+        raise Failure(f'a centred camera shows cx {k["cx"]}, cy {k["cy"]}, not the image centre '
+                      f'({(width - 1) / 2}, {(height - 1) / 2}) with pixel centres at integers')
+
+
 def check_narrow(page, workdir):
     page.call('Emulation.setDeviceMetricsOverride', width=360, height=800, deviceScaleFactor=1, mobile=True)
     overflow = page.wait_for('(() => { void document.body.offsetWidth;'
@@ -230,6 +270,8 @@ def run(args, workdir, cleanup):
     change_yaw(page, base, workdir)
     click_centre(page, base)
     hide_layer(page, base)
+    out_of_range_pitch(page, base)
+    shown_intrinsics(page, base, args.config == os.path.abspath(daemon_fixture.DEMO))
     check_narrow(page, workdir)
     if page.problems:
         raise Failure('the page ran into errors:\n' + '\n'.join(map(str, page.problems)))
