@@ -54,7 +54,9 @@ async function api(method, path, body) {
 async function control(method, path, body) {
     for (let attempt = 0; ; ++attempt) {
         try {
-            return await api(method, path, body);
+            const answer = await api(method, path, body);
+            if (attempt > 0) $('token-form').hidden = true; // the token worked: the form goes away
+            return answer;
         } catch (error) {
             if (error.status !== 401) throw error;
             await askForToken(attempt > 0 || sessionStorage.getItem(TOKEN_KEY) !== null);
@@ -78,7 +80,7 @@ function askForToken(refused) {
 
 function setUpToken() {
     const form = $('token-form');
-    form.hidden = sessionStorage.getItem(TOKEN_KEY) === null;
+    form.hidden = true; // shown when a change needs the token (a 401), hidden again once the token works
     form.addEventListener('submit', (event) => {
         event.preventDefault();
         const token = $('token').value.trim();

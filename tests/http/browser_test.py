@@ -247,6 +247,49 @@ def shown_intrinsics(page, base, centred):
                       f'({(width - 1) / 2}, {(height - 1) / 2}) with pixel centres at integers')
 
 
+def token_flow(args, workdir, cleanup, browser):
+    """With control = "token": a click on the image gives its ground point without the token (it changes nothing);
+    a pose edit asks for the token over the page, moving none of the controls, and the form goes once it worked."""
+    port = daemon_fixture.free_port()
+    token_file = os.path.join(workdir, 'token')
+    open(token_file, 'w').write('browser-token\n')
+    path = os.path.join(workdir, 'overlayd-token.toml')
+    with open(path, 'w') as file:
+        file.write(daemon_fixture.config_without_sinks(args.config) +
+                   daemon_fixture.http_section(port, control='token', token_file=token_file))
+    daemon = daemon_fixture.Daemon(args.overlayd, path, workdir, port, cwd=workdir)
+    cleanup.append(daemon.stop)
+    daemon.wait_ready(20)
+    page = Page(browser.browser_url(20), timeout=10)
+    cleanup.append(page.close)
+    open_page(page, daemon.base)
+    page.evaluate("sessionStorage.clear()")
+    click_centre(page, daemon.base)
+    if not page.evaluate("document.getElementById('token-form').hidden"):
+        raise Failure('a click on the image asked for the control token')
+    top = page.evaluate("document.getElementById('pose-title').getBoundingClientRect().top")
+    set_field = """(() => {
+        const field = document.getElementById('yaw');
+        field.value = '95';
+        field.dispatchEvent(new Event('input', {bubbles: true}));
+        field.dispatchEvent(new Event('change', {bubbles: true}));
+    })()"""
+    page.evaluate(set_field)
+    page.wait_for("!document.getElementById('token-form').hidden", 5, 'the page to ask for the token')
+    moved = page.evaluate("document.getElementById('pose-title').getBoundingClientRect().top") - top
+    if abs(moved) > 1:
+        raise Failure(f'the token form pushed the pose controls {moved} px down')
+    page.evaluate("""(() => {
+        document.getElementById('token').value = 'browser-token';
+        document.getElementById('token-form').requestSubmit();
+    })()""")
+    poll(lambda: abs(get_state(daemon.base)['camera']['yaw'] - 95) < 1e-6, 5, 'the pose edit sent with the token')
+    page.wait_for("document.getElementById('token-form').hidden", 5, 'the token form to go once the token worked')
+    if page.problems:
+        raise Failure('the page with control = "token" ran into errors:\n' + '\n'.join(map(str, page.problems)))
+    print('token: a click needs none; an edit asked for it over the page, and the form went once it worked')
+
+
 def check_narrow(page, workdir):
     page.call('Emulation.setDeviceMetricsOverride', width=360, height=800, deviceScaleFactor=1, mobile=True)
     overflow = page.wait_for('(() => { void document.body.offsetWidth;'
@@ -273,6 +316,9 @@ def run(args, workdir, cleanup):
     out_of_range_pitch(page, base)
     shown_intrinsics(page, base, args.config == os.path.abspath(daemon_fixture.DEMO))
     check_narrow(page, workdir)
+    if page.problems:
+        raise Failure('the page ran into errors:\n' + '\n'.join(map(str, page.problems)))
+    token_flow(args, workdir, cleanup, browser)
     if page.problems:
         raise Failure('the page ran into errors:\n' + '\n'.join(map(str, page.problems)))
     if daemon.process.poll() is not None:
