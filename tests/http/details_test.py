@@ -350,12 +350,36 @@ def check_viewer_unprojects(daemon, workdir):
     check(status == 401, f"PUT /api/camera without the token: {status} {result}")
 
 
+def check_example_axes(daemon, workdir):
+    """distorted_pinhole.toml's axes are in the picture: a frame rendered with them differs from one without."""
+    example = os.path.join(daemon_fixture.REPO, "config", "examples", "distorted_pinhole.toml")
+    text = daemon_fixture.config_without_sinks(example).replace(
+        'calibration = "calibration.yaml"', 'calibration = ' + json.dumps(os.path.join(os.path.dirname(example),
+                                                                                        "calibration.yaml")))
+    start = text.index('type = "axes"')
+    start = text.rindex("[[annotation]]", 0, start)
+    end = text.find("[[", start + 2)
+    without = text[:start] + (text[end:] if end >= 0 else "")
+    pictures = []
+    for name, config in (("with-axes", text), ("without-axes", without)):
+        path = os.path.join(workdir, f"{name}.toml")
+        open(path, "w").write(config)
+        done = subprocess.run([daemon.overlayd, "render", "--config", path, "--frames", "1", "--output",
+                               os.path.join(workdir, f"{name}-%04d.png")], capture_output=True, text=True)
+        check(done.returncode == 0, f"render {name}: {done.stderr}")
+        _, _, pixels = daemon_fixture.grey_pixels(open(os.path.join(workdir, f"{name}-0000.png"), "rb").read(),
+                                                  workdir, f"{name}.png")
+        pictures.append(pixels)
+    changed = sum(abs(a - b) > 40 for a, b in zip(*pictures))
+    check(changed >= 200, f"distorted_pinhole.toml's axes change {changed} pixels of its picture: not in view")
+
+
 CHECKS = {"sinks": check_sinks, "intrinsics": check_intrinsics, "timestamp": check_timestamp,
           "first_part": check_first_part, "calibration": check_calibration_refused,
           "live_pose": check_live_pose_said, "logged": check_changes_logged,
           "errors": check_errors, "partial_pose": check_partial_pose,
           "numbers": check_readable_numbers, "jpeg_size": check_jpeg_size,
-          "unproject": check_viewer_unprojects}
+          "unproject": check_viewer_unprojects, "example_axes": check_example_axes}
 
 
 def run(overlayd, workdir, only):
