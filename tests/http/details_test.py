@@ -374,12 +374,48 @@ def check_example_axes(daemon, workdir):
     check(changed >= 200, f"distorted_pinhole.toml's axes change {changed} pixels of its picture: not in view")
 
 
+def check_unknown_steering_shows(daemon, workdir):
+    """reverse_camera.toml's "unknown steering" marks (no CAN frames) show on a ground of their own grey: a frame
+    over a uniform #9e9e9e picture has marks that differ from it by more than 60 grey levels."""
+    example = os.path.join(daemon_fixture.REPO, "config", "examples", "reverse_camera.toml")
+    text = daemon_fixture.config_without_sinks(example)
+    kept, skip = [], False
+    for line in text.splitlines():  # no GPIO chip here; the source a uniform grey replay
+        header = line.strip()
+        if header.startswith("["):
+            skip = header.startswith("[[gpio.") or header.startswith("[source")
+        if not skip:
+            kept.append(line)
+    grey = os.path.join(workdir, "grey.y4m")
+    subprocess.run(["ffmpeg", "-v", "error", "-y", "-f", "lavfi", "-i", "color=c=0x9e9e9e:s=1280x720:r=30",
+                    "-frames:v", "2", "-pix_fmt", "yuv422p", grey], check=True, timeout=60)
+    path = os.path.join(workdir, "reverse.toml")
+    port = daemon_fixture.free_port()
+    open(path, "w").write(BARS_SOURCE.split("[camera]")[0].replace("bars.y4m", grey) + "\n".join(kept) + "\n" +
+                          daemon_fixture.http_section(port, control="off"))
+    served = daemon_fixture.Daemon(daemon.overlayd, path, workdir, port)  # `run`: its CAN input has no frames
+    try:
+        served.wait_ready()
+        time.sleep(1.0)  # past the CAN input's timeout: the steering is unknown
+        status, jpeg, _ = curl(served.base, "/snapshot")
+        check(status == 200, f"/snapshot of the reverse camera: {status}")
+    finally:
+        check(served.stop() == 0, "the reverse camera's overlayd did not exit 0")
+    _, _, pixels = daemon_fixture.grey_pixels(jpeg, workdir, "reverse.jpg")
+    background = pixels[len(pixels) // 2]
+    bottom = pixels[len(pixels) * 3 // 4:]  # below the HUD text, where the near marks are
+    shown = sum(abs(p - background) > 60 for p in pixels[len(pixels) // 4:len(pixels) * 3 // 4])
+    check(shown >= 500, f"the unknown-steering marks differ from a #9e9e9e ground in {shown} pixels "
+                        f"(ground {background}; bottom rows {min(bottom)}..{max(bottom)})")
+
+
 CHECKS = {"sinks": check_sinks, "intrinsics": check_intrinsics, "timestamp": check_timestamp,
           "first_part": check_first_part, "calibration": check_calibration_refused,
           "live_pose": check_live_pose_said, "logged": check_changes_logged,
           "errors": check_errors, "partial_pose": check_partial_pose,
           "numbers": check_readable_numbers, "jpeg_size": check_jpeg_size,
-          "unproject": check_viewer_unprojects, "example_axes": check_example_axes}
+          "unproject": check_viewer_unprojects, "example_axes": check_example_axes,
+          "unknown_steering": check_unknown_steering_shows}
 
 
 def run(overlayd, workdir, only):
