@@ -2,6 +2,8 @@
 // config-file user would recognise.
 #include "config/camera_request.h"
 
+#include <algorithm>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "config/config_sections.h"
