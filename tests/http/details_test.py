@@ -409,13 +409,35 @@ def check_unknown_steering_shows(daemon, workdir):
                         f"(ground {background}; bottom rows {min(bottom)}..{max(bottom)})")
 
 
+def check_demo_labels_readable(daemon, workdir):
+    """demo.toml's "5 m" and "10 m" labels (yellow, on the yellow grid and the checker) sit on a dark box of their
+    own: the box beside each anchor is dark, whatever the ground under it."""
+    config_path = os.path.join(workdir, "labels.toml")
+    open(config_path, "w").write(daemon_fixture.demo_without_sinks())
+    done = subprocess.run([daemon.overlayd, "render", "--config", config_path, "--frames", "1", "--output",
+                           os.path.join(workdir, "labels-%04d.png")], capture_output=True, text=True)
+    check(done.returncode == 0, f"render: {done.stderr}")
+    width, _, pixels = daemon_fixture.grey_pixels(open(os.path.join(workdir, "labels-0000.png"), "rb").read(),
+                                                  workdir, "labels.png")
+    projected = subprocess.run([daemon.overlayd, "project", "--config", config_path, "--json", "--", "0", "5", "0",
+                                "0", "10", "0"], capture_output=True, text=True)
+    check(projected.returncode == 0, f"project: {projected.stderr}")
+    for point in json.loads(projected.stdout):
+        u, v = (int(round(c)) for c in point["pixel"])
+        # The box's pixels that are not glyphs: the darkest half of a 30x16 region right of and below the anchor.
+        region = sorted(pixels[(v + y) * width + u + x] for y in range(4, 20) for x in range(8, 38))
+        median_dark = region[len(region) // 4]
+        check(median_dark < 60, f"the label at {point['world']} has no dark box: its region's lower quartile is "
+                                f"{median_dark} (pixel {u}, {v})")
+
+
 CHECKS = {"sinks": check_sinks, "intrinsics": check_intrinsics, "timestamp": check_timestamp,
           "first_part": check_first_part, "calibration": check_calibration_refused,
           "live_pose": check_live_pose_said, "logged": check_changes_logged,
           "errors": check_errors, "partial_pose": check_partial_pose,
           "numbers": check_readable_numbers, "jpeg_size": check_jpeg_size,
           "unproject": check_viewer_unprojects, "example_axes": check_example_axes,
-          "unknown_steering": check_unknown_steering_shows}
+          "unknown_steering": check_unknown_steering_shows, "labels": check_demo_labels_readable}
 
 
 def run(overlayd, workdir, only):
