@@ -45,6 +45,8 @@ public:
         return {true, {hit.x, hit.y}};
     }
 
+    double squareMetres() const { return square_; }
+
     Square square(const Hit &hit) const
     {
         if (!hit.ground)
