@@ -5,6 +5,14 @@
 
 namespace overlayd::http {
 
+namespace {
+
+// An address over its cap loses only requests at least this old: a burst of connections accepted in one pass has
+// not been read yet, and its newest would otherwise shed its older neighbours before they could say anything.
+constexpr auto kMinShedAge = std::chrono::seconds(1);
+
+} // namespace
+
 unsigned RequestSlots::count(const std::string *address) const
 {
     return unsigned(std::count_if(slots_.begin(), slots_.end(), [&](const Slot &slot) {
@@ -12,11 +20,12 @@ unsigned RequestSlots::count(const std::string *address) const
     }));
 }
 
-RequestSlots::Slot *RequestSlots::slowest(const std::string *address)
+RequestSlots::Slot *RequestSlots::slowest(const std::string *address, Clock::time_point before)
 {
     Slot *oldest = nullptr;
     for (Slot &slot : slots_)
-        if (incomplete(slot) && (!address || slot.address == *address) && (!oldest || slot.since < oldest->since))
+        if (incomplete(slot) && (!address || slot.address == *address) && slot.since <= before &&
+            (!oldest || slot.since < oldest->since))
             oldest = &slot;
     return oldest;
 }
@@ -26,7 +35,7 @@ std::vector<std::pair<RequestSlots::Id, ShedReason>> RequestSlots::opened(Id id,
 {
     std::vector<std::pair<Id, ShedReason>> out;
     const auto shedSlowest = [&](const std::string *from, ShedReason reason) {
-        Slot *victim = slowest(from);
+        Slot *victim = slowest(from, from ? now - kMinShedAge : Clock::time_point::max());
         if (!victim)
             return false;
         victim->shed = true;

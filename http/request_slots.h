@@ -51,7 +51,7 @@ private:
         bool shed = false; // closing: neither counted nor chosen again
     };
     bool incomplete(const Slot &slot) const { return !slot.shed && slot.phase != Phase::Serving; }
-    Slot *slowest(const std::string *address);
+    Slot *slowest(const std::string *address, Clock::time_point before);
     unsigned count(const std::string *address) const;
 
     SlotLimits limits_;

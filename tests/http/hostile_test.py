@@ -5,14 +5,16 @@
 
 The demo scene without its sinks, [http] on a free loopback port with the default max_clients (32), control "open".
 Phases, each bounded:
+  few       20 clients from one address trickle request headers (they fit in max_clients): a /state from that
+            address is answered within 1 s, shedding all but 7 of them (max_pending_per_address, counted)
   flood     200 clients from one address trickle request headers a byte at a time (and dial again when closed)
-            for 6 s: /state from another address answers within 1 s throughout, a /stream viewer never waits 2 s
-            for a part, and /metrics counts max_pending_per_address
+            for 6 s: they fill every slot; /state from another address answers within 1 s throughout, a /stream
+            viewer never waits 2 s for a part, and /metrics counts max_clients
   spread    the same 200 from 200 addresses (127.0.1.x): every slot is taken, the slowest incomplete request is
             shed for each newcomer; same checks, max_clients counted
   storm     2,000 short connections (8 threads; half /state, half closed at once or after half a request line,
-            some with a reset) while the flood goes on, complete in under 5 s, every /state answered 200; once the
-            flood stops the daemon's fds come back to the count before, its RSS grows by less than 8 MiB
+            some with a reset) complete in under 5 s, every /state answered 200; the daemon's fds come back to the
+            count before, its RSS grows by less than 8 MiB
   lies      oversized and lying requests get the right status: a Content-Length over the body limit 413, a
             chunked body over it 413, a URL over 8 KiB 414, headers over the connection's memory 431, a
             Content-Length that is not a number 400
@@ -24,6 +26,7 @@ import time
 
 import raw_client
 
+PER_ADDRESS = 8          # max_pending_per_address's default
 STATE_LATENCY = 1.0     # s: /state while the flood runs
 STREAM_GAP = 2.0        # s: the longest a viewer may wait for a part
 STORM = 2000
@@ -50,21 +53,38 @@ def watch_state(port, seconds):
     return worst, failures
 
 
-def flood(port, sources, label, limit):
-    before = raw_client.metric(port, "overlayd_http_limit_total", f'limit="{limit}"') or 0
+def shed_count(port, limit):
+    return raw_client.metric(port, "overlayd_http_limit_total", f'limit="{limit}"') or 0
+
+
+def flood(port, sources, label, limit, seconds=5.0):
+    """len(sources) tricklers for `seconds`: /state, the stream and the limit that must have shed them."""
+    before = shed_count(port, limit)
     with raw_client.StreamWatch(port) as viewer:
         time.sleep(1.0)
         with raw_client.Tricklers(port, sources, prefix=b"GET /state HTTP/1.1\r\nHost: t\r\nX-Slow: ") as tricklers:
             time.sleep(1.0)
-            worst, failures = watch_state(port, 5.0)
+            worst, failures = watch_state(port, seconds)
         print(f"{label}: /state worst {worst:.3f} s, failures {failures[:5]} ({len(failures)}), tricklers closed "
               f"{tricklers.closed}, refused {tricklers.refused}; stream parts {viewer.parts}, longest gap "
               f"{viewer.longest_gap:.2f} s")
     check(not failures, f"{label}: /state failed {len(failures)} times under the flood: {failures[:5]}")
     check(worst < STATE_LATENCY, f"{label}: /state took {worst:.2f} s under the flood (limit {STATE_LATENCY} s)")
     check(viewer.longest_gap < STREAM_GAP, f"{label}: the stream stalled {viewer.longest_gap:.2f} s")
-    after = raw_client.metric(port, "overlayd_http_limit_total", f'limit="{limit}"') or 0
+    after = shed_count(port, limit)
     check(after > before, f"{label}: /metrics did not count {limit} ({before} -> {after})")
+
+
+def few(port):
+    before = shed_count(port, "max_pending_per_address")
+    with raw_client.Tricklers(port, ["127.0.0.5"] * 20, interval=0.5, prefix=b"GET /state HTTP/1.1\r\nX: "):
+        time.sleep(2.0)
+        status, elapsed, _ = raw_client.get(port, "/state", source="127.0.0.5")
+    shed = shed_count(port, "max_pending_per_address") - before
+    print(f"few: /state from the tricklers' address {status} in {elapsed:.3f} s; {shed} of theirs shed")
+    check(status == 200 and elapsed < STATE_LATENCY, f"few: /state from the tricklers' address: {status}, {elapsed} s")
+    check(shed >= 20 - PER_ADDRESS + 1, f"few: {shed} requests shed for max_pending_per_address, not at least "
+                                        f"{20 - PER_ADDRESS + 1}")
 
 
 def storm(port, pid):
@@ -86,16 +106,13 @@ def storm(port, pid):
         with lock:
             results.extend(local)
 
-    # The storm comes while 200 clients trickle headers from another address: they must not slow it down.
-    with raw_client.Tricklers(port, ["127.0.0.3"] * 200, prefix=b"GET /state HTTP/1.1\r\nHost: t\r\nX-Slow: "):
-        time.sleep(1.0)
-        start = time.monotonic()
-        threads = [threading.Thread(target=worker, args=(STORM // STORM_THREADS,)) for _ in range(STORM_THREADS)]
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join(60)
-        seconds = time.monotonic() - start
+    start = time.monotonic()
+    threads = [threading.Thread(target=worker, args=(STORM // STORM_THREADS,)) for _ in range(STORM_THREADS)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(60)
+    seconds = time.monotonic() - start
     bad = [s for s in results if s != 200]
     deadline = time.monotonic() + 3.0
     while raw_client.fds(pid) > fds_before + FD_RETURN and time.monotonic() < deadline:
@@ -132,8 +149,10 @@ def run(overlayd, workdir, args):
     with raw_client.serving(raw_client.start_daemon(overlayd, workdir, "hostile", control="open")) as daemon:
         port = daemon.port
         daemon.wait_ready()
+        if "few" in phases:
+            few(port)
         if "flood" in phases:
-            flood(port, ["127.0.0.3"] * 200, "flood", "max_pending_per_address")
+            flood(port, ["127.0.0.3"] * 200, "flood", "max_clients")
         if "spread" in phases:
             flood(port, [f"127.0.1.{i}" for i in range(1, 201)], "spread", "max_clients")
         if "storm" in phases:
@@ -143,7 +162,7 @@ def run(overlayd, workdir, args):
 
 
 def add_phases(parser):
-    parser.add_argument("--phases", default="flood,spread,storm,lies", help="which phases, comma-separated")
+    parser.add_argument("--phases", default="few,flood,spread,storm,lies", help="which phases, comma-separated")
 
 
 def main():

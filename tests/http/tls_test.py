@@ -128,7 +128,7 @@ def serve_and_renew(overlayd, workdir, ca):
 
 def check_config(overlayd, workdir):
     port = daemon_fixture.free_port()
-    for label, cert, key, words in (("a key that is not the certificate's", "server.pem", "other.key", "key"),
+    for label, cert, key, words in (("a key that is not the certificate's", "server.pem", "other.key", "do not match"),
                                     ("an unreadable certificate", "absent.pem", "server.key", "cannot read")):
         config = os.path.join(workdir, "check.toml")
         with open(config, "w") as file:

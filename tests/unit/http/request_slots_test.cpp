@@ -77,3 +77,13 @@ TEST(RequestSlots, WhenFullTheSlowestIncompleteGoesNeverAStream)
     ASSERT_EQ(shed.size(), 1u) << "every slot serves: the newcomer is refused";
     EXPECT_EQ(shed[0], std::make_pair(RequestSlots::Id(5), ShedReason::Total));
 }
+
+TEST(RequestSlots, ABurstFromOneAddressIsNotShedBeforeItCouldSpeak)
+{
+    RequestSlots slots(limits(2, 32));
+    (void)slots.opened(1, "a", t0);
+    (void)slots.opened(2, "a", t0);
+    EXPECT_TRUE(slots.opened(3, "a", t0).empty()) << "requests accepted in one pass, none read yet";
+    const auto shed = slots.opened(4, "a", t0 + seconds(1));
+    EXPECT_EQ(shed.size(), 2u) << "a second later the older ones are slow";
+}
