@@ -94,7 +94,7 @@ TEST(UnitFiles, SystemdAnalyzeVerifyIsSilent)
     }
 }
 
-TEST(UnitFiles, SecurityExposureAtMostThree)
+TEST(UnitFiles, SecurityExposureAtMostTwo)
 {
     test::TempDir dir;
     for (const auto &[unit, as] : units) {
