@@ -347,6 +347,9 @@ HttpResponse HttpApi::metrics()
     metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));
     metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
     metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.", double(http.refused));
+    for (const auto &[limit, hits] : http.limits)
+        metric("overlayd_http_limit_total", "counter", "Connections a limit closed or refused (docs/config.md Limits).",
+               double(hits), "limit=" + writeJson(json(limit)));
     HttpResponse response = HttpResponse::json(200, text);
     response.contentType = "text/plain; version=0.0.4; charset=utf-8";
     return response;

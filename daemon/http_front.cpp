@@ -65,6 +65,15 @@ Status HttpFront::configure(const http::HttpOptions &options)
 {
     if (options == options_ && (server_ != nullptr) == options.enabled)
         return Ok{};
+    http::HttpOptions sameCertificate = options;
+    sameCertificate.tls = options_.tls;
+    if (server_ && !options.tls.empty() && sameCertificate == options_) { // renewed: open streams go on
+        if (Status renewed = server_->replaceCertificate(options.tls); !renewed)
+            return renewed.error();
+        options_ = options;
+        logger_.notice("http: the TLS certificate was renewed (" + options.tlsCert + ")");
+        return Ok{};
+    }
     if (!timeout_) {
         for (auto *timer : {&timeout_, &tick_}) {
             auto created = Timer::create();
@@ -88,7 +97,8 @@ Status HttpFront::configure(const http::HttpOptions &options)
             return started.error();
         }
         server_ = std::move(*started);
-        logger_.notice(cat("http: serving on http://", server_->address().describe(), "/"));
+        logger_.notice(cat("http: serving on ", options.tls.empty() ? "http" : "https", "://",
+                           server_->address().describe(), "/"));
     }
     options_ = options;
     quality_ = options.jpegQuality;

@@ -14,9 +14,12 @@
 
 #include "base/logger.h"
 #include "base/result.h"
+#include "http/auth_failures.h"
+#include "http/credentials.h"
 #include "http/http_options.h"
 #include "http/jpeg_feed.h"
 #include "http/listen_address.h"
+#include "http/request_slots.h"
 
 struct MHD_Daemon;
 struct MHD_Connection;
@@ -56,6 +59,8 @@ struct HttpCounters {
     uint64_t partsSent = 0;        // JPEG parts written to /stream clients
     uint64_t refused = 0;          // 4xx/5xx answers
     std::vector<double> streamFps; // each /stream client's recent parts per second
+    // How often each limit was hit: {name in /metrics, count} (docs/config.md "Limits" names them).
+    std::vector<std::pair<std::string, uint64_t>> limits;
 };
 
 class HttpServer
@@ -78,6 +83,10 @@ public:
     // Once a second: idle streams resend their last frame, overdue snapshot waits answer 503.
     void onTick();
 
+    // A renewed certificate (options().tls changed, nothing else): the next handshakes get it, open connections
+    // go on.
+    Status replaceCertificate(const TlsFiles &files);
+
     const ListenAddress &address() const { return address_; }
     const HttpOptions &options() const { return options_; }
     HttpCounters counters() const;
@@ -87,9 +96,7 @@ public:
     struct Connection;
 
 private:
-    HttpServer(const HttpOptions &options, ListenAddress address, JpegFeed &feed, ApiHandler api, Logger &logger)
-        : options_(options), address_(std::move(address)), feed_(feed), api_(std::move(api)), logger_(logger)
-    {}
+    HttpServer(const HttpOptions &options, ListenAddress address, JpegFeed &feed, ApiHandler api, Logger &logger);
 
     friend struct MhdCallbacks; // libmicrohttpd's C callbacks, in http_server.cpp
 
@@ -98,17 +105,20 @@ private:
     int answerSnapshot(MHD_Connection *connection, Exchange &exchange);
     int startStream(MHD_Connection *connection);
     int serveFile(MHD_Connection *connection, const std::string &path);
-    std::optional<HttpResponse> refuseControl(MHD_Connection *connection) const;
+    std::optional<HttpResponse> refuse(MHD_Connection *connection, const HttpRequest &request);
     ssize_t fillStream(StreamClient &client, char *buffer, size_t max);
     void resumeAll();
     bool closeHungUp();
+    void shed(const std::vector<std::pair<RequestSlots::Id, ShedReason>> &victims);
+    unsigned maxStreams() const;
 
     HttpOptions options_;
     ListenAddress address_;
     JpegFeed &feed_;
     ApiHandler api_;
     Logger &logger_;
-    std::string token_;
+    Credentials credentials_;
+    AuthFailures authFailures_;
     MHD_Daemon *daemon_ = nullptr;
     bool stopping_ = false;
 
@@ -116,6 +126,9 @@ private:
     std::vector<StreamClient *> streams_;
     std::vector<Connection *> connections_; // every open connection
     HttpCounters counters_;
+    RequestSlots slots_;
+    uint64_t streamsRefused_ = 0; // /stream over max_streams
+    bool shed_ = false;           // shed() shut a connection down since the last pass of run()
 };
 
 } // namespace overlayd::http

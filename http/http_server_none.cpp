@@ -17,6 +17,16 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &, JpegF
 
 HttpServer::~HttpServer() = default;
 
+Result<TlsFiles> readTlsFiles(const std::string &, const std::string &)
+{
+    return makeError(ErrorCode::Unsupported, "this overlayd was built without the HTTP server");
+}
+
+Status HttpServer::replaceCertificate(const TlsFiles &)
+{
+    return makeError(ErrorCode::Unsupported, "this overlayd was built without the HTTP server");
+}
+
 int HttpServer::fd() const
 {
     return -1;
