@@ -125,7 +125,7 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
         sinks.push_back(std::make_unique<SinkWorker>(std::move(*sink), options, logger_));
     }
     if (config.http.enabled)
-        sinks.push_back(http_.makeSink());
+        sinks.push_back(std::make_unique<SinkWorker>(http_.makeSink(), HttpFront::sinkOptions(), logger_));
     return sinks;
 }
 
@@ -135,6 +135,16 @@ uint64_t Daemon::sinkFailures() const
     for (const auto &sink : pipeline_.sinks())
         failures += sink->counters().failed;
     return failures;
+}
+
+std::vector<SinkStatus> Daemon::sinkStatus() const
+{
+    std::vector<SinkStatus> out;
+    for (const auto &sink : pipeline_.sinks()) {
+        const SinkCounters counters = sink->counters();
+        out.push_back({sink->describe(), counters.written, counters.dropped, counters.failed});
+    }
+    return out;
 }
 
 std::vector<inputs::InputHealth> Daemon::inputHealth() const

@@ -13,18 +13,18 @@
 #include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
-#include "daemon/can_inputs.h"
-#include "daemon/daemon_status.h"
-#include "daemon/gpio_control.h"
+#include "control/can_inputs.h"
+#include "control/daemon_status.h"
+#include "control/gpio_control.h"
+#include "control/http_front.h"
+#include "control/path_inputs.h"
+#include "control/scene_control.h"
+#include "control/text_inputs.h"
 #include "daemon/health_reporter.h"
-#include "daemon/http_front.h"
-#include "daemon/path_inputs.h"
 #include "daemon/pipeline.h"
-#include "daemon/scene_control.h"
 #include "daemon/source_supervisor.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
-#include "daemon/text_inputs.h"
 
 namespace overlayd {
 
@@ -63,7 +63,10 @@ public:
 
     State state() const override { return source_ ? source_->state() : State::Idle; }
     const DaemonConfig &config() const override { return config_; }
-    const Pipeline &pipeline() const override { return pipeline_; }
+    const Pipeline &pipeline() const { return pipeline_; }
+    const StreamFormat &streamFormat() const override { return pipeline_.format(); }
+    uint64_t framesIn() const override { return pipeline_.framesIn(); }
+    std::vector<SinkStatus> sinkStatus() const override;
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
     const GpioControl &gpio() const override { return gpio_; }

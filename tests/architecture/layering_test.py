@@ -19,9 +19,11 @@ ALLOWED = {
     "inputs": {"base"},
     "alignment": {"base", "projection"},
     "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config"},
+    "control": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config",
+               "control"},
     "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config",
-              "daemon"},
+              "control", "daemon"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.

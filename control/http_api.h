@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <functional>
 
-#include "daemon/daemon_status.h"
-#include "daemon/scene_control.h"
+#include "control/daemon_status.h"
+#include "control/scene_control.h"
 #include "http/http_server.h"
 
 namespace overlayd {

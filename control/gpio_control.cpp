@@ -1,6 +1,6 @@
 // GpioControl: requesting and re-requesting lines, debounced input edges into layer changes, outputs that follow
 // the daemon's state.
-#include "daemon/gpio_control.h"
+#include "control/gpio_control.h"
 
 #include "gpio/layer_rules.h"
 

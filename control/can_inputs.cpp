@@ -1,4 +1,4 @@
-#include "daemon/can_inputs.h"
+#include "control/can_inputs.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "daemon/text_inputs.h"
+#include "control/text_inputs.h"
 
 namespace overlayd {
 

@@ -1,6 +1,6 @@
 // The HTTP API's answers. JSON goes out through nlohmann::json; JSON coming in is read by config/ (camera changes)
 // or here (a layer's visibility, a slot's text, pixels), each with the limits the config file has.
-#include "daemon/http_api.h"
+#include "control/http_api.h"
 
 #include <charconv>
 #include <cstdio>
@@ -162,7 +162,7 @@ double HttpApi::measuredFps()
 {
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - sampleTime_).count();
-    const uint64_t frames = status_.pipeline().framesIn();
+    const uint64_t frames = status_.framesIn();
     if (seconds >= 1.0) {
         fps_ = double(frames - sampleFrames_) / seconds;
         sampleTime_ = now;
@@ -174,11 +174,11 @@ double HttpApi::measuredFps()
 HttpResponse HttpApi::state()
 {
     const DaemonConfig &config = status_.config();
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     SceneControl &scene = scene_;
     json source = {{"kind", std::string(sourceKindName(config.source.kind))},
                    {"state", stateName(status_.state())},
-                   {"frames", status_.pipeline().framesIn()},
+                   {"frames", status_.framesIn()},
                    {"fps_measured", measuredFps()}};
     if (config.source.kind == SourceKind::V4l2)
         source["device"] = config.source.v4l2.device;
@@ -194,13 +194,9 @@ HttpResponse HttpApi::state()
     for (const std::string &slot : textSlotNames(scene.scene()))
         slots[slot] = scene.slotText(slot);
     json sinks = json::array();
-    for (const auto &sink : status_.pipeline().sinks()) {
-        const SinkCounters counters = sink->counters();
-        sinks.push_back({{"name", sink->describe()},
-                         {"written", counters.written},
-                         {"dropped", counters.dropped},
-                         {"failed", counters.failed}});
-    }
+    for (const SinkStatus &sink : status_.sinkStatus())
+        sinks.push_back(
+            {{"name", sink.name}, {"written", sink.written}, {"dropped", sink.dropped}, {"failed", sink.failed}});
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
@@ -286,19 +282,15 @@ HttpResponse HttpApi::metrics()
     };
     metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
-    metric("overlayd_source_frames_total", "counter", "Frames the source delivered.",
-           double(status_.pipeline().framesIn()));
+    metric("overlayd_source_frames_total", "counter", "Frames the source delivered.", double(status_.framesIn()));
     metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
     metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
            status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
-    for (const auto &sink : status_.pipeline().sinks()) {
-        const SinkCounters counters = sink->counters();
-        std::string label = "sink=" + writeJson(json(sink->describe()));
-        metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
-        metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
-               label);
-        metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
-               label);
+    for (const SinkStatus &sink : status_.sinkStatus()) {
+        std::string label = "sink=" + writeJson(json(sink.name));
+        metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(sink.written), label);
+        metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(sink.dropped), label);
+        metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(sink.failed), label);
     }
     const CanInputs &can = status_.canInputs();
     for (size_t i = 0; i < can.size(); ++i) {
@@ -335,7 +327,7 @@ HttpResponse HttpApi::metrics()
 HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
 {
     SceneControl &scene = scene_;
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     const unsigned width = format.format ? format.width : status_.config().source.width;
     const unsigned height = format.format ? format.height : status_.config().source.height;
     auto spec = cameraFromJson(request.body, scene.camera(), width, height);
@@ -388,7 +380,7 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
                                             " finite points)");
     if (const std::string why = numbersRefusal(*numbers, {"x", "y", "z"}, "point", kAnyMagnitude); !why.empty())
         return HttpResponse::error(400, "points: " + why);
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
         return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");
@@ -418,7 +410,7 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
     std::vector<glm::dvec2> uv;
     for (size_t i = 0; i < numbers.size(); i += 2)
         uv.emplace_back(numbers[i], numbers[i + 1]);
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
         return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");

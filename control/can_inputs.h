@@ -11,7 +11,7 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
 #include "inputs/can_socket.h"
 #include "inputs/input_health.h"
 #include "inputs/input_options.h"

@@ -1,4 +1,4 @@
-#include "daemon/path_inputs.h"
+#include "control/path_inputs.h"
 
 #include "inputs/point_list.h"
 

@@ -12,8 +12,8 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/scene_control.h"
-#include "daemon/source_supervisor.h"
+#include "control/run_state.h"
+#include "control/scene_control.h"
 #include "gpio/line_provider.h"
 
 namespace overlayd {
@@ -21,7 +21,7 @@ namespace overlayd {
 class GpioControl
 {
 public:
-    using State = SourceSupervisor::State;
+    using State = RunState;
     static constexpr std::chrono::seconds kRetryPeriod{2};
 
     GpioControl(Logger &logger, SceneControl &scene) : logger_(logger), scene_(scene) {}

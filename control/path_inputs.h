@@ -9,8 +9,8 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/scene_control.h"
-#include "daemon/watched_files.h"
+#include "control/scene_control.h"
+#include "control/watched_files.h"
 #include "inputs/input_options.h"
 
 namespace overlayd {

@@ -1,4 +1,4 @@
-#include "daemon/watched_files.h"
+#include "control/watched_files.h"
 
 #include <algorithm>
 
