@@ -3,25 +3,14 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "config/daemon_config.h"
-#include "control/can_inputs.h"
-#include "control/gpio_control.h"
-#include "control/path_inputs.h"
 #include "control/run_state.h"
-#include "control/text_inputs.h"
-#include "inputs/input_health.h"
+#include "control/status_reporter.h"
 #include "media/stream.h"
 
 namespace overlayd {
-
-// One sink's counters as /state and /metrics show them.
-struct SinkStatus {
-    std::string name;
-    uint64_t written = 0, dropped = 0, failed = 0;
-};
 
 class DaemonStatus
 {
@@ -33,13 +22,9 @@ public:
     // The stream the pipeline runs (no format: none yet) and the frames its source delivered.
     virtual const StreamFormat &streamFormat() const = 0;
     virtual uint64_t framesIn() const = 0;
-    virtual std::vector<SinkStatus> sinkStatus() const = 0;
-    virtual const GpioControl &gpio() const = 0;
-    virtual const TextInputs &textInputs() const = 0;
-    virtual const PathInputs &pathInputs() const = 0;
-    virtual const CanInputs &canInputs() const = 0;
-    // Every live input's health, whatever its kind: what /state and /metrics report of the inputs.
-    virtual std::vector<inputs::InputHealth> inputHealth() const = 0;
+    // Every part that reports itself in /state and /metrics (the sinks, GPIO, each kind of input), in the order
+    // their entries appear.
+    virtual std::vector<const StatusReporter *> reporters() const = 0;
 
 protected:
     ~DaemonStatus() = default;

@@ -4,19 +4,17 @@
 
 #include <charconv>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "alignment/point_queries.h"
 #include "base/number_range.h"
-#include "base/number_text.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
+#include "control/status_report.h"
 #include "drivers/source_kind_names.h"
-#include "inputs/input_health.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
 
@@ -79,31 +77,6 @@ json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
                              {"vfov", glm::degrees(2.0 * std::atan(height / (2.0 * fy)))}};
     }
     return out;
-}
-
-// A wall-clock time as ISO 8601 UTC with milliseconds: "2026-11-27T11:43:25.123Z".
-std::string utcTime(std::chrono::system_clock::time_point time)
-{
-    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(time.time_since_epoch()).count();
-    const std::time_t seconds = std::time_t(ms / 1000);
-    std::tm utc{};
-    ::gmtime_r(&seconds, &utc);
-    char text[32]; // "YYYY-MM-DDTHH:MM:SS" is 19 characters for any year strftime can print in 4 digits
-    const size_t length = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-    return std::string(text, length) + formatted(".%03dZ", int(ms % 1000));
-}
-
-// One input's health, the same fields for every kind of input.
-json inputHealthJson(const inputs::InputHealth &input, std::chrono::steady_clock::time_point now)
-{
-    return {{"kind", input.kind},
-            {"name", input.name},
-            {"source", input.source},
-            {"state", inputs::inputStateName(input.state)},
-            {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
-            {"errors", input.errors},
-            {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
-            {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}};
 }
 
 // Numbers separated by ',' ';' or spaces: "x,y,z;x,y,z".
@@ -193,10 +166,6 @@ HttpResponse HttpApi::state()
     json slots = json::object();
     for (const std::string &slot : textSlotNames(scene.scene()))
         slots[slot] = scene.slotText(slot);
-    json sinks = json::array();
-    for (const SinkStatus &sink : status_.sinkStatus())
-        sinks.push_back(
-            {{"name", sink.name}, {"written", sink.written}, {"dropped", sink.dropped}, {"failed", sink.failed}});
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
@@ -205,125 +174,49 @@ HttpResponse HttpApi::state()
                 {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
                 {"layers", layers},
                 {"text_slots", slots},
-                {"sinks", sinks},
+                {"sinks", json::array()},
                 {"http",
                  {{"connections", http.connections},
                   {"stream_clients", http.streamClients},
                   {"stream_fps", http.streamFps},
                   {"parts_sent", http.partsSent},
                   {"requests", http.requests}}}};
-    if (!status_.gpio().empty())
-        out["gpio"] = status_.gpio().describe();
-    json inputs = json::array();
-    const auto now = std::chrono::steady_clock::now();
-    for (const TextInputs::Reading &reading : status_.textInputs().readings()) {
-        json entry = {{"kind", "text"},
-                      {"slot", reading.slot},
-                      {"file", reading.file},
-                      {"value", reading.text},
-                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
-        if (!reading.error.empty())
-            entry["error"] = reading.error;
-        inputs.push_back(std::move(entry));
-    }
-    for (const PathInputs::Reading &reading : status_.pathInputs().readings()) {
-        json entry = {{"kind", "path"},
-                      {"annotation", reading.annotation},
-                      {"file", reading.file},
-                      {"points", reading.points},
-                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
-        if (!reading.error.empty())
-            entry["error"] = reading.error;
-        inputs.push_back(std::move(entry));
-    }
-    const CanInputs &can = status_.canInputs();
-    for (size_t i = 0; i < can.size(); ++i) {
-        const inputs::CanInputOptions &options = can.options(i);
-        const CanInputs::Reading &reading = can.reading(i);
-        const bool any = reading.state != CanInputs::State::NoData;
-        json entry = {
-            {"kind", "can"},
-            {"name", options.name},
-            {"interface", options.interface},
-            {"id", options.id.id},
-            {"target", options.target.kind == inputs::CanTarget::Kind::Slot ? "slot:" + options.target.name
-                                                                            : options.target.name + ".steering"},
-            {"value", any ? json(reading.value) : json(nullptr)},
-            {"unit", options.unit},
-            {"state", CanInputs::stateName(reading.state)},
-            {"age_s", any ? json(std::chrono::duration<double>(now - reading.received).count()) : json(nullptr)},
-            {"frames", reading.frames},
-            {"malformed", reading.malformed},
-            {"out_of_range", reading.outOfRange},
-            {"connected", reading.connected}};
-        if (!reading.connected)
-            entry["error"] = reading.error;
-        inputs.push_back(std::move(entry));
-    }
-    if (!inputs.empty())
-        out["inputs"] = inputs;
-    json health = json::array();
-    for (const inputs::InputHealth &input : status_.inputHealth())
-        health.push_back(inputHealthJson(input, now));
-    if (!health.empty())
-        out["input_health"] = health;
+    StatusReport parts(std::chrono::steady_clock::now());
+    addParts(parts);
+    parts.writeState(out);
     return HttpResponse::json(200, writeJson(out));
 }
 
 HttpResponse HttpApi::metrics()
 {
     const http::HttpCounters http = counters_();
-    std::string text;
-    const auto metric = [&text](const char *name, const char *type, const char *help, double value,
-                                const std::string &labels = {}) {
-        if (labels.empty() || text.find(std::string("# TYPE ") + name + " ") == std::string::npos)
-            text += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
-        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + writeJson(json(value)) + "\n";
-    };
-    metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
-    metric("overlayd_source_frames_total", "counter", "Frames the source delivered.", double(status_.framesIn()));
-    metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
-    metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
-           status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
-    for (const SinkStatus &sink : status_.sinkStatus()) {
-        std::string label = "sink=" + writeJson(json(sink.name));
-        metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(sink.written), label);
-        metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(sink.dropped), label);
-        metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(sink.failed), label);
-    }
-    const CanInputs &can = status_.canInputs();
-    for (size_t i = 0; i < can.size(); ++i) {
-        const std::string label = "input=" + writeJson(json(can.options(i).name));
-        const CanInputs::Reading &reading = can.reading(i);
-        metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames), label);
-        metric("overlayd_can_malformed_total", "counter", "CAN frames too short for the signal (ignored).",
-               double(reading.malformed), label);
-        metric("overlayd_can_value_valid", "gauge", "1 while the signal's value is fresh and in range.",
-               reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
-    }
-    // One loop per metric: a family's samples stay together, as the text format wants.
-    const std::vector<inputs::InputHealth> inputHealth = status_.inputHealth();
-    const auto inputLabel = [](const inputs::InputHealth &input) {
-        return "kind=" + writeJson(json(input.kind)) + ",input=" + writeJson(json(input.name));
-    };
-    for (const inputs::InputHealth &input : inputHealth)
-        metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
-               input.state == inputs::InputHealth::State::Following ? 1.0 : 0.0, inputLabel(input));
-    for (const inputs::InputHealth &input : inputHealth)
-        metric("overlayd_input_errors_total", "counter",
-               "Errors an input met (its folder or interface gone, a version refused).", double(input.errors),
-               inputLabel(input));
-    metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
-    metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
-    metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));
-    metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
-    metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.", double(http.refused));
-    HttpResponse response = HttpResponse::json(200, text);
+    const auto now = std::chrono::steady_clock::now();
+    StatusReport report(now);
+    report.metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
+                  std::chrono::duration<double>(now - started_).count());
+    report.metric("overlayd_source_frames_total", "counter", "Frames the source delivered.",
+                  double(status_.framesIn()));
+    report.metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
+    report.metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
+                  status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
+    addParts(report);
+    report.metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
+    report.metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
+    report.metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.",
+                  double(http.partsSent));
+    report.metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
+    report.metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.",
+                  double(http.refused));
+    HttpResponse response = HttpResponse::json(200, report.metricsText());
     response.contentType = "text/plain; version=0.0.4; charset=utf-8";
     return response;
 }
 
+void HttpApi::addParts(StatusReport &report) const
+{
+    for (const StatusReporter *reporter : status_.reporters())
+        reporter->report(report);
+}
 HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
 {
     SceneControl &scene = scene_;

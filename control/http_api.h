@@ -31,6 +31,9 @@ private:
     http::HttpResponse unproject(const http::HttpRequest &request);
     http::HttpResponse save();
     double measuredFps();
+    // What every part the daemon lists (sinks, GPIO, each kind of input) reports of itself, after what `report`
+    // holds already.
+    void addParts(StatusReport &report) const;
 
     SceneControl &scene_;
     const DaemonStatus &status_;

@@ -1,5 +1,7 @@
 #include "control/text_inputs.h"
 
+#include "control/status_report.h"
+
 namespace overlayd {
 
 Status TextInputs::configure(const std::vector<inputs::TextInputOptions> &options)
@@ -44,6 +46,22 @@ void TextInputs::show(size_t input)
     reading.text = std::move(text);
     reading.changed = std::chrono::steady_clock::now();
     logger_.debug(cat("input.text '", reading.slot, "': \"", reading.text, "\""));
+}
+
+void TextInputs::report(StatusReport &report) const
+{
+    for (const Reading &reading : readings_) {
+        nlohmann::json entry = {{"kind", "text"},
+                                {"slot", reading.slot},
+                                {"file", reading.file},
+                                {"value", reading.text},
+                                {"age_s", std::chrono::duration<double>(report.now() - reading.changed).count()}};
+        if (!reading.error.empty())
+            entry["error"] = reading.error;
+        report.add("inputs", std::move(entry));
+    }
+    for (const inputs::InputHealth &input : health())
+        report.health(input);
 }
 
 } // namespace overlayd

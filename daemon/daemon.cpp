@@ -137,22 +137,12 @@ uint64_t Daemon::sinkFailures() const
     return failures;
 }
 
-std::vector<SinkStatus> Daemon::sinkStatus() const
+std::vector<const StatusReporter *> Daemon::reporters() const
 {
-    std::vector<SinkStatus> out;
-    for (const auto &sink : pipeline_.sinks()) {
-        const SinkCounters counters = sink->counters();
-        out.push_back({sink->describe(), counters.written, counters.dropped, counters.failed});
-    }
-    return out;
-}
-
-std::vector<inputs::InputHealth> Daemon::inputHealth() const
-{
-    std::vector<inputs::InputHealth> out = textInputs_.health();
-    out.insert(out.end(), pathInputs_.health().begin(), pathInputs_.health().end());
-    for (inputs::InputHealth &can : canInputs_.health())
-        out.push_back(std::move(can));
+    std::vector<const StatusReporter *> out;
+    for (const auto &sink : pipeline_.sinks())
+        out.push_back(sink.get());
+    out.insert(out.end(), {&gpio_, &textInputs_, &pathInputs_, &canInputs_});
     return out;
 }
 

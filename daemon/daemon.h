@@ -66,19 +66,17 @@ public:
     const Pipeline &pipeline() const { return pipeline_; }
     const StreamFormat &streamFormat() const override { return pipeline_.format(); }
     uint64_t framesIn() const override { return pipeline_.framesIn(); }
-    std::vector<SinkStatus> sinkStatus() const override;
+    std::vector<const StatusReporter *> reporters() const override;
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
-    const GpioControl &gpio() const override { return gpio_; }
+    const GpioControl &gpio() const { return gpio_; }
     GpioControl &gpio() { return gpio_; }
-    const TextInputs &textInputs() const override { return textInputs_; }
+    const TextInputs &textInputs() const { return textInputs_; }
     TextInputs &textInputs() { return textInputs_; }
-    const PathInputs &pathInputs() const override { return pathInputs_; }
+    const PathInputs &pathInputs() const { return pathInputs_; }
     PathInputs &pathInputs() { return pathInputs_; }
-    const CanInputs &canInputs() const override { return canInputs_; }
+    const CanInputs &canInputs() const { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
-    // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
-    std::vector<inputs::InputHealth> inputHealth() const override;
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }

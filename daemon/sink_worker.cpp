@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "control/status_report.h"
+
 namespace overlayd {
 
 SinkWorker::SinkWorker(std::unique_ptr<FrameSink> sink, const SinkOptions &options, Logger &logger, bool lossless)
@@ -186,6 +188,21 @@ size_t SinkWorker::allocatedFrames() const
     for (const Slot &slot : slots_)
         frames += slot.buffer.has_value();
     return frames;
+}
+
+void SinkWorker::report(StatusReport &report) const
+{
+    const SinkCounters counters = this->counters();
+    const std::string name = describe();
+    report.add(
+        "sinks",
+        {{"name", name}, {"written", counters.written}, {"dropped", counters.dropped}, {"failed", counters.failed}});
+    const std::string label = StatusReport::label("sink", name);
+    report.metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
+    report.metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
+                  label);
+    report.metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
+                  label);
 }
 
 } // namespace overlayd
