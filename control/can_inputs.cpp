@@ -258,7 +258,7 @@ void CanInputs::report(StatusReport &report) const
                       {"out_of_range", reading.outOfRange},
                       {"connected", reading.connected}};
         if (!reading.connected)
-            entry["error"] = reading.error;
+            entry["error"] = reading.error; // also "" before the first attempt to open
         report.add("inputs", std::move(entry));
         const std::string label = StatusReport::label("input", options.name);
         report.metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames),

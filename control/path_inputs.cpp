@@ -61,12 +61,9 @@ void PathInputs::report(StatusReport &report) const
                                 {"file", reading.file},
                                 {"points", reading.points},
                                 {"age_s", std::chrono::duration<double>(report.now() - reading.changed).count()}};
-        if (!reading.error.empty())
-            entry["error"] = reading.error;
-        report.add("inputs", std::move(entry));
+        report.input(std::move(entry), reading.error);
     }
-    for (const inputs::InputHealth &input : health())
-        report.health(input);
+    files_.report(report);
 }
 
 } // namespace overlayd

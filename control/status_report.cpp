@@ -50,6 +50,13 @@ void StatusReport::metric(const std::string &name, const char *type, const char 
                                                writeJson(json(value)));
 }
 
+void StatusReport::input(json entry, const std::string &error)
+{
+    if (!error.empty())
+        entry["error"] = error;
+    add("inputs", std::move(entry));
+}
+
 void StatusReport::health(const inputs::InputHealth &input)
 {
     add("input_health",

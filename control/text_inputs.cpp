@@ -56,12 +56,9 @@ void TextInputs::report(StatusReport &report) const
                                 {"file", reading.file},
                                 {"value", reading.text},
                                 {"age_s", std::chrono::duration<double>(report.now() - reading.changed).count()}};
-        if (!reading.error.empty())
-            entry["error"] = reading.error;
-        report.add("inputs", std::move(entry));
+        report.input(std::move(entry), reading.error);
     }
-    for (const inputs::InputHealth &input : health())
-        report.health(input);
+    files_.report(report);
 }
 
 } // namespace overlayd

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "control/status_report.h"
+
 namespace overlayd {
 
 void WatchedFiles::replace(std::vector<inputs::TextFileWatch> watches, const std::vector<std::string> &names)
@@ -57,6 +59,12 @@ void WatchedFiles::wire(bool add)
         else
             loop_->remove(watches_[i].fd());
     }
+}
+
+void WatchedFiles::report(StatusReport &report) const
+{
+    for (const inputs::InputHealth &input : health_)
+        report.health(input);
 }
 
 } // namespace overlayd
