@@ -89,7 +89,7 @@ private:
     struct ReopenedParts {
         bool source = false, sinks = false;
     };
-    // Everything a reload does once the new file has loaded (reload.cpp); an error: nothing was switched.
+    // Everything a reload does once the new file has loaded; an error: nothing was switched.
     Result<ReopenedParts> switchConfig(DaemonConfig next);
     // The switch itself, which cannot fail: between two frames, with every new part already open.
     void commitConfig(DaemonConfig next, SceneControl scene, std::optional<SourceSupervisor::Staged> stream,
