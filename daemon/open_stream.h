@@ -6,8 +6,8 @@
 
 #include "base/result.h"
 #include "config/daemon_config.h"
+#include "control/scene_control.h"
 #include "daemon/pipeline.h"
-#include "daemon/scene_control.h"
 #include "daemon/stages.h"
 #include "drivers/frame_source.h"
 

@@ -56,7 +56,7 @@ public:
     Status openSinks(const StreamFormat &format);
     // A reload's sinks take over from the running ones, every one open for `format` (the new stream's or the running
     // one's), or none of them: on failure the running sinks run on as they were and the error names the sink
-    // (pipeline_reload.cpp says in which order they open).
+    // (replaceSinks in pipeline.cpp says in which order they open).
     Status replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format);
     // The running sinks for the stream format a reload's new source negotiated; when one cannot take it, every sink
     // is opened for the running format again and the error names the sink.

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "control/status_report.h"
+
 namespace overlayd {
 
 SinkWorker::SinkWorker(std::unique_ptr<FrameSink> sink, const SinkOptions &options, Logger &logger, bool lossless)
@@ -186,6 +188,24 @@ size_t SinkWorker::allocatedFrames() const
     for (const Slot &slot : slots_)
         frames += slot.buffer.has_value();
     return frames;
+}
+
+void SinkWorker::report(StatusReport &report) const
+{
+    const SinkCounters counters = this->counters();
+    // The config's name (or sink[N]) is the sink's identity: describe() changes as it writes ("null (66 frames)").
+    const std::string &name = options().name;
+    report.add("sinks", {{"name", name},
+                         {"describe", describe()},
+                         {"written", counters.written},
+                         {"dropped", counters.dropped},
+                         {"failed", counters.failed}});
+    const std::string label = StatusReport::label("sink", name);
+    report.metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
+    report.metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
+                  label);
+    report.metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
+                  label);
 }
 
 } // namespace overlayd

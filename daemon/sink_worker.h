@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/logger.h"
+#include "control/status_reporter.h"
 #include "drivers/sink_options.h"
 #include "media/frame_buffer.h"
 
@@ -28,7 +29,7 @@ struct SinkCounters {
     uint64_t zeroCopy = 0;                 // of `written`: frames the sink took as leases (FrameSink::writeLease)
 };
 
-class SinkWorker
+class SinkWorker final : public StatusReporter
 {
 public:
     // lossless: push() waits for room instead of dropping (`overlayd render` must write every frame).
@@ -57,6 +58,8 @@ public:
     const SinkOptions &options() const { return options_; }
     std::string describe() const { return sink_->describe(); }
     SinkCounters counters() const;
+    // Its entry in /state's "sinks" and its samples in /metrics.
+    void report(StatusReport &report) const override;
 
 private:
     struct Slot {

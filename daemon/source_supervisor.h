@@ -14,12 +14,13 @@
 #include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
+#include "control/run_state.h"
+#include "control/scene_control.h"
 #include "daemon/backoff.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
 #include "daemon/open_stream.h"
 #include "daemon/pipeline.h"
-#include "daemon/scene_control.h"
 #include "daemon/stages.h"
 #include "drivers/frame_source.h"
 
@@ -28,7 +29,7 @@ namespace overlayd {
 class SourceSupervisor
 {
 public:
-    enum class State { Idle, Streaming, Waiting, Finished };
+    using State = RunState;
     // The loop's timers the supervisor arms (owned by the daemon, created before any thread starts).
     struct Timers {
         Timer &pacing, &retry, &noSignal;

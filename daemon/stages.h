@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "config/daemon_config.h"
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
 #include "drivers/frame_sink.h"
 #include "drivers/frame_source.h"
 #include "gpio/line_provider.h"

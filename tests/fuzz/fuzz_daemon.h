@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "config/daemon_config.h"
+#include "control/http_api.h"
 #include "daemon/daemon.h"
-#include "daemon/http_api.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 

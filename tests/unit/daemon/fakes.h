@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame_buffer.h"

@@ -1,6 +1,6 @@
 // GpioControl against simulated lines: start state read, active-low, debounce, the show/hide precedence through
 // SceneControl, outputs across the daemon's states, reloads that keep unchanged lines, busy and lost lines.
-#include "daemon/gpio_control.h"
+#include "control/gpio_control.h"
 
 #include <gtest/gtest.h>
 

@@ -9,6 +9,7 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
+#include "control/status_reporter.h"
 #include "inputs/input_health.h"
 #include "inputs/text_file_watch.h"
 
@@ -36,6 +37,8 @@ public:
     size_t size() const { return watches_.size(); }
     const inputs::TextFileWatch &operator[](size_t file) const { return watches_[file]; }
     const std::vector<inputs::InputHealth> &health() const { return health_; }
+    // Each file's health in /state and /metrics.
+    void report(StatusReport &report) const;
 
 private:
     void wire(bool add);

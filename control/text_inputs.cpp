@@ -1,4 +1,6 @@
-#include "daemon/text_inputs.h"
+#include "control/text_inputs.h"
+
+#include "control/status_report.h"
 
 namespace overlayd {
 
@@ -44,6 +46,19 @@ void TextInputs::show(size_t input)
     reading.text = std::move(text);
     reading.changed = std::chrono::steady_clock::now();
     logger_.debug(cat("input.text '", reading.slot, "': \"", reading.text, "\""));
+}
+
+void TextInputs::report(StatusReport &report) const
+{
+    for (const Reading &reading : readings_) {
+        nlohmann::json entry = {{"kind", "text"},
+                                {"slot", reading.slot},
+                                {"file", reading.file},
+                                {"value", reading.text},
+                                {"age_s", std::chrono::duration<double>(report.now() - reading.changed).count()}};
+        report.input(std::move(entry), reading.error);
+    }
+    files_.report(report);
 }
 
 } // namespace overlayd

@@ -1,6 +1,6 @@
 // SceneControl: validation of each change with the config's own code (CameraSpec::build composes the camera exactly
 // as loading [camera] does), and its application to the live renderer.
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
 
 #include <algorithm>
 #include <cmath>

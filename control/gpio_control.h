@@ -12,16 +12,17 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/scene_control.h"
-#include "daemon/source_supervisor.h"
+#include "control/run_state.h"
+#include "control/scene_control.h"
+#include "control/status_reporter.h"
 #include "gpio/line_provider.h"
 
 namespace overlayd {
 
-class GpioControl
+class GpioControl final : public StatusReporter
 {
 public:
-    using State = SourceSupervisor::State;
+    using State = RunState;
     static constexpr std::chrono::seconds kRetryPeriod{2};
 
     GpioControl(Logger &logger, SceneControl &scene) : logger_(logger), scene_(scene) {}
@@ -53,6 +54,8 @@ public:
 
     // "reverse 1, status-led 0" (inputs settled, outputs as driven; "lost" while a line is being retried)
     std::string describe() const;
+    // Its entries in /state and its samples in /metrics.
+    void report(StatusReport &report) const override;
     bool empty() const { return inputs_.empty() && outputs_.empty(); }
     bool inputActive(size_t input) const { return inputs_.at(input).settled; }
     bool outputActive(size_t output) const { return outputs_.at(output).level; }

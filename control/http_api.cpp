@@ -1,22 +1,20 @@
 // The HTTP API's answers. JSON goes out through nlohmann::json; JSON coming in is read by config/ (camera changes)
 // or here (a layer's visibility, a slot's text, pixels), each with the limits the config file has.
-#include "daemon/http_api.h"
+#include "control/http_api.h"
 
 #include <charconv>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "alignment/point_queries.h"
 #include "base/number_range.h"
-#include "base/number_text.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
+#include "control/status_report.h"
 #include "drivers/source_kind_names.h"
-#include "inputs/input_health.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
 
@@ -98,31 +96,6 @@ json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
     return out;
 }
 
-// A wall-clock time as ISO 8601 UTC with milliseconds: "2026-11-27T11:43:25.123Z".
-std::string utcTime(std::chrono::system_clock::time_point time)
-{
-    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(time.time_since_epoch()).count();
-    const std::time_t seconds = std::time_t(ms / 1000);
-    std::tm utc{};
-    ::gmtime_r(&seconds, &utc);
-    char text[32]; // "YYYY-MM-DDTHH:MM:SS" is 19 characters for any year strftime can print in 4 digits
-    const size_t length = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-    return std::string(text, length) + formatted(".%03dZ", int(ms % 1000));
-}
-
-// One input's health, the same fields for every kind of input.
-json inputHealthJson(const inputs::InputHealth &input, std::chrono::steady_clock::time_point now)
-{
-    return {{"kind", input.kind},
-            {"name", input.name},
-            {"source", input.source},
-            {"state", inputs::inputStateName(input.state)},
-            {"state_age_s", std::chrono::duration<double>(now - input.since).count()},
-            {"errors", input.errors},
-            {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
-            {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}};
-}
-
 // Numbers separated by ',' ';' or spaces: "x,y,z;x,y,z".
 std::optional<std::vector<double>> numberList(const std::string &text)
 {
@@ -179,7 +152,7 @@ double HttpApi::measuredFps()
 {
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - sampleTime_).count();
-    const uint64_t frames = status_.pipeline().framesIn();
+    const uint64_t frames = status_.framesIn();
     if (seconds >= 1.0) {
         fps_ = double(frames - sampleFrames_) / seconds;
         sampleTime_ = now;
@@ -191,11 +164,11 @@ double HttpApi::measuredFps()
 HttpResponse HttpApi::state()
 {
     const DaemonConfig &config = status_.config();
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     SceneControl &scene = scene_;
     json source = {{"kind", std::string(sourceKindName(config.source.kind))},
                    {"state", stateName(status_.state())},
-                   {"frames", status_.pipeline().framesIn()},
+                   {"frames", status_.framesIn()},
                    {"fps_measured", roundedTo(measuredFps(), kShownSecondsDecimals)}};
     if (config.source.kind == SourceKind::V4l2)
         source["device"] = config.source.v4l2.device;
@@ -210,155 +183,62 @@ HttpResponse HttpApi::state()
     json slots = json::object();
     for (const std::string &slot : textSlotNames(scene.scene()))
         slots[slot] = scene.slotText(slot);
-    json sinks = json::array();
-    for (const auto &sink : status_.pipeline().sinks()) {
-        const SinkCounters counters = sink->counters();
-        sinks.push_back({{"name", sink->options().name},
-                         {"describe", sink->describe()},
-                         {"written", counters.written},
-                         {"dropped", counters.dropped},
-                         {"failed", counters.failed}});
-    }
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
-    json out = {
-        {"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
-                               kShownSecondsDecimals)},
-        {"source", source},
-        {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
-        {"layers", layers},
-        {"text_slots", slots},
-        {"sinks", sinks},
-        {"http",
-         {{"connections", http.connections},
-          {"stream_clients", http.streamClients},
-          {"stream_fps", http.streamFps},
-          {"parts_sent", http.partsSent},
-          {"requests", http.requests}}}};
-    if (!status_.gpio().empty())
-        out["gpio"] = status_.gpio().describe();
-    json inputs = json::array();
-    const auto now = std::chrono::steady_clock::now();
-    for (const TextInputs::Reading &reading : status_.textInputs().readings()) {
-        json entry = {{"kind", "text"},
-                      {"slot", reading.slot},
-                      {"file", reading.file},
-                      {"value", reading.text},
-                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
-        if (!reading.error.empty())
-            entry["error"] = reading.error;
-        inputs.push_back(std::move(entry));
-    }
-    for (const PathInputs::Reading &reading : status_.pathInputs().readings()) {
-        json entry = {{"kind", "path"},
-                      {"annotation", reading.annotation},
-                      {"file", reading.file},
-                      {"points", reading.points},
-                      {"age_s", std::chrono::duration<double>(now - reading.changed).count()}};
-        if (!reading.error.empty())
-            entry["error"] = reading.error;
-        inputs.push_back(std::move(entry));
-    }
-    const CanInputs &can = status_.canInputs();
-    for (size_t i = 0; i < can.size(); ++i) {
-        const inputs::CanInputOptions &options = can.options(i);
-        const CanInputs::Reading &reading = can.reading(i);
-        const bool any = reading.state != CanInputs::State::NoData;
-        json entry = {
-            {"kind", "can"},
-            {"name", options.name},
-            {"interface", options.interface},
-            {"id", options.id.id},
-            {"target", options.target.kind == inputs::CanTarget::Kind::Slot ? "slot:" + options.target.name
-                                                                            : options.target.name + ".steering"},
-            {"value", any ? json(reading.value) : json(nullptr)},
-            {"unit", options.unit},
-            {"state", CanInputs::stateName(reading.state)},
-            {"age_s", any ? json(std::chrono::duration<double>(now - reading.received).count()) : json(nullptr)},
-            {"frames", reading.frames},
-            {"malformed", reading.malformed},
-            {"out_of_range", reading.outOfRange},
-            {"connected", reading.connected}};
-        if (!reading.connected)
-            entry["error"] = reading.error;
-        inputs.push_back(std::move(entry));
-    }
-    if (!inputs.empty())
-        out["inputs"] = inputs;
-    json health = json::array();
-    for (const inputs::InputHealth &input : status_.inputHealth())
-        health.push_back(inputHealthJson(input, now));
-    if (!health.empty())
-        out["input_health"] = health;
+    json out = {{"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
+                                       kShownSecondsDecimals)},
+                {"source", source},
+                {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
+                {"layers", layers},
+                {"text_slots", slots},
+                {"sinks", json::array()},
+                {"http",
+                 {{"connections", http.connections},
+                  {"stream_clients", http.streamClients},
+                  {"stream_fps", http.streamFps},
+                  {"parts_sent", http.partsSent},
+                  {"requests", http.requests}}}};
+    StatusReport parts(std::chrono::steady_clock::now());
+    addParts(parts);
+    parts.writeState(out);
     return HttpResponse::json(200, writeJson(out));
 }
 
 HttpResponse HttpApi::metrics()
 {
     const http::HttpCounters http = counters_();
-    std::string text;
-    const auto metric = [&text](const char *name, const char *type, const char *help, double value,
-                                const std::string &labels = {}) {
-        if (labels.empty() || text.find(std::string("# TYPE ") + name + " ") == std::string::npos)
-            text += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
-        text += std::string(name) + (labels.empty() ? "" : "{" + labels + "}") + " " + writeJson(json(value)) + "\n";
-    };
-    metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
-    metric("overlayd_source_frames_total", "counter", "Frames the source delivered.",
-           double(status_.pipeline().framesIn()));
-    metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
-    metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
-           status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
-    for (const auto &sink : status_.pipeline().sinks()) {
-        const SinkCounters counters = sink->counters();
-        const std::string label = "sink=" + writeJson(json(sink->options().name));
-        metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
-        metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
-               label);
-        metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
-               label);
-    }
-    const CanInputs &can = status_.canInputs();
-    for (size_t i = 0; i < can.size(); ++i) {
-        const std::string label = "input=" + writeJson(json(can.options(i).name));
-        const CanInputs::Reading &reading = can.reading(i);
-        metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames), label);
-        metric("overlayd_can_malformed_total", "counter", "CAN frames too short for the signal (ignored).",
-               double(reading.malformed), label);
-        metric("overlayd_can_value_valid", "gauge", "1 while the signal's value is fresh and in range.",
-               reading.state == CanInputs::State::Ok ? 1.0 : 0.0, label);
-    }
-    // One loop per metric: a family's samples stay together, as the text format wants.
-    const std::vector<inputs::InputHealth> inputHealth = status_.inputHealth();
-    const auto inputLabel = [](const inputs::InputHealth &input) {
-        return "kind=" + writeJson(json(input.kind)) + ",input=" + writeJson(json(input.name));
-    };
-    for (const inputs::InputHealth &input : inputHealth)
-        metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
-               input.state == inputs::InputHealth::State::Following ? 1.0 : 0.0, inputLabel(input));
-    for (const inputs::InputHealth &input : inputHealth)
-        metric("overlayd_input_errors_total", "counter",
-               "Errors an input met (its folder or interface gone, a version refused).", double(input.errors),
-               inputLabel(input));
-    metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
-    metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
-    metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));
-    metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
-    metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.", double(http.refused));
-    for (const auto &[limit, hits] : http.limits)
-        metric("overlayd_http_limit_total", "counter", "Connections a limit closed or refused (docs/config.md Limits).",
-               double(hits), "limit=" + writeJson(json(limit)));
-    HttpResponse response = HttpResponse::json(200, text);
+    const auto now = std::chrono::steady_clock::now();
+    StatusReport report(now);
+    report.metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
+                  std::chrono::duration<double>(now - started_).count());
+    report.metric("overlayd_source_frames_total", "counter", "Frames the source delivered.",
+                  double(status_.framesIn()));
+    report.metric("overlayd_source_fps", "gauge", "Source frames per second, measured.", measuredFps());
+    report.metric("overlayd_source_streaming", "gauge", "1 while the source streams, 0 while it is waited for.",
+                  status_.state() == DaemonStatus::State::Streaming ? 1.0 : 0.0);
+    addParts(report);
+    report.metric("overlayd_http_connections", "gauge", "Open HTTP connections.", http.connections);
+    report.metric("overlayd_http_stream_clients", "gauge", "Clients of /stream.", http.streamClients);
+    report.metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.",
+                  double(http.partsSent));
+    report.metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
+    report.metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.",
+                  double(http.refused));
+    HttpResponse response = HttpResponse::json(200, report.metricsText());
     response.contentType = "text/plain; version=0.0.4; charset=utf-8";
     return response;
 }
 
+void HttpApi::addParts(StatusReport &report) const
+{
+    for (const StatusReporter *reporter : status_.reporters())
+        reporter->report(report);
+}
 HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
 {
     SceneControl &scene = scene_;
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     const unsigned width = format.format ? format.width : status_.config().source.width;
     const unsigned height = format.format ? format.height : status_.config().source.height;
     auto spec = cameraFromJson(request.body, scene.camera(), width, height);
@@ -416,7 +296,7 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
                                             " finite points)");
     if (const std::string why = numbersRefusal(*numbers, {"x", "y", "z"}, "point", kAnyMagnitude); !why.empty())
         return HttpResponse::error(400, "points: " + why);
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
         return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");
@@ -446,7 +326,7 @@ HttpResponse HttpApi::unproject(const http::HttpRequest &request)
     std::vector<glm::dvec2> uv;
     for (size_t i = 0; i < numbers.size(); i += 2)
         uv.emplace_back(numbers[i], numbers[i + 1]);
-    const StreamFormat &format = status_.pipeline().format();
+    const StreamFormat &format = status_.streamFormat();
     auto camera = scene_.cameraFor(format.width, format.height);
     if (!format.format || !camera)
         return HttpResponse::error(503, "no stream yet: the camera is built for the stream's frame size");

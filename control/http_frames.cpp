@@ -1,4 +1,4 @@
-#include "daemon/http_frames.h"
+#include "control/http_frames.h"
 
 namespace overlayd {
 

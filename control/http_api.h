@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <functional>
 
-#include "daemon/daemon_status.h"
-#include "daemon/scene_control.h"
+#include "control/daemon_status.h"
+#include "control/scene_control.h"
 #include "http/http_server.h"
 
 namespace overlayd {
@@ -31,6 +31,9 @@ private:
     http::HttpResponse unproject(const http::HttpRequest &request);
     http::HttpResponse save();
     double measuredFps();
+    // What every part the daemon lists (sinks, GPIO, each kind of input) reports of itself, after what `report`
+    // holds already.
+    void addParts(StatusReport &report) const;
 
     SceneControl &scene_;
     const DaemonStatus &status_;

@@ -1,6 +1,8 @@
-#include "daemon/watched_files.h"
+#include "control/watched_files.h"
 
 #include <algorithm>
+
+#include "control/status_report.h"
 
 namespace overlayd {
 
@@ -57,6 +59,12 @@ void WatchedFiles::wire(bool add)
         else
             loop_->remove(watches_[i].fd());
     }
+}
+
+void WatchedFiles::report(StatusReport &report) const
+{
+    for (const inputs::InputHealth &input : health_)
+        report.health(input);
 }
 
 } // namespace overlayd

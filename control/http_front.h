@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "base/event_loop.h"
-#include "daemon/http_api.h"
-#include "daemon/http_frames.h"
-#include "daemon/sink_worker.h"
+#include "control/http_api.h"
+#include "control/http_frames.h"
+#include "drivers/sink_options.h"
 #include "http/http_server.h"
 
 namespace overlayd {
@@ -28,8 +28,10 @@ public:
     // Adds the server's fds to the loop (null: removes them).
     void attachLoop(EventLoop *loop);
 
-    // The sink worker that encodes the overlaid stream for the feed (one JPEG per frame, only while wanted).
-    std::unique_ptr<SinkWorker> makeSink();
+    // The sink that encodes the overlaid stream for the feed (one JPEG per frame, only while wanted), and the
+    // options of the worker the daemon runs it on.
+    std::unique_ptr<FrameSink> makeSink();
+    static SinkOptions sinkOptions();
     // The pipeline's tap before the overlay, for raw snapshots.
     void onRawFrame(const FrameView &frame, const FrameMetadata &metadata) { rawTap_(frame, metadata); }
 

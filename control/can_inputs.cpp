@@ -1,8 +1,9 @@
-#include "daemon/can_inputs.h"
+#include "control/can_inputs.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "control/status_report.h"
 #include "inputs/can_signal.h"
 
 namespace overlayd {
@@ -231,6 +232,44 @@ std::string CanInputs::describe(Clock::time_point now) const
             out += " (" + r.error + ")";
     }
     return out;
+}
+
+void CanInputs::report(StatusReport &report) const
+{
+    using nlohmann::json;
+    for (const Input &in : inputs_) {
+        const inputs::CanInputOptions &options = in.options;
+        const Reading &reading = in.reading;
+        const bool any = reading.state != State::NoData;
+        json entry = {{"kind", "can"},
+                      {"name", options.name},
+                      {"interface", options.interface},
+                      {"id", options.id.id},
+                      {"target", options.target.kind == inputs::CanTarget::Kind::Slot
+                                     ? "slot:" + options.target.name
+                                     : options.target.name + ".steering"},
+                      {"value", any ? json(reading.value) : json(nullptr)},
+                      {"unit", options.unit},
+                      {"state", stateName(reading.state)},
+                      {"age_s", any ? json(std::chrono::duration<double>(report.now() - reading.received).count())
+                                    : json(nullptr)},
+                      {"frames", reading.frames},
+                      {"malformed", reading.malformed},
+                      {"out_of_range", reading.outOfRange},
+                      {"connected", reading.connected}};
+        if (!reading.connected)
+            entry["error"] = reading.error; // also "" before the first attempt to open
+        report.add("inputs", std::move(entry));
+        const std::string label = StatusReport::label("input", options.name);
+        report.metric("overlayd_can_frames_total", "counter", "CAN frames an input received.", double(reading.frames),
+                      label);
+        report.metric("overlayd_can_malformed_total", "counter", "CAN frames too short for the signal (ignored).",
+                      double(reading.malformed), label);
+        report.metric("overlayd_can_value_valid", "gauge", "1 while the signal's value is fresh and in range.",
+                      reading.state == State::Ok ? 1.0 : 0.0, label);
+    }
+    for (const Input &in : inputs_)
+        report.health(in.health);
 }
 
 } // namespace overlayd

@@ -11,14 +11,15 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
+#include "control/status_reporter.h"
 #include "inputs/can_socket.h"
 #include "inputs/input_health.h"
 #include "inputs/input_options.h"
 
 namespace overlayd {
 
-class CanInputs
+class CanInputs final : public StatusReporter
 {
 public:
     using Clock = std::chrono::steady_clock;
@@ -56,6 +57,8 @@ public:
     static const char *stateName(State state);
     // Each input's health: following while its socket is open, waiting while the interface is missing or down.
     std::vector<inputs::InputHealth> health() const;
+    // Its entries in /state and its samples in /metrics.
+    void report(StatusReport &report) const override;
     // "steering=40.0 deg ok, ..." for the stats log line.
     std::string describe(Clock::time_point now) const;
 

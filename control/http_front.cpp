@@ -1,4 +1,4 @@
-#include "daemon/http_front.h"
+#include "control/http_front.h"
 
 #include "base/utf8.h"
 
@@ -159,14 +159,19 @@ void HttpFront::pump()
         timeout_->disarm();
 }
 
-std::unique_ptr<SinkWorker> HttpFront::makeSink()
+SinkOptions HttpFront::sinkOptions()
 {
     SinkOptions options;
     options.name = "http";
     options.path = "http";
     options.queueDepth = 1; // the newest frame is the one worth encoding
     options.dropPolicy = DropPolicy::DropOldest;
-    return std::make_unique<SinkWorker>(std::make_unique<JpegFeedSink>(*feed_, quality_), options, logger_);
+    return options;
+}
+
+std::unique_ptr<FrameSink> HttpFront::makeSink()
+{
+    return std::make_unique<JpegFeedSink>(*feed_, quality_);
 }
 
 } // namespace overlayd

@@ -1,5 +1,6 @@
-#include "daemon/path_inputs.h"
+#include "control/path_inputs.h"
 
+#include "control/status_report.h"
 #include "inputs/point_list.h"
 
 namespace overlayd {
@@ -50,6 +51,19 @@ void PathInputs::show(size_t input)
     reading.points = points->size();
     reading.changed = std::chrono::steady_clock::now();
     logger_.debug(cat("input.path '", reading.annotation, "': ", reading.points, " points"));
+}
+
+void PathInputs::report(StatusReport &report) const
+{
+    for (const Reading &reading : readings_) {
+        nlohmann::json entry = {{"kind", "path"},
+                                {"annotation", reading.annotation},
+                                {"file", reading.file},
+                                {"points", reading.points},
+                                {"age_s", std::chrono::duration<double>(report.now() - reading.changed).count()}};
+        report.input(std::move(entry), reading.error);
+    }
+    files_.report(report);
 }
 
 } // namespace overlayd

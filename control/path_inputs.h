@@ -9,13 +9,14 @@
 
 #include "base/event_loop.h"
 #include "base/logger.h"
-#include "daemon/scene_control.h"
-#include "daemon/watched_files.h"
+#include "control/scene_control.h"
+#include "control/status_reporter.h"
+#include "control/watched_files.h"
 #include "inputs/input_options.h"
 
 namespace overlayd {
 
-class PathInputs
+class PathInputs final : public StatusReporter
 {
 public:
     PathInputs(Logger &logger, SceneControl &scene)
@@ -39,6 +40,8 @@ public:
     const std::vector<Reading> &readings() const { return readings_; }
     // Each input's health: following its file or waiting for its folder, and its last error.
     const std::vector<inputs::InputHealth> &health() const { return files_.health(); }
+    // Its entries in /state and its samples in /metrics.
+    void report(StatusReport &report) const override;
 
 private:
     void show(size_t input);

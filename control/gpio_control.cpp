@@ -1,7 +1,8 @@
 // GpioControl: requesting and re-requesting lines, debounced input edges into layer changes, outputs that follow
 // the daemon's state.
-#include "daemon/gpio_control.h"
+#include "control/gpio_control.h"
 
+#include "control/status_report.h"
 #include "gpio/layer_rules.h"
 
 namespace overlayd {
@@ -361,6 +362,12 @@ std::string GpioControl::describe() const
     for (const Output &output : outputs_)
         add(output.options.name, output.line != nullptr, output.level);
     return text;
+}
+
+void GpioControl::report(StatusReport &report) const
+{
+    if (!empty())
+        report.set("gpio", describe());
 }
 
 } // namespace overlayd
