@@ -161,6 +161,26 @@ Shape readRect(TableReader &t)
     return s;
 }
 
+// A mask's fill: a colour, or "pixelate" in blocks of block_px.
+Shape readMask(TableReader &t)
+{
+    MaskShape s;
+    bool screen = false;
+    s.points = t.points("points", kMaxMaskPoints, {}, &screen).value_or(s.points);
+    s.world = !screen;
+    if (t.has("points") && s.points.size() < kMinMaskPoints)
+        t.problem("points", "a mask needs at least " + std::to_string(kMinMaskPoints) + " points");
+    const toml::node *fill = t.node("fill");
+    if (fill && fill->as_string() && fill->as_string()->get() == "pixelate")
+        s.fill.reset();
+    else
+        s.fill = t.colour("fill").value_or(Rgba{0, 0, 0, 255});
+    if (s.fill && t.has("block_px"))
+        t.problem("block_px", "block_px is for fill = \"pixelate\"");
+    s.blockPx = unsigned(t.integer("block_px", kMinMaskBlockPx, kMaxMaskBlockPx).value_or(s.blockPx));
+    return s;
+}
+
 struct ShapeReader {
     std::string_view type;
     std::array<std::string_view, 2> required;
@@ -194,6 +214,7 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
         {"text", {"text"}, readScreenText},
         {"crosshair", {}, readCrosshair},
         {"rect", {"size"}, readRect},
+        {"mask", {"points"}, readMask},
     };
     std::vector<std::string> names{"frustum", "image"};
     for (const ShapeReader &reader : kReaders) {

@@ -1,0 +1,111 @@
+// MaskPainter: fills and pixelates masked spans, one sample kind at a time.
+#include "overlay/blend/mask_painter.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "overlay/blend/ycbcr.h"
+
+namespace overlayd {
+
+namespace {
+
+enum FillIndex : uint8_t { kY = 0, kCb = 1, kCr = 2, kR = 0, kG = 1, kB = 2, kA = 3 };
+
+} // namespace
+
+MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry, unsigned width, unsigned height)
+    : colorimetry_(colorimetry), rgb_(format.encoding == ColourEncoding::Rgb), width_(width), height_(height)
+{
+    const uint8_t bytes0 = format.planes[0].bytesPerGroup;
+    if (rgb_) {
+        const std::array<std::pair<uint8_t, uint8_t>, 4> kinds{
+            {{format.rOffset, kR}, {format.gOffset, kG}, {format.bOffset, kB}, {format.aOffset, kA}}};
+        for (const auto &[offset, index] : kinds)
+            if (offset != kNoComponent)
+                components_.push_back({0, 1, bytes0, {offset, 0}, 1, 1, index});
+    } else {
+        components_.push_back({0, format.pixelsPerGroup, bytes0, format.yOffset, 1, 1, kY});
+        if (format.cbOffset != kNoComponent) {
+            hSub_ = format.hSubSampling, vSub_ = format.vSubSampling;
+            const uint8_t cbBytes = format.planes[format.cbPlane].bytesPerGroup;
+            const uint8_t crBytes = format.planes[format.crPlane].bytesPerGroup;
+            components_.push_back(
+                {format.cbPlane, 1, cbBytes, {format.cbOffset, 0}, format.hSubSampling, format.vSubSampling, kCb});
+            components_.push_back(
+                {format.crPlane, 1, crBytes, {format.crOffset, 0}, format.hSubSampling, format.vSubSampling, kCr});
+        }
+    }
+    sums_.assign(width + 1, 0); // a block column per sample at most
+    counts_.assign(sums_.size(), 0);
+}
+
+unsigned MaskPainter::blockFor(unsigned blockPx) const
+{
+    const unsigned group = std::max(hSub_, vSub_);
+    return std::max(2u, (blockPx + group - 1) / group * group);
+}
+
+std::array<uint8_t, 4> MaskPainter::samplesOf(Rgba colour) const
+{
+    if (rgb_)
+        return {colour.r, colour.g, colour.b, 255};
+    PremultipliedSum sum;
+    const uint8_t opaque[4] = {colour.r, colour.g, colour.b, 255};
+    sum.add(opaque);
+    const YcbcrBlendSamples s = YcbcrEncoder(colorimetry_).encode(sum);
+    return {s.y.value, s.cb.value, s.cr.value, 0};
+}
+
+template<typename F>
+void MaskPainter::forEachRun(const Component &c, const SpanRows &mask, unsigned row0, unsigned row1, F &&f) const
+{
+    for (unsigned row = row0; row < row1; ++row)
+        for (const RowSpan &s : mask.row(row * c.vSub)) // spans are whole macropixels: its first luma row says
+            f(row, unsigned(s.x0) / c.hSub, (unsigned(s.x1) + c.hSub - 1) / c.hSub);
+}
+
+void MaskPainter::fill(const FrameView &frame, const SpanRows &mask, Rgba colour) const
+{
+    const std::array<uint8_t, 4> values = samplesOf(colour);
+    for (const Component &c : components_) {
+        const uint8_t value = values[c.fillIndex];
+        const unsigned rows = (height_ + c.vSub - 1) / c.vSub;
+        forEachRun(c, mask, 0, rows, [&](unsigned row, unsigned first, unsigned end) {
+            if (c.groupBytes == c.perGroup) { // one byte per sample, side by side: planar and grey luma, planar chroma
+                std::memset(sample(frame, c, row, first), value, end - first);
+                return;
+            }
+            for (unsigned i = first; i < end; ++i)
+                *sample(frame, c, row, i) = value;
+        });
+    }
+}
+
+void MaskPainter::pixelate(const FrameView &frame, const SpanRows &mask, unsigned blockPx)
+{
+    const unsigned block = blockFor(blockPx);
+    for (const Component &c : components_) {
+        const unsigned rows = (height_ + c.vSub - 1) / c.vSub;
+        const unsigned bw = block / c.hSub, bh = block / c.vSub; // the block in this component's samples
+        for (unsigned band = 0; band < rows; band += bh) {
+            const unsigned bandEnd = std::min(rows, band + bh);
+            // The average of the masked samples of each block, then written over them: a block comes out uniform
+            // and holds nothing of the samples outside the mask.
+            forEachRun(c, mask, band, bandEnd, [&](unsigned row, unsigned first, unsigned end) {
+                for (unsigned i = first; i < end; ++i)
+                    sums_[i / bw] += *sample(frame, c, row, i), ++counts_[i / bw];
+            });
+            forEachRun(c, mask, band, bandEnd, [&](unsigned row, unsigned first, unsigned end) {
+                for (unsigned i = first; i < end; ++i)
+                    *sample(frame, c, row, i) = uint8_t((sums_[i / bw] + counts_[i / bw] / 2) / counts_[i / bw]);
+            });
+            forEachRun(c, mask, band, bandEnd, [&](unsigned, unsigned first, unsigned end) {
+                for (unsigned b = first / bw; b <= (end - 1) / bw; ++b)
+                    sums_[b] = counts_[b] = 0;
+            });
+        }
+    }
+}
+
+} // namespace overlayd
