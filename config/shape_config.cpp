@@ -166,10 +166,12 @@ Shape readMask(TableReader &t)
 {
     MaskShape s;
     bool screen = false;
-    s.points = t.points("points", kMaxMaskPoints, {}, &screen).value_or(s.points);
+    if (auto points = t.points("points", kMaxMaskPoints, {}, &screen)) {
+        s.points = std::move(*points);
+        if (s.points.size() < kMinMaskPoints)
+            t.problem("points", "a mask needs at least " + std::to_string(kMinMaskPoints) + " points");
+    }
     s.world = !screen;
-    if (t.has("points") && s.points.size() < kMinMaskPoints)
-        t.problem("points", "a mask needs at least " + std::to_string(kMinMaskPoints) + " points");
     const toml::node *fill = t.node("fill");
     if (fill && fill->as_string() && fill->as_string()->get() == "pixelate")
         s.fill.reset();

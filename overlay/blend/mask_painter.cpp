@@ -23,17 +23,16 @@ MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry,
             {{format.rOffset, kR}, {format.gOffset, kG}, {format.bOffset, kB}, {format.aOffset, kA}}};
         for (const auto &[offset, index] : kinds)
             if (offset != kNoComponent)
-                components_.push_back({0, 1, bytes0, {offset, 0}, 1, 1, index});
+                components_.push_back({0, offset, bytes0, 1, 1, index});
     } else {
-        components_.push_back({0, format.pixelsPerGroup, bytes0, format.yOffset, 1, 1, kY});
+        // Luma: a group's second sample sits half a group after its first (yOffset[1] - yOffset[0]).
+        components_.push_back({0, format.yOffset[0], uint8_t(bytes0 / format.pixelsPerGroup), 1, 1, kY});
         if (format.cbOffset != kNoComponent) {
             hSub_ = format.hSubSampling, vSub_ = format.vSubSampling;
-            const uint8_t cbBytes = format.planes[format.cbPlane].bytesPerGroup;
-            const uint8_t crBytes = format.planes[format.crPlane].bytesPerGroup;
-            components_.push_back(
-                {format.cbPlane, 1, cbBytes, {format.cbOffset, 0}, format.hSubSampling, format.vSubSampling, kCb});
-            components_.push_back(
-                {format.crPlane, 1, crBytes, {format.crOffset, 0}, format.hSubSampling, format.vSubSampling, kCr});
+            components_.push_back({format.cbPlane, format.cbOffset, format.planes[format.cbPlane].bytesPerGroup,
+                                   format.hSubSampling, format.vSubSampling, kCb});
+            components_.push_back({format.crPlane, format.crOffset, format.planes[format.crPlane].bytesPerGroup,
+                                   format.hSubSampling, format.vSubSampling, kCr});
         }
     }
     sums_.assign(width + 1, 0); // a block column per sample at most
@@ -72,12 +71,13 @@ void MaskPainter::fill(const FrameView &frame, const SpanRows &mask, Rgba colour
         const uint8_t value = values[c.fillIndex];
         const unsigned rows = (height_ + c.vSub - 1) / c.vSub;
         forEachRun(c, mask, 0, rows, [&](unsigned row, unsigned first, unsigned end) {
-            if (c.groupBytes == c.perGroup) { // one byte per sample, side by side: planar and grey luma, planar chroma
-                std::memset(sample(frame, c, row, first), value, end - first);
+            uint8_t *p = rowStart(frame, c, row) + size_t(first) * c.step;
+            if (c.step == 1) { // planar and grey luma, planar chroma
+                std::memset(p, value, end - first);
                 return;
             }
-            for (unsigned i = first; i < end; ++i)
-                *sample(frame, c, row, i) = value;
+            for (uint8_t *last = p + size_t(end - first) * c.step; p < last; p += c.step)
+                *p = value;
         });
     }
 }
@@ -88,17 +88,33 @@ void MaskPainter::pixelate(const FrameView &frame, const SpanRows &mask, unsigne
     for (const Component &c : components_) {
         const unsigned rows = (height_ + c.vSub - 1) / c.vSub;
         const unsigned bw = block / c.hSub, bh = block / c.vSub; // the block in this component's samples
+        // Each run cut at block columns: f(block column, first sample's byte, count).
+        const auto eachPiece = [&](unsigned row, unsigned first, unsigned end, auto &&f) {
+            uint8_t *p = rowStart(frame, c, row) + size_t(first) * c.step;
+            for (unsigned i = first; i < end;) {
+                const unsigned stop = std::min(end, (i / bw + 1) * bw);
+                f(i / bw, p, stop - i);
+                p += size_t(stop - i) * c.step, i = stop;
+            }
+        };
         for (unsigned band = 0; band < rows; band += bh) {
             const unsigned bandEnd = std::min(rows, band + bh);
             // The average of the masked samples of each block, then written over them: a block comes out uniform
             // and holds nothing of the samples outside the mask.
             forEachRun(c, mask, band, bandEnd, [&](unsigned row, unsigned first, unsigned end) {
-                for (unsigned i = first; i < end; ++i)
-                    sums_[i / bw] += *sample(frame, c, row, i), ++counts_[i / bw];
+                eachPiece(row, first, end, [&](unsigned b, const uint8_t *p, unsigned count) {
+                    unsigned sum = 0;
+                    for (unsigned k = 0; k < count; ++k, p += c.step)
+                        sum += *p;
+                    sums_[b] += sum, counts_[b] += count;
+                });
             });
             forEachRun(c, mask, band, bandEnd, [&](unsigned row, unsigned first, unsigned end) {
-                for (unsigned i = first; i < end; ++i)
-                    *sample(frame, c, row, i) = uint8_t((sums_[i / bw] + counts_[i / bw] / 2) / counts_[i / bw]);
+                eachPiece(row, first, end, [&](unsigned b, uint8_t *p, unsigned count) {
+                    const uint8_t mean = uint8_t((sums_[b] + counts_[b] / 2) / counts_[b]);
+                    for (unsigned k = 0; k < count; ++k, p += c.step)
+                        *p = mean;
+                });
             });
             forEachRun(c, mask, band, bandEnd, [&](unsigned, unsigned first, unsigned end) {
                 for (unsigned b = first / bw; b <= (end - 1) / bw; ++b)

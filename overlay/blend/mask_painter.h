@@ -31,21 +31,20 @@ public:
     void pixelate(const FrameView &frame, const SpanRows &mask, unsigned blockPx);
 
 private:
-    // One kind of sample (Y, Cb, Cr, R, G, B, A): sample i of a row sits at (i / perGroup) * groupBytes +
-    // offsets[i % perGroup] in its plane; one sample covers hSub x vSub pixels.
+    // One kind of sample (Y, Cb, Cr, R, G, B, A): sample i of a row is byte offset + i * step of its plane (every
+    // format of the table keeps a kind of sample evenly spaced: YUYV's luma 2 bytes apart, its chroma 4); one sample
+    // covers hSub x vSub pixels.
     struct Component {
-        uint8_t plane = 0, perGroup = 1, groupBytes = 1;
-        std::array<uint8_t, 2> offsets{};
+        uint8_t plane = 0, offset = 0, step = 1;
         uint8_t hSub = 1, vSub = 1;
         uint8_t fillIndex = 0; // which of the fill's samples it takes (see samplesOf)
     };
 
     // The fill colour's code value per fillIndex.
     std::array<uint8_t, 4> samplesOf(Rgba colour) const;
-    uint8_t *sample(const FrameView &frame, const Component &c, unsigned row, unsigned i) const
+    uint8_t *rowStart(const FrameView &frame, const Component &c, unsigned row) const
     {
-        return frame.planes[c.plane].data + size_t(row) * frame.planes[c.plane].stride +
-               size_t(i / c.perGroup) * c.groupBytes + c.offsets[i % c.perGroup];
+        return frame.planes[c.plane].data + size_t(row) * frame.planes[c.plane].stride + c.offset;
     }
     // Calls f(row, first, end) for every run of masked samples of the component's rows [row0, row1).
     template<typename F>
