@@ -27,6 +27,8 @@ MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry,
     } else {
         // Luma: a group's second sample sits half a group after its first (yOffset[1] - yOffset[0]).
         components_.push_back({0, format.yOffset[0], uint8_t(bytes0 / format.pixelsPerGroup), 1, 1, kY});
+        packed_ = format.layout == PixelLayout::PackedYuv422;
+        packedOffsets_ = {format.yOffset[0], format.yOffset[1], format.cbOffset, format.crOffset};
         if (format.cbOffset != kNoComponent) {
             hSub_ = format.hSubSampling, vSub_ = format.vSubSampling;
             components_.push_back({format.cbPlane, format.cbOffset, format.planes[format.cbPlane].bytesPerGroup,
@@ -67,6 +69,8 @@ void MaskPainter::forEachRun(const Component &c, const SpanRows &mask, unsigned 
 void MaskPainter::fill(const FrameView &frame, const SpanRows &mask, Rgba colour) const
 {
     const std::array<uint8_t, 4> values = samplesOf(colour);
+    if (packed_)
+        return fillPacked(frame, mask, values);
     for (const Component &c : components_) {
         const uint8_t value = values[c.fillIndex];
         const unsigned rows = (height_ + c.vSub - 1) / c.vSub;
@@ -79,6 +83,20 @@ void MaskPainter::fill(const FrameView &frame, const SpanRows &mask, Rgba colour
             for (uint8_t *last = p + size_t(end - first) * c.step; p < last; p += c.step)
                 *p = value;
         });
+    }
+}
+
+void MaskPainter::fillPacked(const FrameView &frame, const SpanRows &mask, const std::array<uint8_t, 4> &values) const
+{
+    uint8_t pattern[4];
+    pattern[packedOffsets_[0]] = pattern[packedOffsets_[1]] = values[kY];
+    pattern[packedOffsets_[2]] = values[kCb], pattern[packedOffsets_[3]] = values[kCr];
+    for (unsigned y = 0; y < height_; ++y) {
+        uint8_t *row = frame.planes[0].data + size_t(y) * frame.planes[0].stride;
+        // Spans start on a group; a span ending on an odd width's last pixel takes its whole group, within the row.
+        for (const RowSpan &s : mask.row(y))
+            for (uint8_t *p = row + size_t(s.x0) * 2, *end = row + size_t(s.x1 + 1) / 2 * 4; p < end; p += 4)
+                std::memcpy(p, pattern, 4);
     }
 }
 

@@ -40,6 +40,7 @@ private:
         uint8_t fillIndex = 0; // which of the fill's samples it takes (see samplesOf)
     };
 
+    void fillPacked(const FrameView &frame, const SpanRows &mask, const std::array<uint8_t, 4> &values) const;
     // The fill colour's code value per fillIndex.
     std::array<uint8_t, 4> samplesOf(Rgba colour) const;
     uint8_t *rowStart(const FrameView &frame, const Component &c, unsigned row) const
@@ -53,6 +54,9 @@ private:
     std::vector<Component> components_;
     Colorimetry colorimetry_;
     bool rgb_ = false;
+    // Packed 4:2:2 (YUYV and kin): a fill writes whole macropixels, one 4-byte pattern each, in one pass.
+    std::array<uint8_t, 4> packedOffsets_{}; // Y0, Y1, Cb, Cr within a group
+    bool packed_ = false;
     unsigned width_, height_;
     unsigned hSub_ = 1, vSub_ = 1;
     std::vector<uint32_t> sums_, counts_; // per block column; scratch sized once
