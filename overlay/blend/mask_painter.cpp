@@ -15,7 +15,7 @@ enum FillIndex : uint8_t { kY = 0, kCb = 1, kCr = 2, kR = 0, kG = 1, kB = 2, kA 
 } // namespace
 
 MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry, unsigned width, unsigned height)
-    : colorimetry_(colorimetry), rgb_(format.encoding == ColourEncoding::Rgb), width_(width), height_(height)
+    : colorimetry_(colorimetry), rgb_(format.encoding == ColourEncoding::Rgb), height_(height)
 {
     const uint8_t bytes0 = format.planes[0].bytesPerGroup;
     if (rgb_) {

@@ -57,7 +57,7 @@ private:
     // Packed 4:2:2 (YUYV and kin): a fill writes whole macropixels, one 4-byte pattern each, in one pass.
     std::array<uint8_t, 4> packedOffsets_{}; // Y0, Y1, Cb, Cr within a group
     bool packed_ = false;
-    unsigned width_, height_;
+    unsigned height_;
     unsigned hSub_ = 1, vSub_ = 1;
     std::vector<uint32_t> sums_, counts_; // per block column; scratch sized once
 };
