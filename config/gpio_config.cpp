@@ -47,6 +47,20 @@ void checkLayers(TableReader &table, std::string_view key, const std::vector<std
     }
 }
 
+// A privacy mask cannot be hidden: an input whose layer holds one is refused, shown or hidden alike (an input that
+// shows a layer hides it while the line is inactive).
+void checkMaskLayers(TableReader &table, std::string_view key, const std::vector<std::string> &layers,
+                     const std::vector<Annotation> &annotations)
+{
+    for (const std::string &layer : layers)
+        for (const Annotation &annotation : annotations)
+            if (isMask(annotation) && annotation.style.layer == layer) {
+                table.problem(key, "layer '" + layer + "' holds the privacy mask '" + annotation.name +
+                                       "', which nothing may hide (give the mask a layer of its own)");
+                break;
+            }
+}
+
 // An input must switch something, and no layer both ways: shown only while the line is active and hidden while it
 // is, the layer could never be seen (layer_rules.h), whatever the line does.
 void checkSwitches(TableReader &input, const gpio::InputOptions &in)
@@ -86,8 +100,8 @@ void claimLine(TableReader &table, const gpio::LineAddress &line, const std::str
     claims.push_back({line, who});
 }
 
-void readInput(TableReader &input, size_t index, const std::vector<std::string> &layers, std::vector<Claim> &claims,
-               gpio::InputOptions &out)
+void readInput(TableReader &input, size_t index, const std::vector<Annotation> &annotations,
+               const std::vector<std::string> &layers, std::vector<Claim> &claims, gpio::InputOptions &out)
 {
     out.name = input.string("name").value_or("gpio.input[" + std::to_string(index) + "]");
     readLine(input, out.line);
@@ -103,10 +117,12 @@ void readInput(TableReader &input, size_t index, const std::vector<std::string> 
     if (auto show = input.strings("show_layers", gpio::kMaxLayersPerInput)) {
         out.showLayers = *show;
         checkLayers(input, "show_layers", out.showLayers, layers);
+        checkMaskLayers(input, "show_layers", out.showLayers, annotations);
     }
     if (auto hide = input.strings("hide_layers", gpio::kMaxLayersPerInput)) {
         out.hideLayers = *hide;
         checkLayers(input, "hide_layers", out.hideLayers, layers);
+        checkMaskLayers(input, "hide_layers", out.hideLayers, annotations);
     }
     checkSwitches(input, out);
     claimLine(input, out.line, "input '" + out.name + "'", claims);
@@ -148,7 +164,7 @@ void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpi
     std::vector<TableReader> inputs = gpio->tables("input", gpio::kMaxInputs);
     std::vector<TableReader> outputs = gpio->tables("output", gpio::kMaxOutputs);
     for (size_t i = 0; i < inputs.size(); ++i)
-        readInput(inputs[i], i, layers, claims, out.inputs.emplace_back());
+        readInput(inputs[i], i, annotations, layers, claims, out.inputs.emplace_back());
     for (size_t i = 0; i < outputs.size(); ++i)
         readOutput(outputs[i], i, claims, out.outputs.emplace_back());
     gpio->finish();

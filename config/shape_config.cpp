@@ -161,6 +161,28 @@ Shape readRect(TableReader &t)
     return s;
 }
 
+// A mask's fill: a colour, or "pixelate" in blocks of block_px.
+Shape readMask(TableReader &t)
+{
+    MaskShape s;
+    bool screen = false;
+    if (auto points = t.points("points", kMaxMaskPoints, {}, &screen)) {
+        s.points = std::move(*points);
+        if (s.points.size() < kMinMaskPoints)
+            t.problem("points", "a mask needs at least " + std::to_string(kMinMaskPoints) + " points");
+    }
+    s.world = !screen;
+    const toml::node *fill = t.node("fill");
+    if (fill && fill->as_string() && fill->as_string()->get() == "pixelate")
+        s.fill.reset();
+    else
+        s.fill = t.colour("fill").value_or(Rgba{0, 0, 0, 255});
+    if (s.fill && t.has("block_px"))
+        t.problem("block_px", "block_px is for fill = \"pixelate\"");
+    s.blockPx = unsigned(t.integer("block_px", kMinMaskBlockPx, kMaxMaskBlockPx).value_or(s.blockPx));
+    return s;
+}
+
 struct ShapeReader {
     std::string_view type;
     std::array<std::string_view, 2> required;
@@ -194,6 +216,7 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
         {"text", {"text"}, readScreenText},
         {"crosshair", {}, readCrosshair},
         {"rect", {"size"}, readRect},
+        {"mask", {"points"}, readMask},
     };
     std::vector<std::string> names{"frustum", "image"};
     for (const ShapeReader &reader : kReaders) {

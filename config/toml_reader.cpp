@@ -312,6 +312,12 @@ std::optional<std::vector<std::string>> TableReader::strings(std::string_view ke
 
 std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key, size_t maxCount, Range range)
 {
+    return points(key, maxCount, range, nullptr);
+}
+
+std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key, size_t maxCount, Range range,
+                                                           bool *screen)
+{
     const toml::node *n = node(key);
     if (!n)
         return std::nullopt;
@@ -327,16 +333,25 @@ std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key,
         const toml::node &element = *array->get(i);
         const std::string path = keyPath(key) + "[" + std::to_string(i) + "]";
         const toml::array *xyz = element.as_array();
-        if (!xyz || xyz->size() != 3) {
-            problemAt(element, path, std::string("expected an [x, y, z] point, got ") + typeName(element));
+        const size_t size = xyz ? xyz->size() : 0;
+        if (screen && i == 0 && size == 2)
+            *screen = true;
+        else if (screen && i == 0)
+            *screen = false;
+        const size_t wanted = screen && *screen ? 2 : 3;
+        if (size != wanted) {
+            const char *expected = !screen ? "an [x, y, z] point" : i == 0 ? "an [x, y] or [x, y, z] point"
+                                                                : wanted == 2 ? "an [x, y] point like the first"
+                                                                              : "an [x, y, z] point like the first";
+            problemAt(element, path, std::string("expected ") + expected + ", got " + typeName(element));
             return std::nullopt;
         }
         glm::dvec3 point(0.0);
-        for (int c = 0; c < 3; ++c) {
-            const auto value = numberFrom(*xyz->get(size_t(c)), path + "[" + std::to_string(c) + "]", range);
+        for (size_t c = 0; c < wanted; ++c) {
+            const auto value = numberFrom(*xyz->get(c), path + "[" + std::to_string(c) + "]", range);
             if (!value)
                 return std::nullopt;
-            point[c] = *value;
+            point[int(c)] = *value;
         }
         out.push_back(point);
     }

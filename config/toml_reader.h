@@ -71,6 +71,8 @@ public:
     // At most maxCount numbers (or points); the first one over is refused at its own position.
     std::optional<std::vector<double>> numbers(std::string_view key, size_t maxCount, Range range = {});
     std::optional<std::vector<glm::dvec3>> points(std::string_view key, size_t maxCount, Range range = {});
+    // The same, also taking [x, y] points (z = 0) when `screen` is given: *screen says which, all alike.
+    std::optional<std::vector<glm::dvec3>> points(std::string_view key, size_t maxCount, Range range, bool *screen);
     // An array of at most maxCount strings.
     std::optional<std::vector<std::string>> strings(std::string_view key, size_t maxCount);
     // "#rrggbb", "#rrggbbaa", a colour name, or [r, g, b] / [r, g, b, a] with 0..255 entries.

@@ -180,6 +180,13 @@ HttpResponse HttpApi::state()
     json layers = json::array();
     for (const std::string &layer : scene.layerNames())
         layers.push_back({{"name", layer}, {"visible", scene.layerVisible(layer)}});
+    json masks = json::array();
+    for (const Annotation &annotation : scene.scene().annotations)
+        if (const auto *mask = std::get_if<MaskShape>(&annotation.shape))
+            masks.push_back({{"name", annotation.name},
+                             {"layer", annotation.style.layer},
+                             {"on", mask->world ? "world" : "screen"},
+                             {"fill", mask->fill ? "colour" : "pixelate"}});
     json slots = json::object();
     for (const std::string &slot : textSlotNames(scene.scene()))
         slots[slot] = scene.slotText(slot);
@@ -191,6 +198,7 @@ HttpResponse HttpApi::state()
                 {"source", source},
                 {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
                 {"layers", layers},
+                {"masks", masks},
                 {"text_slots", slots},
                 {"sinks", json::array()},
                 {"http",

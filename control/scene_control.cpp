@@ -107,6 +107,10 @@ Status SceneControl::applyLayer(const LayerChange &change)
 {
     if (Status known = requireKnown("layer", change.layer, layerNames()); !known)
         return known;
+    for (const Annotation &annotation : scene_.annotations)
+        if (!change.visible && isMask(annotation) && annotation.style.layer == change.layer)
+            return makeError(ErrorCode::InvalidArgument, "layer '" + change.layer + "' holds the privacy mask '" +
+                                                             annotation.name + "', which cannot be hidden");
     if (renderer_)
         if (auto set = renderer_->setLayerEnabled(change.layer, change.visible); !set)
             return set;

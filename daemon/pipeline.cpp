@@ -82,7 +82,8 @@ void Pipeline::closeSinks()
 void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
 {
     const auto start = std::chrono::steady_clock::now();
-    blend(frame, metadata);
+    if (!blend(frame, metadata))
+        return;
     const auto blended = std::chrono::steady_clock::now();
     pushToSinks(frame, metadata);
     countFrame(metadata, start, blended);
@@ -91,7 +92,8 @@ void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
 void Pipeline::process(FrameLease lease)
 {
     const auto start = std::chrono::steady_clock::now();
-    blend(lease.view(), lease.metadata());
+    if (!blend(lease.view(), lease.metadata()))
+        return;
     const auto blended = std::chrono::steady_clock::now();
     // Shared only when a sink keeps a reference: the others copy (or write inline) before this returns, and the
     // lease goes back to the source right after, with no allocation for the frame.
@@ -108,14 +110,22 @@ void Pipeline::process(FrameLease lease)
     countFrame(shared->metadata(), start, blended);
 }
 
-void Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
+bool Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
 {
+    // The privacy masks first: the raw tap (snapshots with raw=1) and every sink see the masked frame only, and a
+    // frame that could not be masked goes nowhere.
+    if (renderer_)
+        if (auto masked = renderer_->applyMasks(frame); !masked) {
+            logger_.error(cat("privacy masks: ", masked.error().message, "; the frame is dropped"));
+            return false;
+        }
     if (rawTap_)
         rawTap_(frame, metadata);
     if (!renderer_)
-        return;
+        return true;
     if (auto blended = renderer_->blend(frame, metadata, format_.fps); !blended)
         logger_.error(cat("overlay: ", blended.error().message));
+    return true;
 }
 
 void Pipeline::countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,

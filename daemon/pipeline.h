@@ -47,7 +47,8 @@ public:
     bool hasRenderer() const { return renderer_ != nullptr; }
     // The renderer frames are blended with, for SceneControl's changes (owned here).
     OverlayRenderer *renderer() { return renderer_.get(); }
-    // Called with every source frame before the overlay is blended into it (the HTTP server's raw snapshots).
+    // Called with every source frame after its privacy masks and before the overlay is blended into it (the HTTP
+    // server's raw snapshots).
     using FrameTap = std::function<void(const FrameView &, const FrameMetadata &)>;
     void setRawTap(FrameTap tap) { rawTap_ = std::move(tap); }
     // Replaces the sinks; the old ones are flushed and closed first.
@@ -80,7 +81,8 @@ public:
 private:
     // The running sinks open for the running format again, after a reload gave up (failures are logged).
     void restoreSinks();
-    void blend(const FrameView &frame, const FrameMetadata &metadata);
+    // Masks, raw tap, overlay; false when the frame could not be masked and must not go out.
+    bool blend(const FrameView &frame, const FrameMetadata &metadata);
     void countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point blended);
 

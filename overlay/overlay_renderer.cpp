@@ -23,6 +23,8 @@ Result<std::unique_ptr<OverlayRenderer>> OverlayRenderer::create(const OverlaySc
     if (Status status = checkScene(scene, *graph); !status)
         return status.error();
     auto renderer = std::make_unique<SceneRenderer>(scene, std::move(*graph), camera, format);
+    if (Status status = renderer->renderMasks(); !status)
+        return status.error();
     if (Status status = renderer->renderWorld(); !status)
         return status.error();
     return std::unique_ptr<OverlayRenderer>(std::move(renderer));

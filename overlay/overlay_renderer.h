@@ -45,6 +45,14 @@ public:
     // a camera change. An unknown annotation or a bad point is an InvalidArgument error, and nothing changes.
     virtual Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) = 0;
 
+    // Frame path, before anything else reads the frame (the raw snapshot tap, the blend, every sink): burns the
+    // scene's privacy masks into it. An error means the frame could not be masked and must not go out. A renderer
+    // without masks has nothing to do.
+    virtual Status applyMasks(const FrameView &frame)
+    {
+        (void)frame;
+        return Ok{};
+    }
     // Frame path (no exceptions; no allocation once the text layers have warmed up and while the camera holds
     // still): refreshes token text if it changed and blends every enabled layer into the frame in place. fps feeds
     // the {fps} token.

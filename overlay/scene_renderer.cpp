@@ -18,11 +18,13 @@ namespace overlayd {
 SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera,
                              const StreamFormat &format)
     : scene_(scene), graph_(std::move(graph)), camera_(camera), format_(format), colorimetry_(format.colorimetry),
-      rasterizer_(text_), frameSink_(*format.format, format.colorimetry)
+      rasterizer_(text_), masks_(scene, format), frameSink_(*format.format, format.colorimetry)
 {
     for (size_t i = 0; i < scene_.annotations.size(); ++i) {
         const Annotation &annotation = scene_.annotations[i];
-        const size_t layer = layerIndex(annotation.style.layer);
+        const size_t layer = layerIndex(annotation.style.layer); // a mask's too: showing it is no error
+        if (isMask(annotation))
+            continue;
         const auto *text = std::get_if<ScreenTextShape>(&annotation.shape);
         if (text && hasTokens(text->text)) {
             TextSlot &slot = texts_.emplace_back();
@@ -245,6 +247,8 @@ Status SceneRenderer::setCamera(const Camera &camera)
         return makeError(ErrorCode::InvalidArgument, "the camera's viewport is not the stream's " +
                                                          std::to_string(format_.width) + "x" +
                                                          std::to_string(format_.height));
+    if (Status masked = masks_.setCamera(camera, graph_); !masked)
+        return masked;
     camera_ = camera;
     worldStale_ = true;
     cameraChangedSinceBlend_ = true;
@@ -298,6 +302,10 @@ Status SceneRenderer::setWorldPoints(std::string_view annotation, std::span<cons
 
 Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
 {
+    for (const Annotation &annotation : scene_.annotations)
+        if (!enabled && isMask(annotation) && annotation.style.layer == name)
+            return makeError(ErrorCode::InvalidArgument, "layer \"" + std::string(name) + "\" holds the privacy mask \"" +
+                                                             annotation.name + "\", which cannot be hidden");
     for (Layer &layer : layers_) {
         if (layer.name == name) {
             layer.enabled = enabled;
@@ -356,13 +364,28 @@ void SceneRenderer::drawWorldInto(const FrameView &frame)
     }
 }
 
-Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
+Status SceneRenderer::checkStreamFrame(const FrameView &frame) const
 {
-    // Checked once here; every layer below blends without checking again.
     if (!frame.format || frame.format->fourcc != format_.format->fourcc || frame.width != format_.width ||
         frame.height != format_.height)
         return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " + format_.describe());
-    if (Status status = checkFrame(frame); !status)
+    return checkFrame(frame);
+}
+
+Status SceneRenderer::applyMasks(const FrameView &frame)
+{
+    if (masks_.empty())
+        return Ok{};
+    if (Status status = checkStreamFrame(frame); !status)
+        return status;
+    masks_.apply(frame);
+    return Ok{};
+}
+
+Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
+{
+    // Checked once here; every layer below blends without checking again.
+    if (Status status = checkStreamFrame(frame); !status)
         return status;
     movingFrames_ = cameraChangedSinceBlend_ ? movingFrames_ + 1 : 0;
     cameraChangedSinceBlend_ = false;

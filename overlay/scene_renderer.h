@@ -20,6 +20,7 @@
 #include "overlay/blend/native_layer.h"
 #include "overlay/glyph_stamps.h"
 #include "overlay/overlay_renderer.h"
+#include "overlay/privacy_masks.h"
 #include "overlay/raster/rasterizer.h"
 #include "overlay/raster/text_renderer.h"
 #include "overlay/shapes/text_tokens.h"
@@ -37,8 +38,11 @@ public:
     Status setSlotText(std::string_view slot, std::string_view text) override;
     Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) override;
     Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) override;
+    Status applyMasks(const FrameView &frame) override;
     Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) override;
 
+    // Rasterizes the privacy masks for the camera (called by create; setCamera does it for the new camera).
+    Status renderMasks() { return masks_.setCamera(camera_, graph_); }
     // Re-projects and re-rasterizes every world layer (called by create and setCamera).
     Status renderWorld();
     // Whether the last blend drew the world straight into the frame (a moving camera), for tests and stats.
@@ -74,6 +78,8 @@ private:
         std::optional<GlyphStamps> stamps;
     };
 
+    // The frame is the stream's: format, size and planes.
+    Status checkStreamFrame(const FrameView &frame) const;
     Status buildText(TextSlot &slot);
     Status blendText(TextSlot &slot, const FrameView &frame);
     // The layer of a background box `fill` (slot.box), kept while the box stays the same.
@@ -106,6 +112,7 @@ private:
     std::vector<Layer> layers_;
     std::vector<TextSlot> texts_;
     std::vector<ImageSprite> images_;
+    PrivacyMasks masks_; // kept out of layers_: no layer switch reaches them
     std::vector<std::string> slotNames_; // the {slot:NAME} tokens the scene's texts use
     SlotTexts slotTexts_;
     FrameCoverageSink frameSink_;

@@ -161,9 +161,26 @@ struct RectShape {
     bool filled = false;
 };
 
-using Shape =
-    std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape, HorizonShape,
-                 GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape, ImageShape>;
+// The fewest and most points of a privacy mask's polygon, and the range of its pixelation block.
+inline constexpr size_t kMinMaskPoints = 3;
+inline constexpr size_t kMaxMaskPoints = 1024;
+inline constexpr unsigned kMinMaskBlockPx = 2;
+inline constexpr unsigned kMaxMaskBlockPx = 256;
+
+// A privacy mask: a polygon burned into the frame before anything else sees it (overlay/privacy_masks.h), filled
+// with a colour or pixelated in blocks. On the screen (`world` false: points are [x, y] pixels in the viewport's
+// origin, z unused) or on the world (points in the annotation's frame, projected through the live camera). Any
+// polygon, convex or not; a self-crossing one is filled by the nonzero winding rule. No layer switch hides it.
+struct MaskShape {
+    std::vector<glm::dvec3> points;
+    bool world = false;
+    std::optional<Rgba> fill{}; // nullopt: pixelate
+    unsigned blockPx = 16;
+};
+
+using Shape = std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape,
+                           HorizonShape, GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape,
+                           ImageShape, MaskShape>;
 
 struct Annotation {
     std::string name;                       // for logs and error messages
@@ -171,6 +188,11 @@ struct Annotation {
     Style style{};
     Shape shape;
 };
+
+inline bool isMask(const Annotation &annotation)
+{
+    return std::holds_alternative<MaskShape>(annotation.shape);
+}
 
 // The points of a polyline or markers annotation (what [[input.path]] replaces); null for other shapes.
 inline std::vector<glm::dvec3> *worldPointsOf(Annotation &annotation)

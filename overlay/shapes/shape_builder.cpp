@@ -34,6 +34,7 @@ void buildPrimitives(const Annotation &annotation, const glm::dmat4 &worldFromFr
                    [&](const CrosshairShape &s) { buildCrosshair(ctx, s); },
                    [&](const RectShape &s) { buildRect(ctx, s); },
                    [&](const ImageShape &) {}, // pixels, not primitives: SceneRenderer warps them (image_quad.h)
+                   [&](const MaskShape &) {},  // burned into the frame, not drawn over it (privacy_masks.h)
                },
                annotation.shape);
 }
