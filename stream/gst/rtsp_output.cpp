@@ -192,19 +192,14 @@ void RtspOutput::push(GstSample *sample)
     if (waitingForKeyframe_ && GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT))
         return; // a new media starts at a keyframe: its first client decodes from the first packet
     waitingForKeyframe_ = false;
-    // The encoder's timestamps moved into the media's running time, which starts when it went to PLAYING.
-    GstClockTime now = 0;
-    if (GstClock *clock = gst_element_get_clock(appsrc_)) {
-        now = gst_clock_get_time(clock) - gst_element_get_base_time(appsrc_);
-        gst_object_unref(clock);
-    }
+    // The media's timeline starts at its first access unit (a keyframe: its DTS is the earliest of what follows),
+    // as its running time starts when it goes to PLAYING; a time before it (cannot happen without B-frames) is 0.
     if (!GST_CLOCK_TIME_IS_VALID(offset_))
-        offset_ = GST_BUFFER_PTS(buffer) > now ? 0 : now - GST_BUFFER_PTS(buffer);
+        offset_ = GST_BUFFER_DTS_IS_VALID(buffer) ? GST_BUFFER_DTS(buffer) : GST_BUFFER_PTS(buffer);
     GstBuffer *shifted = gst_buffer_copy(buffer); // the metadata only: the memory is shared
-    if (GST_BUFFER_PTS_IS_VALID(shifted))
-        GST_BUFFER_PTS(shifted) += offset_;
-    if (GST_BUFFER_DTS_IS_VALID(shifted))
-        GST_BUFFER_DTS(shifted) += offset_;
+    for (GstClockTime *time : {&GST_BUFFER_PTS(shifted), &GST_BUFFER_DTS(shifted)})
+        if (GST_CLOCK_TIME_IS_VALID(*time))
+            *time = *time > offset_ ? *time - offset_ : 0;
     GstSample *moved = gst_sample_new(shifted, gst_sample_get_caps(sample), nullptr, nullptr);
     gst_buffer_unref(shifted);
     gst_app_src_push_sample(GST_APP_SRC(appsrc_), moved);

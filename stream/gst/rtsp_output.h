@@ -49,7 +49,7 @@ private:
     GstElement *appsrc_ = nullptr; // the shared media's, while one is prepared (a reference)
     GstRTSPMedia *media_ = nullptr; // its media (a reference), whose signal is ours to disconnect
     bool waitingForKeyframe_ = true;
-    GstClockTime offset_ = GST_CLOCK_TIME_NONE; // encoder PTS -> the media's running time
+    GstClockTime offset_ = GST_CLOCK_TIME_NONE; // the encoder's time of the media's first access unit
     std::map<GstRTSPClient *, RtspClientState> clients_;
 };
 
