@@ -24,8 +24,6 @@ void readRtsp(TableReader &sink, RtspSinkOptions &out)
             sink.problem("listen", address.error().message);
         else if (address->kind == http::ListenAddress::Kind::Unix)
             sink.problem("listen", "an RTSP server listens on HOST:PORT, not a unix socket");
-        else if (address->port == 0)
-            sink.problem("listen", "port 0: give the port RTSP clients connect to (8554 is usual)");
         else
             out.host = address->host, out.port = address->port;
     }

@@ -15,6 +15,7 @@
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
+#include "daemon/encoded_stream_report.h"
 #include "drivers/source_kind_names.h"
 #include "inputs/input_health.h"
 #include "overlay/shapes/scene_checks.h"
@@ -218,6 +219,8 @@ HttpResponse HttpApi::state()
                   {"requests", http.requests}}}};
     if (!status_.gpio().empty())
         out["gpio"] = status_.gpio().describe();
+    if (const stream::EncodedStream *encoded = status_.encodedStream())
+        out["encoder"] = encodedStreamJson(encoded->state());
     json inputs = json::array();
     const auto now = std::chrono::steady_clock::now();
     for (const TextInputs::Reading &reading : status_.textInputs().readings()) {
@@ -327,6 +330,8 @@ HttpResponse HttpApi::metrics()
     metric("overlayd_http_parts_sent_total", "counter", "JPEG parts sent to /stream clients.", double(http.partsSent));
     metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
     metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.", double(http.refused));
+    if (const stream::EncodedStream *encoded = status_.encodedStream())
+        text += encodedStreamMetrics(encoded->state());
     HttpResponse response = HttpResponse::json(200, text);
     response.contentType = "text/plain; version=0.0.4; charset=utf-8";
     return response;

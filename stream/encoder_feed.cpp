@@ -64,6 +64,31 @@ bool EncoderFeed::copyInto(uint8_t *slot, const FrameView &frame)
         copyPlane(v, frame.planes[2].data, frame.planes[2].stride, w / 2, h / 2);
         return true;
     }
+    if (info.name == "NV12") { // the camera's usual format: Y copied, CbCr de-interleaved in the same pass
+        copyPlane(y, frame.planes[0].data, frame.planes[0].stride, w, h);
+        for (unsigned row = 0; row < h / 2; ++row) {
+            const uint8_t *from = frame.planes[1].data + size_t(row) * frame.planes[1].stride;
+            uint8_t *toU = u + size_t(row) * (w / 2), *toV = v + size_t(row) * (w / 2);
+            for (unsigned x = 0; x < w / 2; ++x)
+                toU[x] = from[2 * x], toV[x] = from[2 * x + 1];
+        }
+        return true;
+    }
+    if (info.name == "YUYV") { // 4:2:2 to 4:2:0: each chroma sample the mean of its two rows
+        for (unsigned row = 0; row < h; row += 2) {
+            const uint8_t *top = frame.planes[0].data + size_t(row) * frame.planes[0].stride;
+            const uint8_t *bottom = top + frame.planes[0].stride;
+            uint8_t *toY = y + size_t(row) * w, *toU = u + size_t(row / 2) * (w / 2), *toV = v + size_t(row / 2) * (w / 2);
+            for (unsigned x = 0; x < w; ++x)
+                toY[x] = top[2 * x], toY[w + x] = bottom[2 * x];
+            for (unsigned x = 0; x < w / 2; ++x) {
+                toU[x] = uint8_t((top[4 * x + 1] + bottom[4 * x + 1] + 1) / 2);
+                toV[x] = uint8_t((top[4 * x + 3] + bottom[4 * x + 3] + 1) / 2);
+            }
+        }
+        return true;
+    }
+    // Any other format through the general converter (RGB is encoded with the stream's colorimetry).
     if (!frameToYcbcr(frame, colorimetry_, scratch_, rgbScratch_))
         return false;
     if (!scratch_.hasChroma) { // GREY: neutral chroma

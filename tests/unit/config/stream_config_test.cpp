@@ -122,11 +122,11 @@ TEST(StreamConfig, EveryRefusalIsAtItsKey)
     EXPECT_TRUE(hasProblem(encoder("profile = \"extended\"\n"), "encoder.profile", "baseline | main | high"));
     EXPECT_TRUE(hasProblem(encoder("low_latency = 1\n"), "encoder.low_latency", ""));
     EXPECT_TRUE(hasProblem(encoder("queue = 9\n"), "encoder.queue", "8"));
-    EXPECT_TRUE(hasProblem(encoder("bitrate = 5\n"), "encoder.bitrate", "bitrate_kbps"));
+    EXPECT_TRUE(hasProblem(encoder("bitrate = 5\n"), "encoder.bitrate", "unknown key"));
 
     const auto rtsp = [](const std::string &lines) { return loadInvalid(kBase + kRtsp + lines); };
     EXPECT_TRUE(hasProblem(rtsp("listen = \"unix:/tmp/x\"\n"), "sink[0].listen", "HOST:PORT"));
-    EXPECT_TRUE(hasProblem(rtsp("listen = \"127.0.0.1:0\"\n"), "sink[0].listen", "port 0"));
+    EXPECT_TRUE(hasProblem(rtsp("listen = \"127.0.0.1:0\"\n"), "sink[0].listen", "1 to 65535"));
     EXPECT_TRUE(hasProblem(rtsp("listen = \"nowhere\"\n"), "sink[0].listen", ""));
     EXPECT_TRUE(hasProblem(rtsp("path = \"cam\"\n"), "sink[0].path", "mount point"));
     EXPECT_TRUE(hasProblem(rtsp("path = \"/cam/\"\n"), "sink[0].path", "mount point"));

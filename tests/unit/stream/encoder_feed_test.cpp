@@ -96,16 +96,18 @@ TEST(EncoderFeed, DropsWhenEverySlotIsWithTheEncoderAndReusesReleasedOnes)
 
 TEST(EncoderFeed, ASlotOutlivesTheFeed)
 {
-    std::optional<EncoderInput> kept;
+    std::shared_ptr<void> owner;
+    const uint8_t *data = nullptr;
     {
         EncoderFeed feed(1);
         ASSERT_TRUE(feed.open(formatOf("YUV420", 8, 4)));
         FrameBuffer frame = i420Frame(8, 4);
-        kept = feed.fill(frame.view(), {}, {});
+        auto kept = feed.fill(frame.view(), {}, {});
         ASSERT_TRUE(kept);
+        owner = kept->owner, data = kept->data;
     }
-    EXPECT_EQ(kept->data[0], 0); // still readable: the buffer holds the pool
-    kept.reset();               // and its release after the feed is gone touches nothing freed (ASan says)
+    EXPECT_EQ(data[0], 0); // still readable: the slot holds the pool
+    owner.reset();         // and its release after the feed is gone touches nothing freed (ASan says)
 }
 
 TEST(EncoderFeed, RefusesOddSizesAndReopeningWhileTheEncoderHoldsFrames)
@@ -121,6 +123,28 @@ TEST(EncoderFeed, RefusesOddSizesAndReopeningWhileTheEncoderHoldsFrames)
     EXPECT_NE(reopened.error().message.find("still holds 1"), std::string::npos);
     held.reset();
     EXPECT_TRUE(feed.open(formatOf("YUV420", 16, 8)));
+}
+
+} // namespace
+
+namespace {
+
+TEST(EncoderFeed, DeinterleavesNv12ChromaAndCountsTheConversion)
+{
+    EncoderFeed feed(1);
+    ASSERT_TRUE(feed.open(formatOf("NV12", 4, 2)));
+    FrameBuffer frame = std::move(*FrameBuffer::allocate(formatOf("NV12", 4, 2)));
+    const FrameView view = frame.view();
+    const uint8_t luma[2][4] = {{1, 2, 3, 4}, {5, 6, 7, 8}};
+    for (unsigned y = 0; y < 2; ++y)
+        std::copy(luma[y], luma[y] + 4, view.planes[0].data + size_t(y) * view.planes[0].stride);
+    const uint8_t chroma[4] = {90, 200, 91, 201}; // Cb Cr Cb Cr
+    std::copy(chroma, chroma + 4, view.planes[1].data);
+    auto input = feed.fill(view, {}, {});
+    ASSERT_TRUE(input);
+    const uint8_t expected[12] = {1, 2, 3, 4, 5, 6, 7, 8, 90, 91, 200, 201};
+    EXPECT_TRUE(std::equal(expected, expected + 12, input->data));
+    EXPECT_EQ(feed.counters().converted, 1u);
 }
 
 } // namespace
