@@ -60,12 +60,12 @@ def check(ok, what):
         failures.append(what)
 
 
-def rtsp_config(http_port, rtsp_port):
+def rtsp_config(http_port, rtsp_port, keyframe_interval=1.0):
     return SCENE + daemon_fixture.http_section(http_port, control="off") + f"""
 [encoder]
 encoder = "openh264"
 bitrate_kbps = 3000
-keyframe_interval_s = 1.0
+keyframe_interval_s = {keyframe_interval}
 [[sink]]
 kind = "rtsp"
 listen = "127.0.0.1:{rtsp_port}"
@@ -154,6 +154,42 @@ def footprint(overlayd, workdir):
         daemon.stop()
 
 
+def late_joiner(overlayd, workdir):
+    """Keyframes every 30 s: a client that joins a running media still decodes its first frame at once, because its
+    PLAY asks the encoder for a keyframe."""
+    http_port, rtsp_port = daemon_fixture.free_port(), daemon_fixture.free_port()
+    config = write(workdir, "late-joiner.toml", rtsp_config(http_port, rtsp_port, keyframe_interval=30.0))
+    url = f"rtsp://127.0.0.1:{rtsp_port}/cam"
+    daemon = daemon_fixture.Daemon(overlayd, config, workdir, http_port)
+    try:
+        daemon.wait_ready()
+        first = subprocess.Popen(["ffmpeg", "-v", "error", "-rtsp_transport", "tcp", "-i", url, "-frames:v", "300",
+                                  "-f", "null", "-"], stdin=subprocess.DEVNULL)
+        time.sleep(4)  # the shared media runs, its first keyframe long gone
+        started = time.monotonic()
+        count, _ = decode(url, "udp", 1)
+        elapsed = time.monotonic() - started
+        check(count == 1 and elapsed < 5.0, f"a late joiner decodes its first frame in {elapsed:.1f} s with keyframes "
+              "every 30 s (its PLAY asks for one)")
+        first.kill()
+        first.wait()
+    finally:
+        daemon.stop()
+
+
+def module_missing(overlayd, workdir):
+    """The binary alone, without the module beside it: run stops at start saying where it looked."""
+    folder = os.path.join(workdir, "alone")
+    os.makedirs(folder, exist_ok=True)
+    alone = os.path.join(folder, "overlayd")
+    subprocess.run(["cp", overlayd, alone], check=True)
+    http_port, rtsp_port = daemon_fixture.free_port(), daemon_fixture.free_port()
+    config = write(workdir, "alone.toml", rtsp_config(http_port, rtsp_port))
+    done = subprocess.run([alone, "run", "--config", config], capture_output=True, text=True, timeout=30)
+    check(done.returncode != 0 and "overlayd-stream.so is not installed" in done.stderr,
+          f"without its module run stops: exit {done.returncode}, {done.stderr.strip().splitlines()[-1:]}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--overlayd", required=True)
@@ -163,6 +199,8 @@ def main():
     overlayd = os.path.abspath(args.overlayd)
 
     footprint(overlayd, args.workdir)
+    module_missing(overlayd, args.workdir)
+    late_joiner(overlayd, args.workdir)
 
     http_port, rtsp_port = daemon_fixture.free_port(), daemon_fixture.free_port()
     config = write(args.workdir, "rtsp.toml", rtsp_config(http_port, rtsp_port))
