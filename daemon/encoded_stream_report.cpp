@@ -27,6 +27,14 @@ void family(std::string &text, const char *name, const char *type, const char *h
                 nlohmann::json(value).dump() + "\n";
 }
 
+// Every stage's histogram, capture first: "blended", then the engine's.
+std::vector<std::pair<std::string, stream::LatencyHistogram>> stages(const stream::EncodedStreamState &state)
+{
+    std::vector<std::pair<std::string, stream::LatencyHistogram>> all{{"blended", state.blended}};
+    all.insert(all.end(), state.engine.latency.begin(), state.engine.latency.end());
+    return all;
+}
+
 } // namespace
 
 nlohmann::json encodedStreamJson(const stream::EncodedStreamState &state)
@@ -40,7 +48,14 @@ nlohmann::json encodedStreamJson(const stream::EncodedStreamState &state)
                 {{"address", client.address}, {"transport", client.transport}, {"since", utcText(client.since)}});
         sinks.push_back({{"sink", sink.key}, {"url", sink.describe}, {"clients", clients}});
     }
+    nlohmann::json latency = nlohmann::json::object();
+    for (const auto &[stage, histogram] : stages(state))
+        latency[stage] = {{"frames", histogram.count},
+                          {"p50_s", histogram.quantile(0.5)},
+                          {"p99_s", histogram.quantile(0.99)},
+                          {"mean_s", histogram.count ? histogram.sum / double(histogram.count) : 0.0}};
     return {{"running", engine.running},
+            {"latency", latency},
             {"element", engine.encoder},
             {"device", engine.device},
             {"frames_in", engine.framesIn},
@@ -80,6 +95,22 @@ std::string encodedStreamMetrics(const stream::EncodedStreamState &state)
         clients.emplace_back("sink=" + nlohmann::json(sink.key).dump() + ",url=" + nlohmann::json(sink.describe).dump(),
                              double(sink.clients.size()));
     family(text, "overlayd_rtsp_clients", "gauge", "Clients connected to an RTSP sink.", clients);
+    text += "# HELP overlayd_stage_latency_seconds Seconds from a frame's capture to a stage of the encoded path.\n"
+            "# TYPE overlayd_stage_latency_seconds histogram\n";
+    for (const auto &[stage, histogram] : stages(state)) {
+        const std::string name = "overlayd_stage_latency_seconds";
+        const std::string stageLabel = "stage=" + nlohmann::json(stage).dump();
+        uint64_t cumulative = 0;
+        for (size_t i = 0; i <= stream::LatencyHistogram::kBounds.size(); ++i) {
+            cumulative += histogram.counts[i];
+            const std::string bound = i < stream::LatencyHistogram::kBounds.size()
+                                          ? nlohmann::json(stream::LatencyHistogram::kBounds[i]).dump()
+                                          : std::string("+Inf");
+            text += name + "_bucket{" + stageLabel + ",le=\"" + bound + "\"} " + std::to_string(cumulative) + "\n";
+        }
+        text += name + "_sum{" + stageLabel + "} " + nlohmann::json(histogram.sum).dump() + "\n";
+        text += name + "_count{" + stageLabel + "} " + std::to_string(histogram.count) + "\n";
+    }
     return text;
 }
 

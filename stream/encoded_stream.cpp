@@ -55,6 +55,7 @@ std::unique_ptr<FrameSink> EncodedStream::sink()
 Status EncodedStream::open(const StreamFormat &format)
 {
     close();
+    toMonotonic_.reset();
     auto engineFormat = feed_.open(format);
     if (!engineFormat)
         return engineFormat.error();
@@ -68,7 +69,16 @@ Status EncodedStream::write(const FrameView &frame, const FrameMetadata &metadat
 {
     if (!open_)
         return makeError(ErrorCode::InvalidArgument, "the encoder is not open");
-    if (auto input = feed_.fill(frame, metadata, monotonicNow()))
+    const std::chrono::nanoseconds now = monotonicNow();
+    if (!toMonotonic_) // a timestamp more than a minute from the clock is not on it (stream time from 0)
+        toMonotonic_ = std::chrono::abs(now - metadata.timestamp) < std::chrono::minutes(1);
+    // Such a source's schedule is not its frames' latency: its blend counts as 0.
+    const std::chrono::nanoseconds captured = *toMonotonic_ ? metadata.timestamp : now;
+    if (now >= captured) {
+        std::lock_guard lock(latencyMutex_);
+        blended_.add(std::chrono::duration<double>(now - captured).count());
+    }
+    if (auto input = feed_.fill(frame, metadata, now)) // the source's timestamps stay the stream's PTS
         engine_->push(std::move(*input));
     return Ok{}; // a drop is counted by the feed, not a failure of the sink
 }
@@ -82,7 +92,8 @@ void EncodedStream::close()
 
 EncodedStreamState EncodedStream::state() const
 {
-    return {engine_->state(), feed_.counters()};
+    std::lock_guard lock(latencyMutex_);
+    return {engine_->state(), feed_.counters(), blended_};
 }
 
 std::string EncodedStream::describe() const

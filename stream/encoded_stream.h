@@ -5,6 +5,8 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 
 #include "drivers/frame_sink.h"
@@ -17,6 +19,7 @@ namespace overlayd::stream {
 struct EncodedStreamState {
     EngineState engine;
     FeedCounters feed;
+    LatencyHistogram blended; // capture to the overlay blended in (the frame reaching the feed)
 };
 
 class EncodedStream : public std::enable_shared_from_this<EncodedStream>
@@ -41,6 +44,11 @@ private:
     std::unique_ptr<EncodedStreamEngine> engine_;
     EncoderFeed feed_;
     bool open_ = false;
+    mutable std::mutex latencyMutex_; // write() on the pipeline's thread, state() on the loop's
+    LatencyHistogram blended_;
+    // Whether the source stamps frames on CLOCK_MONOTONIC (V4L2, libcamera), judged at its first frame; a source
+    // whose timestamps count from 0 (synthetic, replay) is measured from the frame reaching this stream.
+    std::optional<bool> toMonotonic_;
 };
 
 } // namespace overlayd::stream

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "stream/latency_histogram.h"
 #include "stream/stream_options.h"
 
 namespace overlayd::stream {
@@ -63,6 +64,9 @@ struct EngineState {
     uint64_t bytesEncoded = 0;
     double bitrateKbps = 0; // measured over the last second's access units
     std::vector<EncodedSinkState> sinks;
+    // From the frame's blend (EncoderInput::blendedTime) to: "encoder_in" (handed to the encoder), "encoded" (its
+    // access unit out), "sent" (handed to an RTSP media, the last step before its sockets).
+    std::vector<std::pair<std::string, LatencyHistogram>> latency;
 };
 
 // How the engine reports (from its own thread): a line for the daemon's log, at a syslog priority (3 error,

@@ -12,6 +12,8 @@
 namespace overlayd::stream::gst {
 namespace {
 
+// Frames whose blend time is kept for the encoded and sent stages: more than the encoder ever holds.
+constexpr size_t kMaxTracked = 64;
 // Log levels as base/logger.h numbers them (the engine shares no code with the binary).
 constexpr int kLogError = 3, kLogNotice = 5, kLogInfo = 6;
 
@@ -136,6 +138,7 @@ void GstStreamEngine::push(EncoderInput frame)
         return; // dropped with its slot
     if (!firstCapture_)
         firstCapture_ = frame.captureTime;
+    const GstClockTime now = nowNs();
     const GstClockTime pts = GstClockTime((frame.captureTime - *firstCapture_).count());
     const auto data = const_cast<uint8_t *>(frame.data);
     const size_t size = frame.size;
@@ -146,10 +149,16 @@ void GstStreamEngine::push(EncoderInput frame)
     GST_BUFFER_PTS(buffer) = pts;
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
     GST_BUFFER_OFFSET(buffer) = held->sequence;
+    const auto blended = GstClockTime(held->blendedTime.count()); // `held` may be gone once the buffer is pushed
     if (gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer) != GST_FLOW_OK) // takes the buffer either way
         return;
     std::lock_guard lock(mutex_);
     ++state_.framesIn;
+    if (blended > 0 && now >= blended)
+        encoderIn_.add(double(now - blended) / GST_SECOND);
+    blendedAt_.emplace_back(pts, blended);
+    while (blendedAt_.size() > kMaxTracked)
+        blendedAt_.pop_front();
 }
 
 void GstStreamEngine::requestKeyframe()
@@ -167,6 +176,7 @@ GstFlowReturn GstStreamEngine::onEncoded(GstAppSink *sink, gpointer data)
     GstSample *sample = gst_app_sink_pull_sample(sink);
     if (sample == nullptr)
         return GST_FLOW_EOS;
+    GstClockTime captured = 0; // CLOCK_MONOTONIC, ns: when the frame's overlay was blended
     if (GstBuffer *buffer = gst_sample_get_buffer(sample)) {
         const size_t bytes = gst_buffer_get_size(buffer);
         const GstClockTime now = nowNs();
@@ -177,9 +187,21 @@ GstFlowReturn GstStreamEngine::onEncoded(GstAppSink *sink, gpointer data)
         self->lastSecond_.emplace_back(now, bytes);
         while (!self->lastSecond_.empty() && self->lastSecond_.front().first + GST_SECOND < now)
             self->lastSecond_.pop_front();
+        for (const auto &[pts, blended] : self->blendedAt_) // the frame's blend time, by its PTS
+            if (GST_BUFFER_PTS(buffer) == pts)
+                captured = blended;
+        if (captured > 0 && now >= captured)
+            self->encoded_.add(double(now - captured) / GST_SECOND);
     }
+    bool sent = false;
     for (const auto &output : self->rtsp_)
-        output->push(sample);
+        sent = output->push(sample) || sent;
+    if (sent && captured > 0) {
+        const GstClockTime now = nowNs();
+        std::lock_guard lock(self->mutex_);
+        if (now >= captured)
+            self->sent_.add(double(now - captured) / GST_SECOND);
+    }
     gst_sample_unref(sample);
     return GST_FLOW_OK;
 }
@@ -226,6 +248,8 @@ void GstStreamEngine::close()
     std::lock_guard lock(mutex_);
     state_.running = false;
     lastSecond_.clear();
+    encoderIn_ = encoded_ = sent_ = LatencyHistogram{};
+    blendedAt_.clear();
 }
 
 EngineState GstStreamEngine::state() const
@@ -238,6 +262,7 @@ EngineState GstStreamEngine::state() const
         for (const auto &[when, size] : lastSecond_)
             bytes += size;
         out.bitrateKbps = double(bytes) * 8 / 1000;
+        out.latency = {{"encoder_in", encoderIn_}, {"encoded", encoded_}, {"sent", sent_}};
     }
     for (const auto &output : rtsp_)
         out.sinks.push_back(output->state());

@@ -10,6 +10,7 @@
 #include <gst/app/gstappsink.h>
 #include <gst/gst.h>
 
+#include <atomic>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -56,6 +57,8 @@ private:
     mutable std::mutex mutex_;
     EngineState state_;
     std::deque<std::pair<GstClockTime, size_t>> lastSecond_; // (arrival, bytes) of the last second's access units
+    LatencyHistogram encoderIn_, encoded_, sent_;
+    std::deque<std::pair<GstClockTime, GstClockTime>> blendedAt_; // (PTS, blended) of the frames pushed last
 };
 
 } // namespace overlayd::stream::gst

@@ -183,14 +183,14 @@ void RtspOutput::onMediaUnprepared(GstRTSPMedia *, RtspOutput *self)
     self->appsrc_ = nullptr;
 }
 
-void RtspOutput::push(GstSample *sample)
+bool RtspOutput::push(GstSample *sample)
 {
     GstBuffer *buffer = gst_sample_get_buffer(sample);
     std::lock_guard lock(mutex_);
     if (appsrc_ == nullptr || buffer == nullptr)
-        return;
+        return false;
     if (waitingForKeyframe_ && GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT))
-        return; // a new media starts at a keyframe: its first client decodes from the first packet
+        return false; // a new media starts at a keyframe: its first client decodes from the first packet
     waitingForKeyframe_ = false;
     // The media's timeline starts at its first access unit (a keyframe: its DTS is the earliest of what follows),
     // as its running time starts when it goes to PLAYING; a time before it (cannot happen without B-frames) is 0.
@@ -204,6 +204,7 @@ void RtspOutput::push(GstSample *sample)
     gst_buffer_unref(shifted);
     gst_app_src_push_sample(GST_APP_SRC(appsrc_), moved);
     gst_sample_unref(moved);
+    return true;
 }
 
 EncodedSinkState RtspOutput::state() const

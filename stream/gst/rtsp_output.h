@@ -26,8 +26,8 @@ public:
 
     // Binds the address and serves from `context` (the engine's main loop); the bind's error names the address.
     Status start(GMainContext *context);
-    // One access unit (with its caps); from the encoder's streaming thread. Dropped while no client plays.
-    void push(GstSample *sample);
+    // One access unit (with its caps); from the encoder's streaming thread. Dropped while no client plays (false).
+    bool push(GstSample *sample);
     EncodedSinkState state() const;
 
 private:

@@ -257,6 +257,16 @@ def main():
         encoded = after["encoder"]["frames_encoded"] - before["frames_encoded"]
         check(encoded <= after["source"]["frames"] - before["frames_in"] + 5,
               f"one encode: {encoded} frames encoded while ten clients watched (not ten times the source's)")
+        latency = after["encoder"]["latency"]
+        stages = ["blended", "encoder_in", "encoded", "sent"]
+        check(all(latency[s]["frames"] > 0 for s in stages) and latency["sent"]["p99_s"] < 1.0,
+              "the latency of every stage (blended from capture, the others from the blend): " +
+              ", ".join(f"{s} p50 {latency[s]['p50_s'] * 1000:g} ms p99 {latency[s]['p99_s'] * 1000:g} ms"
+                        for s in stages))
+        text = metrics(daemon.base)
+        counts = dict(re.findall(r'^overlayd_stage_latency_seconds_count\{stage="(\w+)"\} (\d+)$', text, re.M))
+        check(sorted(counts) == sorted(stages) and all(int(c) > 0 for c in counts.values()),
+              f"/metrics has overlayd_stage_latency_seconds for every stage: {counts}")
         check(after["encoder"]["keyframes"] > 0 and after["encoder"]["bitrate_kbps"] > 0,
               f"the encoder reports keyframes {after['encoder']['keyframes']}, "
               f"{after['encoder']['bitrate_kbps']:.0f} kbit/s, element {after['encoder']['element']}")
