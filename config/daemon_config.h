@@ -14,6 +14,7 @@
 #include "http/http_options.h"
 #include "inputs/input_options.h"
 #include "overlay/shapes/annotation.h"
+#include "stream/stream_options.h"
 
 namespace overlayd {
 
@@ -28,6 +29,7 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
+    stream::StreamOptions stream; // [encoder] and the encoded [[sink]]s
     gpio::GpioOptions gpio;
     http::HttpOptions http;
     inputs::InputOptions inputs;

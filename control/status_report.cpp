@@ -41,10 +41,16 @@ void StatusReport::set(const std::string &key, json value)
 void StatusReport::metric(const std::string &name, const char *type, const char *help, double value,
                           const std::string &labels)
 {
-    auto found = familyIndex_.find(name);
+    sample(name, type, help, name, value, labels);
+}
+
+void StatusReport::sample(const std::string &family, const char *type, const char *help, const std::string &name,
+                          double value, const std::string &labels)
+{
+    auto found = familyIndex_.find(family);
     if (found == familyIndex_.end()) {
-        found = familyIndex_.emplace(name, families_.size()).first;
-        families_.push_back({name, type, help, {}});
+        found = familyIndex_.emplace(family, families_.size()).first;
+        families_.push_back({family, type, help, {}});
     }
     families_[found->second].samples.push_back(name + (labels.empty() ? "" : "{" + labels + "}") + " " +
                                                writeJson(json(value)));

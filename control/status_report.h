@@ -28,6 +28,9 @@ public:
     // /metrics: a sample of `name`; labels as `key="value",...` (label() makes one).
     void metric(const std::string &name, const char *type, const char *help, double value,
                 const std::string &labels = {});
+    // A sample of the family `family` under another name: a histogram's `family_bucket`, `_sum` and `_count`.
+    void sample(const std::string &family, const char *type, const char *help, const std::string &name, double value,
+                const std::string &labels = {});
     // An "inputs" entry, with `error` (why the input's last value was refused) when there is one.
     void input(nlohmann::json entry, const std::string &error);
     // One input's health, the same for every kind of input: an "input_health" entry and its two metrics.

@@ -89,6 +89,7 @@ Status Daemon::setUp()
         return served;
     Status sinksBuilt = Ok{};
     pipeline_.setSinks(buildSinks(config_, sinksBuilt));
+    stream_ = builtStream_;
     if (!sinksBuilt)
         return sinksBuilt;
     if (auto opened = source_->open(); !opened) {
@@ -133,6 +134,26 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
     }
     if (config.http.enabled)
         sinks.push_back(std::make_unique<SinkWorker>(http_.makeSink(), HttpFront::sinkOptions(), logger_));
+    builtStream_.reset();
+    if (config.stream.enabled()) {
+        auto engine = factories_.streamEngine(config.stream, [this](int level, const std::string &message) {
+            // syslog priorities, as the engine numbers them
+            logger_.log(level <= 3   ? LogLevel::Error
+                        : level == 4 ? LogLevel::Warning
+                        : level == 5 ? LogLevel::Notice
+                        : level == 6 ? LogLevel::Info
+                                     : LogLevel::Debug,
+                        message);
+        });
+        if (!engine) {
+            status = makeError(engine.error().code, config.stream.sinks.front().key + ": " + engine.error().message);
+            return {};
+        }
+        builtStream_ = std::make_shared<stream::EncodedStream>(config.stream, std::move(*engine));
+        SinkOptions encoder;
+        encoder.name = "encoder"; // its /state and /metrics identity, as the HTTP JPEG feed is "http"
+        sinks.push_back(std::make_unique<SinkWorker>(builtStream_->sink(), encoder, logger_));
+    }
     return sinks;
 }
 
@@ -149,7 +170,7 @@ std::vector<const StatusReporter *> Daemon::reporters() const
     std::vector<const StatusReporter *> out;
     for (const auto &sink : pipeline_.sinks())
         out.push_back(sink.get());
-    out.insert(out.end(), {&gpio_, &textInputs_, &pathInputs_, &canInputs_});
+    out.insert(out.end(), {&gpio_, &textInputs_, &pathInputs_, &canInputs_, &streamReport_});
     return out;
 }
 
@@ -324,7 +345,8 @@ Result<Daemon::ReopenedParts> Daemon::switchConfig(DaemonConfig next)
     // Whole option structs are compared: a field added to them later re-opens what it belongs to.
     const bool sourceChanged = config_.source != next.source || sceneCameraChanged(config_, next) ||
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
-    const bool sinksChanged = config_.sinks != next.sinks || config_.http.enabled != next.http.enabled;
+    const bool sinksChanged =
+        config_.sinks != next.sinks || config_.http.enabled != next.http.enabled || config_.stream != next.stream;
     // The candidate scene carries the live layer choices and slot texts; the live one is not touched until the switch.
     SceneControl scene = scene_.withScene(next.scene, next.camera);
     std::optional<SourceSupervisor::Staged> stream;
@@ -375,6 +397,7 @@ Result<Daemon::ReopenedParts> Daemon::switchConfig(DaemonConfig next)
             return inFile(next, "sink", built.error());
         if (auto replaced = pipeline_.replaceSinks(std::move(sinks), format); !replaced)
             return inFile(next, "sink", replaced.error());
+        stream_ = builtStream_;
     } else if (format.format && format != pipeline_.format()) {
         if (auto reopened = pipeline_.reopenSinks(format); !reopened)
             return inFile(next, "sink", reopened.error());

@@ -20,6 +20,7 @@
 #include "control/path_inputs.h"
 #include "control/scene_control.h"
 #include "control/text_inputs.h"
+#include "daemon/encoded_stream_report.h"
 #include "daemon/health_reporter.h"
 #include "daemon/pipeline.h"
 #include "daemon/source_supervisor.h"
@@ -115,6 +116,9 @@ private:
     TextInputs textInputs_; // after scene_, whose slots it feeds
     PathInputs pathInputs_; // after scene_, whose polylines and markers it feeds
     CanInputs canInputs_;   // after scene_, whose guide lines and slots it feeds
+    // The encoded outputs the running sinks feed, and those buildSinks() made for sinks not yet switched in.
+    std::shared_ptr<stream::EncodedStream> stream_, builtStream_;
+    EncodedStreamReport streamReport_{stream_}; // reports whichever encoded stream runs, or nothing
     HttpFront http_;        // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running

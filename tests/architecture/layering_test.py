@@ -18,12 +18,14 @@ ALLOWED = {
     "http": {"base"},
     "inputs": {"base"},
     "alignment": {"base", "projection"},
-    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs"},
-    "control": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config",
-               "control"},
-    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config",
-              "control", "daemon"},
+    "stream": {"base", "media", "drivers"},
+    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream"},
+    "control": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream", "alignment",
+                "config"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream", "alignment",
+               "config", "control"},
+    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream", "alignment",
+              "config", "control", "daemon"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.

@@ -1,0 +1,106 @@
+// EncodedStreamReport: the encoder, the encoded sinks and the stage latencies for /state and /metrics.
+#include "daemon/encoded_stream_report.h"
+
+#include <ctime>
+
+#include "control/status_report.h"
+
+namespace overlayd {
+namespace {
+
+// "2026-11-27T15:20:59Z": when a client connected, in UTC.
+std::string utcText(std::chrono::system_clock::time_point when)
+{
+    const std::time_t seconds = std::chrono::system_clock::to_time_t(when);
+    std::tm parts{};
+    gmtime_r(&seconds, &parts);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
+    return text;
+}
+
+// Every stage's histogram, capture first: "blended", then the engine's.
+std::vector<std::pair<std::string, stream::LatencyHistogram>> stages(const stream::EncodedStreamState &state)
+{
+    std::vector<std::pair<std::string, stream::LatencyHistogram>> all{{"blended", state.blended}};
+    all.insert(all.end(), state.engine.latency.begin(), state.engine.latency.end());
+    return all;
+}
+
+} // namespace
+
+void EncodedStreamReport::report(StatusReport &report) const
+{
+    if (!running_)
+        return;
+    const stream::EncodedStreamState state = running_->state();
+    const stream::EngineState &engine = state.engine;
+    nlohmann::json sinks = nlohmann::json::array();
+    for (const stream::EncodedSinkState &sink : engine.sinks) {
+        nlohmann::json clients = nlohmann::json::array();
+        for (const stream::RtspClientState &client : sink.clients)
+            clients.push_back(
+                {{"address", client.address}, {"transport", client.transport}, {"since", utcText(client.since)}});
+        sinks.push_back({{"sink", sink.key}, {"url", sink.describe}, {"clients", clients}});
+    }
+    nlohmann::json latency = nlohmann::json::object();
+    for (const auto &[stage, histogram] : stages(state))
+        latency[stage] = {{"frames", histogram.count},
+                          {"p50_s", histogram.quantile(0.5)},
+                          {"p99_s", histogram.quantile(0.99)},
+                          {"mean_s", histogram.count ? histogram.sum / double(histogram.count) : 0.0}};
+    report.set("encoder", {{"running", engine.running},
+                           {"latency", latency},
+                           {"element", engine.encoder},
+                           {"device", engine.device},
+                           {"frames_in", engine.framesIn},
+                           {"frames_encoded", engine.framesEncoded},
+                           {"keyframes", engine.keyframes},
+                           {"bytes", engine.bytesEncoded},
+                           {"bitrate_kbps", engine.bitrateKbps},
+                           {"frames_copied", state.feed.copied},
+                           {"frames_converted", state.feed.converted},
+                           {"frames_dropped", state.feed.dropped},
+                           {"sinks", sinks}});
+
+    const std::string label = StatusReport::label("element", engine.encoder);
+    report.metric("overlayd_encoders", "gauge", "Encoders running (one encode is shared by every encoded sink).",
+                  engine.running ? 1.0 : 0.0, label);
+    report.metric("overlayd_encoder_frames_total", "counter", "Frames the encoder took.", double(engine.framesIn),
+                  label);
+    report.metric("overlayd_encoder_encoded_frames_total", "counter", "Access units out of the encoder.",
+                  double(engine.framesEncoded), label);
+    report.metric("overlayd_encoder_keyframes_total", "counter", "Keyframes (IDR) out of the encoder.",
+                  double(engine.keyframes), label);
+    report.metric("overlayd_encoder_bytes_total", "counter", "Bytes out of the encoder.", double(engine.bytesEncoded),
+                  label);
+    report.metric("overlayd_encoder_bitrate_kbps", "gauge", "Encoded bitrate over the last second, kbit/s.",
+                  engine.bitrateKbps, label);
+    report.metric("overlayd_encoder_dropped_total", "counter",
+                  "Frames dropped before the encoder (every slot still with it).", double(state.feed.dropped), label);
+    report.metric("overlayd_encoder_converted_total", "counter",
+                  "Frames converted to I420 on their one copy for the encoder.", double(state.feed.converted), label);
+    for (const stream::EncodedSinkState &sink : engine.sinks)
+        report.metric("overlayd_rtsp_clients", "gauge", "Clients connected to an RTSP sink.",
+                      double(sink.clients.size()),
+                      StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe));
+
+    const std::string family = "overlayd_stage_latency_seconds";
+    const char *help = "Seconds from a frame's capture to a stage of the encoded path.";
+    for (const auto &[stage, histogram] : stages(state)) {
+        const std::string stageLabel = StatusReport::label("stage", stage);
+        uint64_t cumulative = 0;
+        for (size_t i = 0; i <= stream::LatencyHistogram::kBounds.size(); ++i) {
+            cumulative += histogram.counts[i];
+            const std::string bound = i < stream::LatencyHistogram::kBounds.size()
+                                          ? nlohmann::json(stream::LatencyHistogram::kBounds[i]).dump()
+                                          : std::string("+Inf");
+            report.sample(family, "histogram", help, family + "_bucket", double(cumulative),
+                          stageLabel + ",le=\"" + bound + "\"");
+        }
+        report.sample(family, "histogram", help, family + "_sum", histogram.sum, stageLabel);
+        report.sample(family, "histogram", help, family + "_count", double(histogram.count), stageLabel);
+    }
+}
+
+} // namespace overlayd

@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""CPU per frame of overlay + encode against the encode alone, same source, same encoder, same run: `overlayd run`
+at 720p30 NV12 (synthetic scene) with an RTSP sink and openh264, with and without a demo-like overlay (a grid, a
+thick polyline, a clock text), each for 20 s after 3 s of warm-up, CPU time read from /proc/PID/stat. Two rounds,
+interleaved. A figure for docs/streaming.md, not a timed test.
+
+    cpu_per_frame.py build/daemon/overlayd   (run in a scratch folder: it writes its configs and logs there)"""
+import os, subprocess, sys, time
+overlayd = sys.argv[1]
+base = """
+[daemon]
+stats_interval = 0
+[source]
+kind = "synthetic"
+format = "NV12"
+width = 1280
+height = 720
+fps = 30.0
+[camera]
+position = [0.0, -6.0, 3.0]
+yaw = 90.0
+pitch = 25.0
+fov = 60.0
+[encoder]
+encoder = "openh264"
+"""
+overlay = """
+[[annotation]]
+type = "grid"
+spacing = 1.0
+extent = 20.0
+major_every = 5
+style = { colour = "#ffffffb0", width = 1.0 }
+major_style = { colour = "#ffff00", width = 2.0 }
+[[annotation]]
+type = "polyline"
+points = [[-1.5, 1.0, 0.0], [-1.5, 8.0, 0.0]]
+style = { colour = "#ff00ff", width = 8.0 }
+[[annotation]]
+type = "text"
+text = "{time:%Y-%m-%d %H:%M:%S}"
+position = [10.0, 10.0]
+size_px = 24.0
+background = "#00000080"
+style = { colour = "white" }
+"""
+def run(name, extra, port, seconds=20):
+    path = f"{name}.toml"
+    open(path, "w").write(base + extra + f'[[sink]]\nkind = "rtsp"\nlisten = "127.0.0.1:{port}"\npath = "/c"\n')
+    p = subprocess.Popen([overlayd, "run", "--config", path], stderr=open(f"{name}.log", "w"))
+    time.sleep(3)
+    def cpu():
+        f = open(f"/proc/{p.pid}/stat").read().split(")")[1].split()
+        return (int(f[11]) + int(f[12])) / os.sysconf("SC_CLK_TCK")
+    c0, t0 = cpu(), time.monotonic()
+    time.sleep(seconds)
+    c1, t1 = cpu(), time.monotonic()
+    p.terminate(); p.wait()
+    frames = 30 * (t1 - t0)
+    return (c1 - c0) / frames * 1000
+for i in range(2):
+    a = run("encode-only", "", 19554 + i)
+    b = run("overlay-encode", overlay, 19564 + i)
+    print(f"round {i}: encode alone {a:.2f} ms CPU/frame, overlay+encode {b:.2f} ms CPU/frame, +{(b/a-1)*100:.1f}%")
