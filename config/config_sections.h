@@ -31,7 +31,9 @@ std::string resolvePath(const std::string &baseDirectory, const std::string &pat
 
 void readDaemon(TableReader &root, DaemonSettings &out);
 void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
-void readSinks(TableReader &root, std::vector<SinkOptions> &out);
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, EncodedSinks &encoded);
+// A [[sink]] of the encoded stream (kind = "record" or "push"), read whole into `out`; false for any other kind.
+bool readEncodedSink(TableReader &sink, EncodedSinks &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
 void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
 // [[input.text]] (after the annotations: their text slots are what inputs may feed).

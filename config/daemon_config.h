@@ -10,6 +10,7 @@
 #include "config/camera_spec.h"
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
+#include "encoded/encoded_sinks.h"
 #include "gpio/gpio_options.h"
 #include "http/http_options.h"
 #include "inputs/input_options.h"
@@ -28,6 +29,7 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
+    EncodedSinks encoded; // [[sink]] tables of kind record and push
     gpio::GpioOptions gpio;
     http::HttpOptions http;
     inputs::InputOptions inputs;

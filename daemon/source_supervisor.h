@@ -14,7 +14,7 @@
 #include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
-#include "daemon/backoff.h"
+#include "base/backoff.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
 #include "daemon/open_stream.h"

@@ -18,10 +18,12 @@ ALLOWED = {
     "http": {"base"},
     "inputs": {"base"},
     "alignment": {"base", "projection"},
-    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config"},
-    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "config",
-              "daemon"},
+    "encoded": {"base"},
+    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "encoded"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "encoded",
+               "config"},
+    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "encoded",
+              "config", "daemon"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and
 # the coverage row interface (raster/coverage_sink.h); shapes/ is what the others draw.
