@@ -147,7 +147,8 @@ Result<DaemonConfig> readRoot(const toml::table &root, const std::string &name, 
     CameraKeys keys;
     readDaemon(reader, result.daemon);
     readSource(reader, baseDirectory, result.source);
-    readSinks(reader, result.sinks, result.encoded);
+    readSinks(reader, result.sinks, result.stream);
+    readEncoder(reader, result.stream);
     readFrames(reader, result.scene.frames);
     readAnnotations(reader, baseDirectory, result.scene.annotations);
     readGpio(reader, result.scene.annotations, result.gpio);

@@ -31,9 +31,15 @@ std::string resolvePath(const std::string &baseDirectory, const std::string &pat
 
 void readDaemon(TableReader &root, DaemonSettings &out);
 void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
-void readSinks(TableReader &root, std::vector<SinkOptions> &out, EncodedSinks &encoded);
-// A [[sink]] of the encoded stream (kind = "record" or "push"), read whole into `out`; false for any other kind.
-bool readEncodedSink(TableReader &sink, EncodedSinks &out);
+// [[sink]]: the raw kinds into `out`, the encoded kinds (stream_config.cpp) into `encoded`.
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamOptions &encoded);
+// [encoder]: the one encode the encoded sinks share; an encoded [[sink]] (kind = "rtsp").
+void readEncoder(TableReader &root, stream::StreamOptions &out);
+bool isEncodedSink(TableReader &sink);
+void readEncodedSink(TableReader &sink, stream::StreamOptions &out);
+// kind = "record" and kind = "push" (record_push_config.cpp); `sofar` holds the encoded sinks read before.
+void readRecord(TableReader &sink, const stream::StreamOptions &sofar, stream::RecordSinkOptions &out);
+void readPush(TableReader &sink, stream::PushSinkOptions &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
 void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
 // [[input.text]] (after the annotations: their text slots are what inputs may feed).

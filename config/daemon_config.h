@@ -10,11 +10,11 @@
 #include "config/camera_spec.h"
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
-#include "encoded/encoded_sinks.h"
 #include "gpio/gpio_options.h"
 #include "http/http_options.h"
 #include "inputs/input_options.h"
 #include "overlay/shapes/annotation.h"
+#include "stream/stream_options.h"
 
 namespace overlayd {
 
@@ -29,7 +29,7 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
-    EncodedSinks encoded; // [[sink]] tables of kind record and push
+    stream::StreamOptions stream; // [encoder] and the encoded [[sink]]s
     gpio::GpioOptions gpio;
     http::HttpOptions http;
     inputs::InputOptions inputs;

@@ -290,23 +290,30 @@ std::string outputIdentity(const std::string &path)
 // Output paths stay as written (relative to the daemon's working directory, where a user looks for them); only
 // inputs (replay files, calibrations) resolve against the config file's folder. Two sinks on one file (or both on
 // stdout) would interleave their frames into a file nothing reads: the second is refused at its path.
-void readSinks(TableReader &root, std::vector<SinkOptions> &out, EncodedSinks &encoded)
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamOptions &encoded)
 {
     std::map<std::string, std::string> writers; // output identity -> the first sink's key, "sink[0].path"
     std::string holder;                         // the sink with zero_copy = "on", "sink[0].zero_copy"
     for (TableReader &sink : root.tables("sink", kMaxSinks)) {
-        if (readEncodedSink(sink, encoded))
+        if (isEncodedSink(sink)) {
+            readEncodedSink(sink, encoded);
             continue;
+        }
         const size_t before = sink.problems().size();
         SinkOptions options;
         if (auto kind = sink.choice<SinkKind>("kind", {{"y4m", SinkKind::Y4m},
                                                        {"raw", SinkKind::Raw},
                                                        {"snapshot", SinkKind::Snapshot},
                                                        {"null", SinkKind::Null},
-                                                       {"v4l2", SinkKind::V4l2Output}}))
+                                                       {"v4l2", SinkKind::V4l2Output},
+                                                       // Never chosen here (readEncodedSink reads it): listed so
+                                                       // that an unknown kind's message names it.
+                                                       {"rtsp", SinkKind::Null},
+                                                       {"record", SinkKind::Null},
+                                                       {"push", SinkKind::Null}}))
             options.kind = *kind;
         else if (!sink.has("kind"))
-            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | record | push");
+            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | rtsp | record | push");
         if (auto path = sink.string("path")) {
             options.path = *path;
             const bool writes = options.kind != SinkKind::Null && !path->empty();

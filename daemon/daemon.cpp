@@ -82,6 +82,7 @@ Status Daemon::setUp()
         return served;
     Status sinksBuilt = Ok{};
     pipeline_.setSinks(buildSinks(config_, sinksBuilt));
+    stream_ = builtStream_;
     if (!sinksBuilt)
         return sinksBuilt;
     if (auto opened = source_->open(); !opened) {
@@ -126,6 +127,24 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
     }
     if (config.http.enabled)
         sinks.push_back(http_.makeSink());
+    builtStream_.reset();
+    if (config.stream.enabled()) {
+        auto engine = factories_.streamEngine(config.stream, [this](int level, const std::string &message) {
+            // syslog priorities, as the engine numbers them
+            logger_.log(level <= 3   ? LogLevel::Error
+                        : level == 4 ? LogLevel::Warning
+                        : level == 5 ? LogLevel::Notice
+                        : level == 6 ? LogLevel::Info
+                                     : LogLevel::Debug,
+                        message);
+        });
+        if (!engine) {
+            status = makeError(engine.error().code, config.stream.sinks.front().key + ": " + engine.error().message);
+            return {};
+        }
+        builtStream_ = std::make_shared<stream::EncodedStream>(config.stream, std::move(*engine));
+        sinks.push_back(std::make_unique<SinkWorker>(builtStream_->sink(), SinkOptions{}, logger_));
+    }
     return sinks;
 }
 

@@ -76,6 +76,7 @@ public:
     CanInputs &canInputs() { return canInputs_; }
     // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
     std::vector<inputs::InputHealth> inputHealth() const override;
+    const stream::EncodedStream *encodedStream() const override { return stream_.get(); }
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }
@@ -114,6 +115,8 @@ private:
     TextInputs textInputs_; // after scene_, whose slots it feeds
     PathInputs pathInputs_; // after scene_, whose polylines and markers it feeds
     CanInputs canInputs_;   // after scene_, whose guide lines and slots it feeds
+    // The encoded outputs the running sinks feed, and those buildSinks() made for sinks not yet switched in.
+    std::shared_ptr<stream::EncodedStream> stream_, builtStream_;
     HttpFront http_;        // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running

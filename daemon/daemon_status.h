@@ -12,6 +12,7 @@
 #include "daemon/source_supervisor.h"
 #include "daemon/text_inputs.h"
 #include "inputs/input_health.h"
+#include "stream/encoded_stream.h"
 
 namespace overlayd {
 
@@ -29,6 +30,8 @@ public:
     virtual const CanInputs &canInputs() const = 0;
     // Every live input's health, whatever its kind: what /state and /metrics report of the inputs.
     virtual std::vector<inputs::InputHealth> inputHealth() const = 0;
+    // The encoded outputs' encoder and sinks; null when no encoded sink is configured.
+    virtual const stream::EncodedStream *encodedStream() const = 0;
 
 protected:
     ~DaemonStatus() = default;

@@ -58,7 +58,8 @@ Result<Daemon::ReopenedParts> Daemon::switchConfig(DaemonConfig next)
     // Whole option structs are compared: a field added to them later re-opens what it belongs to.
     const bool sourceChanged = config_.source != next.source || sceneCameraChanged(config_, next) ||
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
-    const bool sinksChanged = config_.sinks != next.sinks || config_.http.enabled != next.http.enabled;
+    const bool sinksChanged =
+        config_.sinks != next.sinks || config_.http.enabled != next.http.enabled || config_.stream != next.stream;
     // The candidate scene carries the live layer choices and slot texts; the live one is not touched until the switch.
     SceneControl scene = scene_.withScene(next.scene, next.camera);
     std::optional<SourceSupervisor::Staged> stream;
@@ -109,6 +110,7 @@ Result<Daemon::ReopenedParts> Daemon::switchConfig(DaemonConfig next)
             return inFile(next, "sink", built.error());
         if (auto replaced = pipeline_.replaceSinks(std::move(sinks), format); !replaced)
             return inFile(next, "sink", replaced.error());
+        stream_ = builtStream_;
     } else if (format.format && format != pipeline_.format()) {
         if (auto reopened = pipeline_.reopenSinks(format); !reopened)
             return inFile(next, "sink", reopened.error());

@@ -5,6 +5,7 @@
 
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
+#include "stream/engine_loader.h"
 
 namespace overlayd {
 
@@ -86,7 +87,8 @@ StageFactories defaultStageFactories()
 {
     return StageFactories{
         [](const SourceOptions &options, const Camera *sceneCamera) { return makeSource(options, sceneCamera); },
-        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, gpio::makeLineProvider};
+        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, gpio::makeLineProvider,
+        stream::loadStreamEngine};
 }
 
 } // namespace overlayd

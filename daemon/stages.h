@@ -13,6 +13,7 @@
 #include "drivers/frame_source.h"
 #include "gpio/line_provider.h"
 #include "overlay/overlay_renderer.h"
+#include "stream/encoded_stream_engine.h"
 
 namespace overlayd {
 
@@ -27,6 +28,11 @@ struct StageFactories {
     RendererFactory renderer;
     // Where GPIO lines come from (libgpiod); null: no [[gpio.*]] line can be requested.
     std::function<std::unique_ptr<gpio::LineProvider>()> gpio;
+    // The encoded outputs' engine (the GStreamer module, loaded on first use); asked only when an encoded sink is
+    // configured.
+    std::function<Result<std::unique_ptr<stream::EncodedStreamEngine>>(const stream::StreamOptions &,
+                                                                        const stream::EngineLog &)>
+        streamEngine;
 };
 
 // makeSource, makeSink, and OverlayRenderer::create for the negotiated stream.

@@ -35,6 +35,8 @@ packages=(
     libcamera-dev libcamera-ipa # the libcamera source; the IPA modules are what a real (or vimc) camera needs
     libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies
     libgpiod-dev # GPIO lines (libgpiod 1.6, the v1 API)
+    # the encoded outputs' module (overlayd-stream.so, loaded only when an encoded sink is configured)
+    libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev libgstrtspserver-1.0-dev
     systemd # on every booted Debian already; its systemd.pc says where the units install (systemd/CMakeLists.txt)
 )
 # The test suite: the test frameworks, and independent clients the tests check our output with.
@@ -43,6 +45,13 @@ test_packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     gpiod # the gpiod tools: the independent GPIO client in tests/vm
     ffmpeg v4l-utils
+    # the encoded outputs' elements at run time: appsrc/tee (base), rtph264pay (good), h264parse and openh264enc
+    # (bad, with libopenh264), x264enc (ugly); splitmuxsink, mp4mux, matroskamux, flvmux (good), rtmp2sink, srtsink,
+    # mpegtsmux (bad), rtspclientsink (gstreamer1.0-rtsp); tests/stream reads the RTSP stream, the recordings and the
+    # pushes with ffprobe and ffmpeg
+    gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly
+    gstreamer1.0-rtsp
+    libopenh264-7
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3
 )

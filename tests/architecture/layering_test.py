@@ -18,11 +18,11 @@ ALLOWED = {
     "http": {"base"},
     "inputs": {"base"},
     "alignment": {"base", "projection"},
-    "encoded": {"base"},
-    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "encoded"},
-    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "encoded",
+    "stream": {"base", "media", "drivers"},
+    "config": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream"},
+    "daemon": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream", "alignment",
                "config"},
-    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "alignment", "encoded",
+    "tools": {"base", "media", "projection", "overlay", "drivers", "gpio", "http", "inputs", "stream", "alignment",
               "config", "daemon"},
 }
 # Within overlay/: the wings under the renderer. raster/ and blend/ share the "over" rounding (blend/div255.h) and

@@ -1,0 +1,125 @@
+// [encoder] and the encoded kinds of [[sink]] (kind = "rtsp"): every key checked here, so that check-config refuses
+// what run would; whether an encoder element exists and a port is free is known only when run loads the engine.
+#include "config/config_sections.h"
+
+#include <map>
+
+#include "http/listen_address.h"
+
+namespace overlayd::config {
+
+using namespace overlayd::stream;
+
+namespace {
+
+const char *const kBuiltWithout = "this overlayd was built without the encoded outputs (CMake option "
+                                  "OVERLAYD_STREAM, GStreamer): ";
+
+void readRtsp(TableReader &sink, RtspSinkOptions &out)
+{
+    if (auto listen = sink.string("listen")) {
+        out.listen = *listen;
+        auto address = http::parseListenAddress(*listen);
+        if (!address)
+            sink.problem("listen", address.error().message);
+        else if (address->kind == http::ListenAddress::Kind::Unix)
+            sink.problem("listen", "an RTSP server listens on HOST:PORT, not a unix socket");
+        else if (address->port == 0)
+            sink.problem("listen", "port 0: give the port RTSP clients connect to (8554 is usual)");
+        else
+            out.host = address->host, out.port = address->port;
+    }
+    if (auto path = sink.string("path", kMaxRtspPathBytes)) {
+        const bool valid = path->size() > 1 && path->front() == '/' &&
+                           path->find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                   "0123456789-._~/") == std::string::npos &&
+                           path->find("//") == std::string::npos && path->back() != '/';
+        if (valid)
+            out.path = *path;
+        else
+            sink.problem("path", "'" + *path +
+                                     "': a mount point such as \"/cam\": a slash, then letters, digits, "
+                                     "'-', '.', '_', '~' and inner slashes");
+    }
+    if (auto clients = sink.integer("max_clients", 1, kMaxRtspClients))
+        out.maxClients = unsigned(*clients);
+}
+
+} // namespace
+
+bool isEncodedSink(TableReader &sink)
+{
+    const toml::node *kind = sink.node("kind");
+    const auto text = kind ? kind->value<std::string>() : std::nullopt;
+    return text && (*text == "rtsp" || *text == "record" || *text == "push");
+}
+
+void readEncodedSink(TableReader &sink, StreamOptions &out)
+{
+    EncodedSinkOptions options;
+    options.key = sink.path();
+    const std::string kind = sink.string("kind").value_or("rtsp");
+    if (!streamBuiltIn()) {
+        sink.problem("kind", std::string(kBuiltWithout) + "kind = \"" + kind + "\" is not available");
+        sink.ignoreRest();
+        return;
+    }
+    if (kind == "record") {
+        options.kind = EncodedSinkKind::Record;
+        readRecord(sink, out, options.record);
+    } else if (kind == "push") {
+        options.kind = EncodedSinkKind::Push;
+        readPush(sink, options.push);
+    } else {
+        options.kind = EncodedSinkKind::Rtsp;
+        readRtsp(sink, options.rtsp);
+        for (const EncodedSinkOptions &other : out.sinks)
+            if (other.kind == EncodedSinkKind::Rtsp && other.rtsp.port == options.rtsp.port)
+                sink.problem("listen", "port " + std::to_string(options.rtsp.port) + " is served by " + other.key +
+                                           " already: one RTSP sink per port");
+    }
+    sink.finish();
+    out.sinks.push_back(std::move(options));
+}
+
+void readEncoder(TableReader &root, StreamOptions &out)
+{
+    auto table = root.table("encoder");
+    if (!table)
+        return;
+    if (!streamBuiltIn()) {
+        root.problem("encoder", std::string(kBuiltWithout) + "[encoder] is not available");
+        return;
+    }
+    EncoderOptions &encoder = out.encoder;
+    if (auto codec = table->choice<int>("codec", {{"h264", 0}}))
+        (void)codec; // the one codec so far; the key is there so that a config says what it gets
+    if (auto kind = table->choice<EncoderKind>("encoder", {{"auto", EncoderKind::Auto},
+                                                           {"v4l2", EncoderKind::V4l2},
+                                                           {"openh264", EncoderKind::OpenH264},
+                                                           {"x264", EncoderKind::X264}}))
+        encoder.kind = *kind;
+    if (auto device = table->string("device")) {
+        if (*device == "auto" || device->starts_with("/dev/"))
+            encoder.device = *device;
+        else
+            table->problem("device", "'" + *device + "': \"auto\" or a V4L2 device path such as /dev/video11");
+        if (encoder.kind != EncoderKind::V4l2 && encoder.kind != EncoderKind::Auto && *device != "auto")
+            table->problem("device", std::string("a device is for encoder = \"v4l2\" (or \"auto\"), not \"") +
+                                         encoderKindName(encoder.kind) + "\"");
+    }
+    if (auto bitrate = table->integer("bitrate_kbps", kMinBitrateKbps, kMaxBitrateKbps))
+        encoder.bitrateKbps = unsigned(*bitrate);
+    if (auto interval = table->number("keyframe_interval_s", kMinKeyframeIntervalSec, kMaxKeyframeIntervalSec))
+        encoder.keyframeIntervalSec = *interval;
+    if (auto profile = table->choice<Profile>(
+            "profile", {{"baseline", Profile::Baseline}, {"main", Profile::Main}, {"high", Profile::High}}))
+        encoder.profile = *profile;
+    if (auto lowLatency = table->boolean("low_latency"))
+        encoder.lowLatency = *lowLatency;
+    if (auto queued = table->integer("queue", 1, kMaxQueuedFrames))
+        encoder.queuedFrames = unsigned(*queued);
+    table->finish();
+}
+
+} // namespace overlayd::config

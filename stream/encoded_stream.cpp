@@ -1,0 +1,97 @@
+// EncodedStream and the FrameSink the pipeline writes it through.
+#include "stream/encoded_stream.h"
+
+#include <time.h>
+
+namespace overlayd::stream {
+namespace {
+
+std::chrono::nanoseconds monotonicNow()
+{
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return std::chrono::seconds(now.tv_sec) + std::chrono::nanoseconds(now.tv_nsec);
+}
+
+class EncodedStreamSink : public FrameSink
+{
+public:
+    explicit EncodedStreamSink(std::shared_ptr<EncodedStream> stream) : stream_(std::move(stream)) {}
+
+    Status open(const StreamFormat &format) override { return stream_->open(format); }
+    Status write(const FrameView &frame, const FrameMetadata &metadata) override
+    {
+        return stream_->write(frame, metadata);
+    }
+    Status close() override
+    {
+        stream_->close();
+        return Ok{};
+    }
+    std::string describe() const override { return stream_->describe(); }
+    // One copy into a free slot or a counted drop: no thread or queue of the sink worker's is needed.
+    bool writesInline() const override { return true; }
+
+private:
+    std::shared_ptr<EncodedStream> stream_;
+};
+
+} // namespace
+
+EncodedStream::EncodedStream(const StreamOptions &options, std::unique_ptr<EncodedStreamEngine> engine)
+    : options_(options), engine_(std::move(engine)), feed_(options.encoder.queuedFrames)
+{}
+
+EncodedStream::~EncodedStream()
+{
+    close();
+}
+
+std::unique_ptr<FrameSink> EncodedStream::sink()
+{
+    return std::make_unique<EncodedStreamSink>(shared_from_this());
+}
+
+Status EncodedStream::open(const StreamFormat &format)
+{
+    close();
+    auto engineFormat = feed_.open(format);
+    if (!engineFormat)
+        return engineFormat.error();
+    if (auto opened = engine_->open(*engineFormat); !opened)
+        return opened;
+    open_ = true;
+    return Ok{};
+}
+
+Status EncodedStream::write(const FrameView &frame, const FrameMetadata &metadata)
+{
+    if (!open_)
+        return makeError(ErrorCode::InvalidArgument, "the encoder is not open");
+    if (auto input = feed_.fill(frame, metadata, monotonicNow()))
+        engine_->push(std::move(*input));
+    return Ok{}; // a drop is counted by the feed, not a failure of the sink
+}
+
+void EncodedStream::close()
+{
+    if (open_)
+        engine_->close();
+    open_ = false;
+}
+
+EncodedStreamState EncodedStream::state() const
+{
+    return {engine_->state(), feed_.counters()};
+}
+
+std::string EncodedStream::describe() const
+{
+    std::string text = std::string("h264 (") + encoderKindName(options_.encoder.kind) + ")";
+    for (const EncodedSinkOptions &sink : options_.sinks)
+        if (sink.kind == EncodedSinkKind::Rtsp)
+            text += " -> rtsp://" + sink.rtsp.listen + sink.rtsp.path;
+    return text;
+}
+
+} // namespace overlayd::stream

@@ -1,0 +1,46 @@
+// EncodedStream: the daemon's side of the encoded outputs: the feed that copies each overlaid frame once for the
+// encoder, and the engine that encodes and serves it. The daemon keeps it for /state and /metrics and hands the
+// pipeline a FrameSink over it (sink()), which runs inline on the pipeline's thread: one copy into a free slot,
+// or a counted drop, never a wait.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "drivers/frame_sink.h"
+#include "stream/encoded_stream_engine.h"
+#include "stream/encoder_feed.h"
+
+namespace overlayd::stream {
+
+// What /state and /metrics read: the engine's own state and the feed's counters, taken together.
+struct EncodedStreamState {
+    EngineState engine;
+    FeedCounters feed;
+};
+
+class EncodedStream : public std::enable_shared_from_this<EncodedStream>
+{
+public:
+    EncodedStream(const StreamOptions &options, std::unique_ptr<EncodedStreamEngine> engine);
+    ~EncodedStream();
+
+    // A sink for the pipeline that feeds this stream (it keeps the stream alive).
+    std::unique_ptr<FrameSink> sink();
+    EncodedStreamState state() const;
+    const StreamOptions &options() const { return options_; }
+    // "openh264 → rtsp://127.0.0.1:8554/cam"
+    std::string describe() const;
+
+    Status open(const StreamFormat &format);
+    Status write(const FrameView &frame, const FrameMetadata &metadata);
+    void close();
+
+private:
+    StreamOptions options_;
+    std::unique_ptr<EncodedStreamEngine> engine_;
+    EncoderFeed feed_;
+    bool open_ = false;
+};
+
+} // namespace overlayd::stream

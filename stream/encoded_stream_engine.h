@@ -1,0 +1,111 @@
+// EncodedStreamEngine: the one encode of the overlaid stream and the encoded sinks that share it. The daemon hands
+// it frames already copied (and converted, where needed) into an EncoderInput; an implementation owns everything
+// else: the encoder, the RTSP server, its own thread. The GStreamer implementation lives in a module loaded only
+// when an encoded sink is configured (engine_loader.h); tests use a fake.
+//
+// The module boundary: this header and stream_options.h are all the module shares with the binary, and both are
+// header-only (but the two name functions, compiled into each side), so the module links nothing of the project.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/result.h"
+#include "stream/stream_options.h"
+
+namespace overlayd::stream {
+
+// The raw format the engine is fed: always planar I420 (Y, then U, then V, rows packed), converted once by the
+// feed (encoder_feed.h) from whatever the stream's format is.
+struct EngineFormat {
+    unsigned width = 0, height = 0;
+    double fps = 0.0; // 0: as frames come (the encoder assumes 30)
+
+    bool operator==(const EngineFormat &) const = default;
+};
+
+// One frame for the encoder. `owner` keeps the bytes alive; the engine drops it when the encoder is done with the
+// frame (a GStreamer buffer's destroy notify), which gives the slot back to the feed.
+struct EncoderInput {
+    std::shared_ptr<void> owner;
+    const uint8_t *data = nullptr;
+    size_t size = 0;
+    uint64_t sequence = 0;
+    std::chrono::nanoseconds captureTime{0}; // CLOCK_MONOTONIC, when the frame was captured or made
+    std::chrono::nanoseconds blendedTime{0}; // CLOCK_MONOTONIC, when the overlay was in it
+};
+
+// One client of an RTSP sink.
+struct RtspClientState {
+    std::string address;                         // "127.0.0.1:50312"
+    std::string transport;                       // "udp", "tcp" (interleaved), "udp-multicast"
+    std::chrono::system_clock::time_point since; // when it connected
+};
+
+struct EncodedSinkState {
+    std::string key;      // "sink[2]"
+    std::string describe; // "rtsp://127.0.0.1:8554/cam"
+    std::vector<RtspClientState> clients;
+    // kind = "record": the segment being written, the finished ones in the directory, their bytes, the oldest,
+    // how many retention deleted; stopped for a full disk (and how often it was).
+    std::string currentFile;
+    unsigned segments = 0;
+    uint64_t bytes = 0;
+    std::string oldest;
+    unsigned deleted = 0;
+    bool diskFull = false;
+    unsigned diskFullStops = 0;
+    // kind = "push": the server takes the stream; attempts after the first.
+    bool connected = false;
+    unsigned reconnects = 0;
+    // record and push: the last failure (empty when none); access units dropped while behind or not running.
+    std::string lastError;
+    uint64_t dropped = 0;
+};
+
+// What /state and /metrics show. Counters count from open().
+struct EngineState {
+    bool running = false;
+    std::string encoder;        // the element that encodes: "openh264enc", "x264enc", "v4l2h264enc"
+    std::string device;         // the V4L2 encoder's device, empty for software
+    uint64_t framesIn = 0;      // frames handed to the encoder
+    uint64_t framesEncoded = 0; // access units out of the encoder
+    uint64_t keyframes = 0;
+    uint64_t bytesEncoded = 0;
+    double bitrateKbps = 0; // measured over the last second's access units
+    std::vector<EncodedSinkState> sinks;
+};
+
+// How the engine reports (from its own thread): a line for the daemon's log, at a syslog priority (3 error,
+// 4 warning, 5 notice, 6 info, 7 debug).
+using EngineLog = std::function<void(int level, const std::string &message)>;
+
+class EncodedStreamEngine
+{
+public:
+    virtual ~EncodedStreamEngine() = default;
+
+    // Builds and starts the encoder and every encoded sink for frames of `format`; the RTSP servers listen from
+    // here on. Called again when the stream's format changes (the old pipeline closes first).
+    virtual Status open(const EngineFormat &format) = 0;
+    // Never blocks: the frame is queued for the encoder's thread. The feed bounds how many are in flight.
+    virtual void push(EncoderInput frame) = 0;
+    // Stops the encoder and the sinks (clients are disconnected); safe to call twice.
+    virtual void close() = 0;
+
+    virtual EngineState state() const = 0;
+};
+
+// The module's one entry point (extern "C", looked up by name): a new engine for the options, or null with the
+// reason in `error`. `log` outlives the engine.
+using CreateEngineFunction = EncodedStreamEngine *(*)(const StreamOptions *options, const EngineLog *log,
+                                                      std::string *error);
+inline constexpr const char *kCreateEngineSymbol = "overlayd_stream_create_engine";
+// The module's file name, next to the binary in the build tree or in the library folder when installed.
+inline constexpr const char *kModuleFileName = "overlayd-stream.so";
+
+} // namespace overlayd::stream

@@ -1,0 +1,80 @@
+// loadStreamEngine: dlopen() of the module, looked up where the build tree and the install put it.
+#include "stream/engine_loader.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <mutex>
+#include <vector>
+
+namespace overlayd::stream {
+namespace {
+
+// The running binary's folder: the build tree puts the module there, beside build/daemon/overlayd.
+std::string executableFolder()
+{
+    std::string path(4096, '\0');
+    const ssize_t length = readlink("/proc/self/exe", path.data(), path.size());
+    if (length <= 0 || size_t(length) >= path.size())
+        return {};
+    path.resize(size_t(length));
+    return path.substr(0, path.rfind('/'));
+}
+
+struct Module {
+    void *handle = nullptr;
+    CreateEngineFunction create = nullptr;
+    std::string error;
+};
+
+Module openModule()
+{
+    Module module;
+    std::vector<std::string> places;
+    if (const std::string folder = executableFolder(); !folder.empty())
+        places.push_back(folder + "/" + kModuleFileName);
+    places.push_back(std::string(OVERLAYD_STREAM_MODULE_DIR) + "/" + kModuleFileName);
+    std::string tried;
+    for (const std::string &place : places) {
+        if (access(place.c_str(), F_OK) != 0) {
+            tried += (tried.empty() ? "" : ", ") + place;
+            continue;
+        }
+        module.handle = dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (module.handle == nullptr) {
+            const char *why = dlerror();
+            module.error = "cannot load " + place + ": " + (why ? why : "?");
+            return module;
+        }
+        module.create = reinterpret_cast<CreateEngineFunction>(dlsym(module.handle, kCreateEngineSymbol));
+        if (module.create == nullptr)
+            module.error = place + " has no " + kCreateEngineSymbol + ": not an overlayd stream module";
+        return module;
+    }
+    module.error =
+        std::string("the encoded outputs' module ") + kModuleFileName + " is not installed (looked in " + tried + ")";
+    return module;
+}
+
+} // namespace
+
+bool streamBuiltIn()
+{
+    return true;
+}
+
+Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOptions &options, const EngineLog &log)
+{
+    static std::once_flag once;
+    static Module module;
+    std::call_once(once, [] { module = openModule(); });
+    if (module.create == nullptr)
+        return makeError(ErrorCode::NotFound, module.error);
+    std::string error;
+    EncodedStreamEngine *engine = module.create(&options, &log, &error);
+    if (engine == nullptr)
+        return makeError(ErrorCode::Unsupported, error);
+    return std::unique_ptr<EncodedStreamEngine>(engine);
+}
+
+} // namespace overlayd::stream

@@ -1,0 +1,17 @@
+// Built without the encoded outputs (OVERLAYD_STREAM=OFF, or GStreamer missing): the config refuses them.
+#include "stream/engine_loader.h"
+
+namespace overlayd::stream {
+
+bool streamBuiltIn()
+{
+    return false;
+}
+
+Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOptions &, const EngineLog &)
+{
+    return makeError(ErrorCode::Unsupported, "this overlayd was built without the encoded outputs "
+                                             "(CMake option OVERLAYD_STREAM, GStreamer)");
+}
+
+} // namespace overlayd::stream

@@ -1,0 +1,262 @@
+// GstStreamEngine: build() makes the encoder pipeline and the RTSP servers; push() wraps a feed slot in a buffer
+// whose release gives the slot back; onEncoded() counts and hands each access unit to every encoded sink.
+#include "stream/gst/gst_stream_engine.h"
+
+#include <gst/app/gstappsrc.h>
+#include <gst/video/video.h>
+
+#include <cmath>
+
+#include "stream/gst/encoder_element.h"
+#include "stream/gst/push_output.h"
+#include "stream/gst/record_output.h"
+
+namespace overlayd::stream::gst {
+namespace {
+
+// Log levels as base/logger.h numbers them (the engine shares no code with the binary).
+constexpr int kLogError = 3, kLogNotice = 5, kLogInfo = 6;
+
+GstClockTime nowNs()
+{
+    return GstClockTime(g_get_monotonic_time()) * 1000;
+}
+
+} // namespace
+
+GstStreamEngine::GstStreamEngine(const StreamOptions &options, const EngineLog &log) : options_(options), log_(log) {}
+
+GstStreamEngine::~GstStreamEngine()
+{
+    close();
+}
+
+Status GstStreamEngine::open(const EngineFormat &format)
+{
+    close();
+    context_ = g_main_context_new();
+    loop_ = g_main_loop_new(context_, FALSE);
+    if (auto built = build(format); !built) {
+        close();
+        return built;
+    }
+    thread_ = std::thread([this] {
+        g_main_context_push_thread_default(context_);
+        g_main_loop_run(loop_);
+        g_main_context_pop_thread_default(context_);
+    });
+    if (gst_element_set_state(pipeline_, GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
+        close();
+        return makeError(ErrorCode::Unsupported, "the encoder pipeline does not start");
+    }
+    std::lock_guard lock(mutex_);
+    state_.running = true;
+    return Ok{};
+}
+
+Status GstStreamEngine::build(const EngineFormat &format)
+{
+    format_ = format;
+    firstCapture_.reset();
+    auto encoder = makeEncoderElement(options_.encoder, format.fps);
+    if (!encoder)
+        return encoder.error();
+    if (encoder->factory == "openh264enc" && options_.encoder.profile != Profile::Baseline)
+        log_(kLogNotice, std::string("openh264 encodes constrained baseline only: profile = \"") +
+                             profileName(options_.encoder.profile) + "\" is not used");
+    pipeline_ = gst_pipeline_new("overlayd-encoder");
+    appsrc_ = gst_element_factory_make("appsrc", "feed");
+    GstElement *filter = gst_element_factory_make("capsfilter", nullptr);
+    GstElement *parse = gst_element_factory_make("h264parse", nullptr);
+    GstElement *tee = gst_element_factory_make("tee", "encoded");
+    GstElement *queue = gst_element_factory_make("queue", nullptr);
+    GstElement *sink = gst_element_factory_make("appsink", "rtsp");
+    if (!appsrc_ || !filter || !parse || !tee || !queue || !sink) {
+        for (GstElement *element : {appsrc_, filter, parse, tee, queue, sink, encoder->element})
+            if (element)
+                gst_object_unref(gst_object_ref_sink(element));
+        gst_object_unref(pipeline_), pipeline_ = nullptr, appsrc_ = nullptr;
+        if (encoder->outputCaps)
+            gst_caps_unref(encoder->outputCaps);
+        return makeError(ErrorCode::NotFound, "GStreamer's appsrc, capsfilter, h264parse, tee, queue or appsink is "
+                                              "missing (Debian: gstreamer1.0-plugins-base, -good, -bad)");
+    }
+    encoder_ = encoder->element;
+    {
+        std::lock_guard lock(mutex_);
+        state_ = EngineState{};
+        state_.encoder = encoder->factory;
+        state_.device = encoder->device;
+    }
+    const int fpsNum = format.fps > 0 ? int(std::lround(format.fps * 1000)) : 30000;
+    GstCaps *raw = gst_caps_new_simple("video/x-raw", "format", G_TYPE_STRING, "I420", "width", G_TYPE_INT,
+                                       int(format.width), "height", G_TYPE_INT, int(format.height), "framerate",
+                                       GST_TYPE_FRACTION, fpsNum, 1000, nullptr);
+    // Live and unbounded here: the feed's slots bound what waits (every queued buffer holds one).
+    g_object_set(appsrc_, "caps", raw, "is-live", TRUE, "format", GST_FORMAT_TIME, "block", FALSE, nullptr);
+    gst_caps_unref(raw);
+    if (encoder->outputCaps) {
+        g_object_set(filter, "caps", encoder->outputCaps, nullptr);
+        gst_caps_unref(encoder->outputCaps);
+    }
+    GstCaps *au = gst_caps_from_string("video/x-h264,stream-format=byte-stream,alignment=au");
+    g_object_set(sink, "caps", au, "sync", FALSE, "max-buffers", 4u, "drop", TRUE, nullptr);
+    gst_caps_unref(au);
+    g_object_set(parse, "config-interval", -1, nullptr);
+    g_object_set(tee, "allow-not-linked", TRUE, nullptr);
+    GstAppSinkCallbacks callbacks{};
+    callbacks.new_sample = &GstStreamEngine::onEncoded;
+    gst_app_sink_set_callbacks(GST_APP_SINK(sink), &callbacks, this, nullptr);
+    gst_bin_add_many(GST_BIN(pipeline_), appsrc_, encoder_, filter, parse, tee, queue, sink, nullptr);
+    if (!gst_element_link_many(appsrc_, encoder_, filter, parse, tee, queue, sink, nullptr))
+        return makeError(ErrorCode::Unsupported, "the encoder " + encoder->factory + " does not take " +
+                                                     std::to_string(format.width) + "x" +
+                                                     std::to_string(format.height) + " I420 frames");
+    GstBus *bus = gst_element_get_bus(pipeline_);
+    busWatch_ = gst_bus_create_watch(bus);
+    g_source_set_callback(busWatch_, G_SOURCE_FUNC(&GstStreamEngine::onBusMessage), this, nullptr);
+    g_source_attach(busWatch_, context_);
+    gst_object_unref(bus);
+
+    for (const EncodedSinkOptions &sinkOptions : options_.sinks) {
+        if (sinkOptions.kind != EncodedSinkKind::Rtsp) {
+            std::unique_ptr<EncodedOutput> output;
+            if (sinkOptions.kind == EncodedSinkKind::Record)
+                output = std::make_unique<RecordOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+            else
+                output = std::make_unique<PushOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+            if (auto started = output->start(context_); !started)
+                return started;
+            outputs_.push_back(std::move(output));
+            continue;
+        }
+        auto output = std::make_unique<RtspOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+        if (auto started = output->start(context_); !started)
+            return started;
+        log_(kLogInfo, sinkOptions.key + ": RTSP at rtsp://" + sinkOptions.rtsp.listen + sinkOptions.rtsp.path + " (" +
+                           encoder->factory + (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
+        rtsp_.push_back(std::move(output));
+    }
+    return Ok{};
+}
+
+void GstStreamEngine::push(EncoderInput frame)
+{
+    if (appsrc_ == nullptr)
+        return; // dropped with its slot
+    if (!firstCapture_)
+        firstCapture_ = frame.captureTime;
+    const GstClockTime pts = GstClockTime((frame.captureTime - *firstCapture_).count());
+    const auto data = const_cast<uint8_t *>(frame.data);
+    const size_t size = frame.size;
+    // The buffer wraps the slot: GStreamer's last unref deletes the EncoderInput, which gives the slot back.
+    auto *held = new EncoderInput(std::move(frame));
+    GstBuffer *buffer = gst_buffer_new_wrapped_full(GST_MEMORY_FLAG_READONLY, data, size, 0, size, held,
+                                                    [](gpointer input) { delete static_cast<EncoderInput *>(input); });
+    GST_BUFFER_PTS(buffer) = pts;
+    GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
+    GST_BUFFER_OFFSET(buffer) = held->sequence;
+    if (gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer) != GST_FLOW_OK) // takes the buffer either way
+        return;
+    std::lock_guard lock(mutex_);
+    ++state_.framesIn;
+}
+
+void GstStreamEngine::requestKeyframe()
+{
+    if (encoder_ == nullptr)
+        return;
+    GstPad *pad = gst_element_get_static_pad(encoder_, "src");
+    gst_pad_send_event(pad, gst_video_event_new_upstream_force_key_unit(GST_CLOCK_TIME_NONE, TRUE, 0));
+    gst_object_unref(pad);
+}
+
+GstFlowReturn GstStreamEngine::onEncoded(GstAppSink *sink, gpointer data)
+{
+    auto *self = static_cast<GstStreamEngine *>(data);
+    GstSample *sample = gst_app_sink_pull_sample(sink);
+    if (sample == nullptr)
+        return GST_FLOW_EOS;
+    if (GstBuffer *buffer = gst_sample_get_buffer(sample)) {
+        const size_t bytes = gst_buffer_get_size(buffer);
+        const GstClockTime now = nowNs();
+        std::lock_guard lock(self->mutex_);
+        ++self->state_.framesEncoded;
+        self->state_.bytesEncoded += bytes;
+        self->state_.keyframes += GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT) ? 0 : 1;
+        self->lastSecond_.emplace_back(now, bytes);
+        while (!self->lastSecond_.empty() && self->lastSecond_.front().first + GST_SECOND < now)
+            self->lastSecond_.pop_front();
+    }
+    for (const auto &output : self->rtsp_)
+        output->push(sample);
+    for (const auto &output : self->outputs_)
+        output->push(sample);
+    gst_sample_unref(sample);
+    return GST_FLOW_OK;
+}
+
+gboolean GstStreamEngine::onBusMessage(GstBus *, GstMessage *message, gpointer data)
+{
+    auto *self = static_cast<GstStreamEngine *>(data);
+    if (GST_MESSAGE_TYPE(message) == GST_MESSAGE_ERROR) {
+        GError *error = nullptr;
+        gchar *debug = nullptr;
+        gst_message_parse_error(message, &error, &debug);
+        self->log_(kLogError, std::string("encoder: ") + (error ? error->message : "?") +
+                                  (debug ? std::string(" (") + debug + ")" : ""));
+        g_clear_error(&error);
+        g_free(debug);
+        std::lock_guard lock(self->mutex_);
+        self->state_.running = false;
+    }
+    return G_SOURCE_CONTINUE;
+}
+
+void GstStreamEngine::close()
+{
+    if (pipeline_ != nullptr) // every buffer GStreamer holds is dropped here: the feed gets its slots back
+        gst_element_set_state(pipeline_, GST_STATE_NULL);
+    if (loop_ != nullptr)
+        g_main_loop_quit(loop_);
+    if (thread_.joinable())
+        thread_.join();
+    rtsp_.clear(); // with the loop stopped: no server signal runs while the outputs go
+    outputs_.clear();
+    if (busWatch_ != nullptr) {
+        g_source_destroy(busWatch_);
+        g_source_unref(busWatch_);
+        busWatch_ = nullptr;
+    }
+    if (pipeline_ != nullptr)
+        gst_object_unref(pipeline_);
+    pipeline_ = appsrc_ = encoder_ = nullptr;
+    if (loop_ != nullptr)
+        g_main_loop_unref(loop_);
+    if (context_ != nullptr)
+        g_main_context_unref(context_);
+    loop_ = nullptr, context_ = nullptr;
+    std::lock_guard lock(mutex_);
+    state_.running = false;
+    lastSecond_.clear();
+}
+
+EngineState GstStreamEngine::state() const
+{
+    EngineState out;
+    {
+        std::lock_guard lock(mutex_);
+        out = state_;
+        size_t bytes = 0;
+        for (const auto &[when, size] : lastSecond_)
+            bytes += size;
+        out.bitrateKbps = double(bytes) * 8 / 1000;
+    }
+    for (const auto &output : rtsp_)
+        out.sinks.push_back(output->state());
+    for (const auto &output : outputs_)
+        out.sinks.push_back(output->state());
+    return out;
+}
+
+} // namespace overlayd::stream::gst

@@ -1,0 +1,50 @@
+// FakeStreamEngine: an EncodedStreamEngine that keeps what it is pushed, for the daemon's side's tests. Frames stay
+// held (as GStreamer would hold them in its queues) until the test releases them.
+#pragma once
+
+#include <vector>
+
+#include "stream/encoded_stream_engine.h"
+
+namespace overlayd::test {
+
+class FakeStreamEngine : public stream::EncodedStreamEngine
+{
+public:
+    struct Calls {
+        unsigned opens = 0, closes = 0;
+        stream::EngineFormat format;
+        std::vector<stream::EncoderInput> held; // pushed and not yet released
+        uint64_t pushed = 0;
+    };
+    explicit FakeStreamEngine(Calls &calls) : calls_(calls) {}
+
+    Status open(const stream::EngineFormat &format) override
+    {
+        ++calls_.opens;
+        calls_.format = format;
+        return Ok{};
+    }
+    void push(stream::EncoderInput frame) override
+    {
+        ++calls_.pushed;
+        calls_.held.push_back(std::move(frame));
+    }
+    void close() override
+    {
+        ++calls_.closes;
+        calls_.held.clear(); // as a pipeline set to NULL drops every buffer
+    }
+    stream::EngineState state() const override
+    {
+        stream::EngineState state;
+        state.encoder = "fake";
+        state.framesIn = calls_.pushed;
+        return state;
+    }
+
+private:
+    Calls &calls_;
+};
+
+} // namespace overlayd::test
