@@ -14,7 +14,11 @@ std::vector<StoredSegment> segmentsToDelete(std::vector<StoredSegment> finished,
     for (const StoredSegment &segment : finished)
         total += segment.bytes;
     size_t count = 0;
+    // With nothing being written, the newest finished segment stays: a recording always keeps its latest minutes.
+    const size_t deletable = currentBytes > 0 || finished.empty() ? finished.size() : finished.size() - 1;
     for (const StoredSegment &segment : finished) {
+        if (count == deletable)
+            break;
         const bool tooOld = limits.keepAge.count() > 0 && segment.file.start < now - limits.keepAge;
         const bool overBudget = limits.keepBytes > 0 && total > limits.keepBytes;
         if (!tooOld && !overBudget)

@@ -22,7 +22,8 @@ struct StoredSegment {
 
 // The finished segments to delete, oldest first: every one that started more than keepAge before `now`, then the
 // oldest until the rest and the segment being written (`currentBytes`) fit in keepBytes. The segment being written
-// is never among them, so a budget smaller than one segment keeps just that one.
+// is never among them, so a budget smaller than one segment keeps just that one; with nothing being written
+// (currentBytes 0) the newest finished one is kept instead.
 std::vector<StoredSegment> segmentsToDelete(std::vector<StoredSegment> finished, uint64_t currentBytes,
                                             const RetentionLimits &limits, WallClock::time_point now);
 

@@ -96,6 +96,16 @@ Status RecordOutput::build()
         g_object_set(mux, "muxer-properties", properties, nullptr);
         gst_structure_free(properties);
     }
+    // Unbuffered: each fragment reaches the kernel as the muxer writes it, so a SIGKILL loses nothing written
+    // (filesink's default 64 KiB buffer held whole segments of a quiet scene).
+    GType bufferMode = g_type_from_name("GstFileSinkBufferMode");
+    if (bufferMode == 0) { // registered with filesink's class, on its first use
+        gst_object_unref(gst_object_ref_sink(gst_element_factory_make("filesink", nullptr)));
+        bufferMode = g_type_from_name("GstFileSinkBufferMode");
+    }
+    GstStructure *sinkProperties = gst_structure_new("properties", "buffer-mode", bufferMode, 2, nullptr);
+    g_object_set(mux, "sink-properties", sinkProperties, nullptr);
+    gst_structure_free(sinkProperties);
     g_signal_connect(mux, "format-location", G_CALLBACK(&RecordOutput::onFormatLocation), this);
     gst_bin_add_many(GST_BIN(branch_.pipeline), appsrc, parse, mux, nullptr);
     if (!gst_element_link_many(appsrc, parse, mux, nullptr)) {

@@ -44,6 +44,14 @@ TEST(Retention, ABudgetBelowOneSegmentKeepsOnlyTheOneBeingWritten)
     EXPECT_EQ(segmentsToDelete({segment(120, 100), segment(60, 100)}, 500, {10, {}}, kNow).size(), 2u);
 }
 
+TEST(Retention, WithNothingBeingWrittenTheNewestStays)
+{
+    // A recording that stopped keeps its last segment however small the budget, and however old.
+    EXPECT_EQ(names(segmentsToDelete({segment(60, 100), segment(120, 100)}, 0, {10, {}}, kNow)),
+              (std::vector{segmentFileName(kNow - seconds(120), "mp4")}));
+    EXPECT_EQ(segmentsToDelete({segment(3 * 86400, 1)}, 0, {0, seconds(86400)}, kNow).size(), 0u);
+}
+
 TEST(Retention, AgeDeletesThoseThatStartedTooLongAgo)
 {
     const std::vector<StoredSegment> finished = {segment(3 * 86400, 1), segment(86400 + 1, 1), segment(86400, 1),
