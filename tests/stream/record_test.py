@@ -179,9 +179,10 @@ def test_retention(overlayd, workdir):
     check(total - last <= keep, f"retention: within keep_bytes ({total - last} <= {keep}, plus the last {last})")
 
 
-def test_kill(overlayd, workdir):
-    directory = fresh(workdir, "kill")
-    run = Run(overlayd, workdir, "kill", config(record_sink(directory, 2), keyframe_s=0.5, pattern="noise"))
+def test_kill(overlayd, workdir, pattern="noise", fragment_bytes=20000):
+    """`fragment_bytes`: a partial file larger than this holds a fragment (its header alone is under 1 KB)."""
+    directory = fresh(workdir, "kill-" + pattern)
+    run = Run(overlayd, workdir, "kill", config(record_sink(directory, 2), keyframe_s=0.5, pattern=pattern))
     run.wait_log(r"recording to", 20)
     # Killed once the segment being written has its first fragment (a picture group held, then 1 s: before it, the
     # file holds its header only, docs/streaming.md) and before its end.
@@ -189,7 +190,7 @@ def test_kill(overlayd, workdir):
     while time.monotonic() < deadline and len(segments(directory)) < 2:
         time.sleep(0.05)
     while time.monotonic() < deadline and not any(n.endswith(".partial") and os.path.getsize(
-            os.path.join(directory, n)) > 20000 for n in os.listdir(directory)):
+            os.path.join(directory, n)) > fragment_bytes for n in os.listdir(directory)):
         time.sleep(0.02)
     run.stop(signal.SIGKILL)
     files = sorted(os.listdir(directory))
@@ -197,17 +198,22 @@ def test_kill(overlayd, workdir):
     finished = [n for n in files if SEGMENT_NAME.match(n)]
     partial = [n for n in files if n.endswith(".partial")]
     check(len(finished) >= 2 and all(read[n][0] and abs(read[n][0] - 2.0) <= 0.2 for n in finished),
-          f"kill -9: every finished segment is complete ({[(n, read[n][0]) for n in finished]})")
+          f"kill -9 ({pattern}): every finished segment is complete ({[(n, read[n][0]) for n in finished]})")
     check(len(partial) == 1 and all(read[n][1] > 0 for n in partial),
-          f"kill -9: the segment being written reads up to its last fragment "
+          f"kill -9 ({pattern}): the segment being written reads up to its last fragment "
           f"({[(n, os.path.getsize(os.path.join(directory, n)), read[n]) for n in partial]})")
-    rerun = Run(overlayd, workdir, "kill-again", config(record_sink(directory, 2), keyframe_s=0.5, pattern="noise"))
+    rerun = Run(overlayd, workdir, "kill-again", config(record_sink(directory, 2), keyframe_s=0.5, pattern=pattern))
     recovered = rerun.wait_log(r"left partial by a crash kept", 20)
     rerun.stop()
     after = os.listdir(directory)
     check(recovered and all(n[:-len(".partial")] in after for n in partial) and
           not any(n.endswith(".partial") for n in after),
-          "kill -9: the next start finishes the partial segment under its final name")
+          f"kill -9 ({pattern}): the next start finishes the partial segment under its final name")
+
+
+def test_kill_quiet(overlayd, workdir):
+    """A quiet scene: segments of a few KB, which a buffered filesink would hold in memory until killed."""
+    test_kill(overlayd, workdir, pattern="checkerboard-scene", fragment_bytes=1200)
 
 
 def test_full_disk(overlayd, workdir):
@@ -361,7 +367,7 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     overlayd = os.path.abspath(args.overlayd)
-    for name, test in [("segments", test_segments), ("retention", test_retention), ("kill", test_kill),
+    for name, test in [("segments", test_segments), ("retention", test_retention), ("kill", test_kill), ("kill", test_kill_quiet),
                        ("full", test_full_disk), ("push", test_push)]:
         if not args.only or name in args.only.split(","):
             test(overlayd, args.workdir)
