@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace overlayd::config {
 
@@ -33,6 +34,12 @@ inline constexpr double kMinScale = 1e-6;               // |frame.scale| per axi
 inline constexpr double kMaxViewportCoordinate = 65536; // viewport window/scissor x, y, width, height (pixels)
 inline constexpr double kMaxCanValue = 1e15;        // input.can scale, offset, min, max, step: a 64-bit signal's values
 inline constexpr double kMinStatsIntervalSec = 0.1; // daemon.stats_interval, when not 0 (off): below, it pins a core
+// Recordings ([[sink]] kind = "record") and pushes (kind = "push").
+inline constexpr double kMinSegmentSec = 1.0;         // segment_s: below, the keyframes are the segments
+inline constexpr double kMaxSegmentSec = 86400.0;     // segment_s: a day per file
+inline constexpr uint64_t kMaxKeepBytes = 1ull << 50; // keep_bytes (0: no limit): a pebibyte
+inline constexpr double kMaxKeepDays = 36500.0;       // keep_days (0: no limit)
+inline constexpr size_t kMaxUrlBytes = 2048;          // a push url
 // A frame's transform composed from the world may not hold an entry beyond this: the chain of scales and
 // translations stays finite and keeps the precision a projection needs.
 inline constexpr double kMaxComposedMagnitude = 1e9;

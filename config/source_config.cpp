@@ -313,10 +313,12 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamO
                                                        {"v4l2", SinkKind::V4l2Output},
                                                        // Never chosen here (readEncodedSink reads it): listed so
                                                        // that an unknown kind's message names it.
-                                                       {"rtsp", SinkKind::Null}}))
+                                                       {"rtsp", SinkKind::Null},
+                                                       {"record", SinkKind::Null},
+                                                       {"push", SinkKind::Null}}))
             options.kind = *kind;
         else if (!sink.has("kind"))
-            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | rtsp");
+            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | rtsp | record | push");
         if (auto path = sink.string("path")) {
             options.path = *path;
             const bool writes = options.kind != SinkKind::Null && !path->empty();

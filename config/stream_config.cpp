@@ -35,8 +35,9 @@ void readRtsp(TableReader &sink, RtspSinkOptions &out)
         if (valid)
             out.path = *path;
         else
-            sink.problem("path", "'" + *path + "': a mount point such as \"/cam\": a slash, then letters, digits, "
-                                               "'-', '.', '_', '~' and inner slashes");
+            sink.problem("path", "'" + *path +
+                                     "': a mount point such as \"/cam\": a slash, then letters, digits, "
+                                     "'-', '.', '_', '~' and inner slashes");
     }
     if (auto clients = sink.integer("max_clients", 1, kMaxRtspClients))
         out.maxClients = unsigned(*clients);
@@ -48,25 +49,33 @@ bool isEncodedSink(TableReader &sink)
 {
     const toml::node *kind = sink.node("kind");
     const auto text = kind ? kind->value<std::string>() : std::nullopt;
-    return text && *text == "rtsp";
+    return text && (*text == "rtsp" || *text == "record" || *text == "push");
 }
 
 void readEncodedSink(TableReader &sink, StreamOptions &out)
 {
     EncodedSinkOptions options;
     options.key = sink.path();
+    const std::string kind = sink.string("kind").value_or("rtsp");
     if (!streamBuiltIn()) {
-        sink.problem("kind", std::string(kBuiltWithout) + "kind = \"rtsp\" is not available");
+        sink.problem("kind", std::string(kBuiltWithout) + "kind = \"" + kind + "\" is not available");
         sink.ignoreRest();
         return;
     }
-    (void)sink.string("kind");
-    options.kind = EncodedSinkKind::Rtsp;
-    readRtsp(sink, options.rtsp);
-    for (const EncodedSinkOptions &other : out.sinks)
-        if (other.kind == EncodedSinkKind::Rtsp && other.rtsp.port == options.rtsp.port)
-            sink.problem("listen", "port " + std::to_string(options.rtsp.port) + " is served by " + other.key +
-                                       " already: one RTSP sink per port");
+    if (kind == "record") {
+        options.kind = EncodedSinkKind::Record;
+        readRecord(sink, out, options.record);
+    } else if (kind == "push") {
+        options.kind = EncodedSinkKind::Push;
+        readPush(sink, options.push);
+    } else {
+        options.kind = EncodedSinkKind::Rtsp;
+        readRtsp(sink, options.rtsp);
+        for (const EncodedSinkOptions &other : out.sinks)
+            if (other.kind == EncodedSinkKind::Rtsp && other.rtsp.port == options.rtsp.port)
+                sink.problem("listen", "port " + std::to_string(options.rtsp.port) + " is served by " + other.key +
+                                           " already: one RTSP sink per port");
+    }
     sink.finish();
     out.sinks.push_back(std::move(options));
 }
@@ -84,9 +93,9 @@ void readEncoder(TableReader &root, StreamOptions &out)
     if (auto codec = table->choice<int>("codec", {{"h264", 0}}))
         (void)codec; // the one codec so far; the key is there so that a config says what it gets
     if (auto kind = table->choice<EncoderKind>("encoder", {{"auto", EncoderKind::Auto},
-                                                            {"v4l2", EncoderKind::V4l2},
-                                                            {"openh264", EncoderKind::OpenH264},
-                                                            {"x264", EncoderKind::X264}}))
+                                                           {"v4l2", EncoderKind::V4l2},
+                                                           {"openh264", EncoderKind::OpenH264},
+                                                           {"x264", EncoderKind::X264}}))
         encoder.kind = *kind;
     if (auto device = table->string("device")) {
         if (*device == "auto" || device->starts_with("/dev/"))

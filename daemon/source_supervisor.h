@@ -16,7 +16,7 @@
 #include "config/daemon_config.h"
 #include "control/run_state.h"
 #include "control/scene_control.h"
-#include "daemon/backoff.h"
+#include "base/backoff.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
 #include "daemon/open_stream.h"

@@ -47,8 +47,11 @@ test_packages=(
     ffmpeg v4l-utils
     libjpeg-turbo-progs # cjpeg: libjpeg's own defaults, what the stream's JPEG size is compared with
     # the encoded outputs' elements at run time: appsrc/tee (base), rtph264pay (good), h264parse and openh264enc
-    # (bad, with libopenh264), x264enc (ugly); tests/stream reads the RTSP stream with ffprobe and ffmpeg
+    # (bad, with libopenh264), x264enc (ugly); splitmuxsink, mp4mux, matroskamux, flvmux (good), rtmp2sink, srtsink,
+    # mpegtsmux (bad), rtspclientsink (gstreamer1.0-rtsp); tests/stream reads the RTSP stream, the recordings and the
+    # pushes with ffprobe and ffmpeg
     gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly
+    gstreamer1.0-rtsp
     libopenh264-7
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3

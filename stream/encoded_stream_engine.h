@@ -21,7 +21,7 @@
 namespace overlayd::stream {
 
 // The raw format the engine is fed: always planar I420 (Y, then U, then V, rows packed), converted once by the
-// feed (encoder_feed.h) from whatever the stream's format is. 
+// feed (encoder_feed.h) from whatever the stream's format is.
 struct EngineFormat {
     unsigned width = 0, height = 0;
     double fps = 0.0; // 0: as frames come (the encoder assumes 30)
@@ -51,13 +51,28 @@ struct EncodedSinkState {
     std::string key;      // "sink[2]"
     std::string describe; // "rtsp://127.0.0.1:8554/cam"
     std::vector<RtspClientState> clients;
+    // kind = "record": the segment being written, the finished ones in the directory, their bytes, the oldest,
+    // how many retention deleted; stopped for a full disk (and how often it was).
+    std::string currentFile;
+    unsigned segments = 0;
+    uint64_t bytes = 0;
+    std::string oldest;
+    unsigned deleted = 0;
+    bool diskFull = false;
+    unsigned diskFullStops = 0;
+    // kind = "push": the server takes the stream; attempts after the first.
+    bool connected = false;
+    unsigned reconnects = 0;
+    // record and push: the last failure (empty when none); access units dropped while behind or not running.
+    std::string lastError;
+    uint64_t dropped = 0;
 };
 
 // What /state and /metrics show. Counters count from open().
 struct EngineState {
     bool running = false;
-    std::string encoder; // the element that encodes: "openh264enc", "x264enc", "v4l2h264enc"
-    std::string device;  // the V4L2 encoder's device, empty for software
+    std::string encoder;        // the element that encodes: "openh264enc", "x264enc", "v4l2h264enc"
+    std::string device;         // the V4L2 encoder's device, empty for software
     uint64_t framesIn = 0;      // frames handed to the encoder
     uint64_t framesEncoded = 0; // access units out of the encoder
     uint64_t keyframes = 0;

@@ -39,8 +39,8 @@ Result<EngineFormat> EncoderFeed::open(const StreamFormat &format)
     std::lock_guard lock(pool_->mutex);
     // A slot's bytes are re-allocated here: the engine must have let go of every frame (closed) first.
     if (pool_->counters.inFlight != 0)
-        return makeError(ErrorCode::InvalidArgument, "the encoder still holds " +
-                                                         std::to_string(pool_->counters.inFlight) + " frames");
+        return makeError(ErrorCode::InvalidArgument,
+                         "the encoder still holds " + std::to_string(pool_->counters.inFlight) + " frames");
     pool_->free.clear();
     for (size_t i = 0; i < pool_->slots.size(); ++i) {
         pool_->slots[i].assign(bytes, 0);
@@ -135,8 +135,8 @@ std::optional<EncoderInput> EncoderFeed::fill(const FrameView &frame, const Fram
         ++pool_->counters.copied;
         pool_->counters.converted += converted ? 1 : 0;
     }
-    return EncoderInput{std::move(owner), bytes.data(), bytes.size(), metadata.sequence, metadata.timestamp,
-                        blendedTime};
+    return EncoderInput{std::move(owner),  bytes.data(),       bytes.size(),
+                        metadata.sequence, metadata.timestamp, blendedTime};
 }
 
 FeedCounters EncoderFeed::counters() const

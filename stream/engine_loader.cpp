@@ -51,8 +51,8 @@ Module openModule()
             module.error = place + " has no " + kCreateEngineSymbol + ": not an overlayd stream module";
         return module;
     }
-    module.error = std::string("the encoded outputs' module ") + kModuleFileName + " is not installed (looked in " +
-                   tried + ")";
+    module.error =
+        std::string("the encoded outputs' module ") + kModuleFileName + " is not installed (looked in " + tried + ")";
     return module;
 }
 

@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "stream/push_options.h"
+#include "stream/record_options.h"
+
 namespace overlayd::stream {
 
 enum class EncoderKind {
@@ -19,7 +22,7 @@ enum class Profile { Baseline, Main, High };
 
 // Limits of the [encoder] keys (docs/config.md "Limits").
 inline constexpr unsigned kMinBitrateKbps = 64;
-inline constexpr unsigned kMaxBitrateKbps = 100000;   // 100 Mbit/s: above any H.264 level a board encodes
+inline constexpr unsigned kMaxBitrateKbps = 100000; // 100 Mbit/s: above any H.264 level a board encodes
 inline constexpr double kMinKeyframeIntervalSec = 0.1;
 inline constexpr double kMaxKeyframeIntervalSec = 60; // a late joiner waits at most this long for a picture
 inline constexpr unsigned kMaxQueuedFrames = 8;       // frames in flight towards the encoder ([encoder] queue)
@@ -37,7 +40,7 @@ struct EncoderOptions {
 };
 
 // The kinds of [[sink]] that take the encoder's output rather than raw frames.
-enum class EncodedSinkKind { Rtsp };
+enum class EncodedSinkKind { Rtsp, Record, Push };
 
 // Limits of an RTSP sink (docs/config.md "Limits").
 inline constexpr unsigned kMaxRtspClients = 64;
@@ -47,7 +50,7 @@ struct RtspSinkOptions {
     std::string listen = "127.0.0.1:8554"; // host:port (an IPv6 host in brackets), as the user wrote it
     std::string host = "127.0.0.1";        // numeric, parsed from `listen`
     unsigned port = 8554;
-    std::string path = "/stream";          // the mount point: rtsp://host:port/path
+    std::string path = "/stream"; // the mount point: rtsp://host:port/path
     unsigned maxClients = 16;
 
     bool operator==(const RtspSinkOptions &) const = default;
@@ -55,8 +58,10 @@ struct RtspSinkOptions {
 
 struct EncodedSinkOptions {
     EncodedSinkKind kind = EncodedSinkKind::Rtsp;
-    std::string key; // "sink[2]", for messages
-    RtspSinkOptions rtsp;
+    std::string key;          // "sink[2]", for messages
+    RtspSinkOptions rtsp;     // kind = "rtsp"
+    RecordSinkOptions record; // kind = "record"
+    PushSinkOptions push;     // kind = "push"
 
     bool operator==(const EncodedSinkOptions &) const = default;
 };

@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "stream/gst/encoder_element.h"
+#include "stream/gst/push_output.h"
+#include "stream/gst/record_output.h"
 
 namespace overlayd::stream::gst {
 namespace {
@@ -119,14 +121,22 @@ Status GstStreamEngine::build(const EngineFormat &format)
     gst_object_unref(bus);
 
     for (const EncodedSinkOptions &sinkOptions : options_.sinks) {
-        if (sinkOptions.kind != EncodedSinkKind::Rtsp)
+        if (sinkOptions.kind != EncodedSinkKind::Rtsp) {
+            std::unique_ptr<EncodedOutput> output;
+            if (sinkOptions.kind == EncodedSinkKind::Record)
+                output = std::make_unique<RecordOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+            else
+                output = std::make_unique<PushOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+            if (auto started = output->start(context_); !started)
+                return started;
+            outputs_.push_back(std::move(output));
             continue;
+        }
         auto output = std::make_unique<RtspOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
         if (auto started = output->start(context_); !started)
             return started;
-        log_(kLogInfo, sinkOptions.key + ": RTSP at rtsp://" + sinkOptions.rtsp.listen + sinkOptions.rtsp.path +
-                           " (" + encoder->factory + (encoder->device.empty() ? "" : " on " + encoder->device) +
-                           ")");
+        log_(kLogInfo, sinkOptions.key + ": RTSP at rtsp://" + sinkOptions.rtsp.listen + sinkOptions.rtsp.path + " (" +
+                           encoder->factory + (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
         rtsp_.push_back(std::move(output));
     }
     return Ok{};
@@ -196,6 +206,8 @@ GstFlowReturn GstStreamEngine::onEncoded(GstAppSink *sink, gpointer data)
     bool sent = false;
     for (const auto &output : self->rtsp_)
         sent = output->push(sample) || sent;
+    for (const auto &output : self->outputs_) // record and push: "sent" times the RTSP hand-off only
+        output->push(sample);
     if (sent && captured > 0) {
         const GstClockTime now = nowNs();
         std::lock_guard lock(self->mutex_);
@@ -232,6 +244,7 @@ void GstStreamEngine::close()
     if (thread_.joinable())
         thread_.join();
     rtsp_.clear(); // with the loop stopped: no server signal runs while the outputs go
+    outputs_.clear();
     if (busWatch_ != nullptr) {
         g_source_destroy(busWatch_);
         g_source_unref(busWatch_);
@@ -265,6 +278,8 @@ EngineState GstStreamEngine::state() const
         out.latency = {{"encoder_in", encoderIn_}, {"encoded", encoded_}, {"sent", sent_}};
     }
     for (const auto &output : rtsp_)
+        out.sinks.push_back(output->state());
+    for (const auto &output : outputs_)
         out.sinks.push_back(output->state());
     return out;
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "stream/encoded_stream_engine.h"
+#include "stream/gst/encoded_output.h"
 #include "stream/gst/rtsp_output.h"
 
 namespace overlayd::stream::gst {
@@ -52,6 +53,7 @@ private:
     GstElement *encoder_ = nullptr;
     GSource *busWatch_ = nullptr;
     std::vector<std::unique_ptr<RtspOutput>> rtsp_;
+    std::vector<std::unique_ptr<EncodedOutput>> outputs_; // recordings and pushes
     std::optional<std::chrono::nanoseconds> firstCapture_;
 
     mutable std::mutex mutex_;

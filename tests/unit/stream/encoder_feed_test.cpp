@@ -47,9 +47,9 @@ TEST(EncoderFeed, CopiesI420PlanesUnconverted)
     ASSERT_TRUE(input);
     ASSERT_EQ(input->size, 8u * 4 * 3 / 2);
     EXPECT_EQ(input->sequence, 7u);
-    EXPECT_EQ(input->data[3 * 8 + 5], 8);          // Y at (5, 3)
-    EXPECT_EQ(input->data[32], 90);                // first Cb
-    EXPECT_EQ(input->data[32 + 8 + 7], 200);       // last Cr
+    EXPECT_EQ(input->data[3 * 8 + 5], 8);    // Y at (5, 3)
+    EXPECT_EQ(input->data[32], 90);          // first Cb
+    EXPECT_EQ(input->data[32 + 8 + 7], 200); // last Cr
     EXPECT_EQ(feed.counters().copied, 1u);
     EXPECT_EQ(feed.counters().converted, 0u);
 }

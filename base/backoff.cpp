@@ -1,5 +1,5 @@
 // Backoff: doubling with a ceiling.
-#include "daemon/backoff.h"
+#include "base/backoff.h"
 
 #include <algorithm>
 

@@ -1,4 +1,5 @@
-// Backoff: the delays between attempts to reopen a lost source, doubling from a floor to a ceiling.
+// Backoff: the delays between attempts to reach something lost (a source, a push server), doubling from a floor
+// to a ceiling.
 #pragma once
 
 #include <chrono>

@@ -1,5 +1,5 @@
 // Backoff: 0.5 s doubling to an 8 s ceiling, back to 0.5 s after a success.
-#include "daemon/backoff.h"
+#include "base/backoff.h"
 
 #include <gtest/gtest.h>
 
