@@ -12,6 +12,7 @@
 #include "alignment/point_queries.h"
 #include "base/number_range.h"
 #include "base/number_text.h"
+#include "base/version.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
@@ -204,7 +205,8 @@ HttpResponse HttpApi::state()
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
-    json out = {{"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()},
+    json out = {{"version", overlaydVersion()},
+                {"uptime_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()},
                 {"source", source},
                 {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
                 {"layers", layers},
