@@ -7,8 +7,9 @@
 # and Depends from dpkg-shlibdeps (for arm64 against the arm64 sysroot's packages). docs/packaging.md explains it.
 #
 # Usage: scripts/package.sh [amd64|arm64]   (default: this machine's architecture)
-# Environment: BUILD_DIR (default build, or build-arm64), OVERLAYD_ARM64_CACHE (default .cache/arm64), OUT_DIR
-# (default out/deb). Prints the .deb's path.
+# Environment: BUILD_DIR (default build, or build-arm64), OVERLAYD_ARM64_CACHE (default .cache/arm64),
+# OVERLAYD_ARM64_ADMINDIR (default CACHE/admindir: kept with the sysroot, 4 min to make), OUT_DIR (default out/deb).
+# Prints the .deb's path.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -63,7 +64,7 @@ printf 'Source: overlayd\n\nPackage: overlayd\nArchitecture: any\n' > "$scratch/
 shlibdeps=(dpkg-shlibdeps -O "-e$stage/usr/bin/overlayd")
 if [ "$arch" = arm64 ]; then
     cache=$(realpath "${OVERLAYD_ARM64_CACHE:-.cache/arm64}")
-    admindir=$(scripts/arm64/deb_admindir.sh "$cache" "$out/admindir-arm64")
+    admindir=$(scripts/arm64/deb_admindir.sh "$cache" "${OVERLAYD_ARM64_ADMINDIR:-$cache/admindir}")
     shlibdeps+=("--admindir=$admindir" "-l$cache/sysroot/usr/lib/aarch64-linux-gnu"
         "-l$cache/sysroot/lib/aarch64-linux-gnu")
     export DEB_HOST_ARCH=arm64 DEB_HOST_MULTIARCH=aarch64-linux-gnu DEB_HOST_GNU_TYPE=aarch64-linux-gnu

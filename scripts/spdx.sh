@@ -19,8 +19,10 @@ comment_for() {
     *.cpp | *.h | *.c | *.js) echo "// $id" ;;
     *.css) echo "/* $id */" ;;
     *.html) echo "<!-- $id -->" ;;
-    *.sh | *.py | *.cmake | */CMakeLists.txt | CMakeLists.txt | *.service | *.sysusers | .ci/run | tests/vm/guest/init)
-        echo "# $id"
+    *.sh | *.py | *.cmake | */CMakeLists.txt | CMakeLists.txt | *.service | *.sysusers) echo "# $id" ;;
+    *)
+        # A script without an extension (.ci/run, debian/postinst): a shebang says it is one.
+        case "$(basename "$1")" in *.*) ;; *) [ "$(head -c 2 "$1")" != "#!" ] || echo "# $id" ;; esac
         ;;
     esac
 }
