@@ -14,8 +14,10 @@ mkdir -p "$work" && cd "$work"
 
 # The rootfs: minbase + systemd + the daemon's runtime libraries, cached (about 5 min and 600 MB the first time).
 source "$here/guest.sh"
+# libcamera, libgpiod and libmicrohttpd are linked since the binary gained those parts; procps holds the /bin/kill
+# that ExecReload= runs (without it a reload fails with 203/EXEC and the daemon never sees SIGHUP).
 packages=systemd-sysv,libopencv-imgcodecs406,libopencv-contrib406,libopencv-imgproc406,libtomlplusplus3
-packages+=,libturbojpeg0,libyaml-cpp0.7,libtinyxml2-9
+packages+=,libturbojpeg0,libyaml-cpp0.7,libtinyxml2-9,libcamera0.0.3,libgpiod2,libmicrohttpd12,procps
 rootfs=$(guestRootfs "$packages" systemd-rootfs '/usr/share/doc/*' '/usr/share/man/*' '/usr/share/locale/*')
 
 # What `cmake --install` would put there, plus two configs and the check unit.
