@@ -193,7 +193,8 @@ HttpResponse HttpApi::state()
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
-    json out = {{"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
+    json out = {{"version", overlaydVersion()},
+                {"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
                                        kShownSecondsDecimals)},
                 {"source", source},
                 {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},

@@ -55,12 +55,15 @@ test_packages=(
     libopenh264-7
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3
+    scdoc man-db # the manual pages (man/) and man's check of them (tests/man)
+    dpkg-dev lintian # the package: dpkg-shlibdeps for its Depends, lintian on it (scripts/package.sh)
 )
 # tests/vm, the real-driver tier, boots Debian's x86-64 kernel in QEMU: on x86-64 hosts only (on an arm64 board the
 # tier reports itself skipped, and these are not installed).
 vm_packages=(
     qemu-system-x86 busybox-static cpio kmod xz-utils binutils make ustreamer
     can-utils # cansend and candump, the CAN check's other end of the bus
+    mmdebstrap # the systemd guests' Debian 12 rootfs (tests/systemd/vm)
 )
 if ! $demo; then
     packages+=("${test_packages[@]}")

@@ -209,6 +209,10 @@ def run(overlayd, workdir):
         state = daemon.wait_ready()
         check(state["source"]["width"] == WIDTH and state["source"]["format"] == "YUYV", f"/state source: {state}")
         check([layer["name"] for layer in state["layers"]] == ["grid", "axes", "labels", "hud"], f"layers: {state}")
+        # The version /state reports is the one the binary prints (the package's too), from git or VERSION.
+        printed = subprocess.run([overlayd, "--version"], capture_output=True, text=True).stdout.split()
+        check(printed[:1] == ["overlayd"] and state.get("version") == printed[-1] and state["version"][0].isdigit(),
+              f"/state version {state.get('version')!r} against --version {printed}")
         check(abs(state["camera"]["yaw"] - 90.0) < 1e-9 and abs(state["camera"]["pitch"] - 25.0) < 1e-9,
               f"/state camera in yaw/pitch/roll: {state['camera']}")
 
