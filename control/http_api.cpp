@@ -10,6 +10,8 @@
 
 #include "alignment/point_queries.h"
 #include "base/number_range.h"
+#include "base/number_text.h"
+#include "base/version.h"
 #include "config/camera_request.h"
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
@@ -234,6 +236,10 @@ HttpResponse HttpApi::metrics()
     report.metric("overlayd_http_requests_total", "counter", "HTTP requests answered.", double(http.requests));
     report.metric("overlayd_http_refused_total", "counter", "HTTP requests answered with an error.",
                   double(http.refused));
+    for (const auto &[limit, hits] : http.limits)
+        report.metric("overlayd_http_limit_total", "counter",
+                      "Connections a limit closed or refused (docs/config.md Limits).", double(hits),
+                      StatusReport::label("limit", limit));
     HttpResponse response = HttpResponse::json(200, report.metricsText());
     response.contentType = "text/plain; version=0.0.4; charset=utf-8";
     return response;

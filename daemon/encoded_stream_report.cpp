@@ -41,7 +41,22 @@ void EncodedStreamReport::report(StatusReport &report) const
         for (const stream::RtspClientState &client : sink.clients)
             clients.push_back(
                 {{"address", client.address}, {"transport", client.transport}, {"since", utcText(client.since)}});
-        sinks.push_back({{"sink", sink.key}, {"url", sink.describe}, {"clients", clients}});
+        nlohmann::json entry = {{"kind", sink.kind}, {"sink", sink.key}, {"url", sink.describe}};
+        if (sink.kind == "rtsp")
+            entry["clients"] = clients;
+        if (sink.kind == "record")
+            entry.update({{"current_file", sink.currentFile},
+                          {"segments", sink.segments},
+                          {"bytes", sink.bytes},
+                          {"oldest", sink.oldest},
+                          {"deleted", sink.deleted},
+                          {"disk_full", sink.diskFull},
+                          {"disk_full_stops", sink.diskFullStops}});
+        if (sink.kind == "push")
+            entry.update({{"connected", sink.connected}, {"reconnects", sink.reconnects}});
+        if (sink.kind != "rtsp")
+            entry.update({{"last_error", sink.lastError}, {"dropped", sink.dropped}});
+        sinks.push_back(std::move(entry));
     }
     nlohmann::json latency = nlohmann::json::object();
     for (const auto &[stage, histogram] : stages(state))
@@ -80,10 +95,35 @@ void EncodedStreamReport::report(StatusReport &report) const
                   "Frames dropped before the encoder (every slot still with it).", double(state.feed.dropped), label);
     report.metric("overlayd_encoder_converted_total", "counter",
                   "Frames converted to I420 on their one copy for the encoder.", double(state.feed.converted), label);
-    for (const stream::EncodedSinkState &sink : engine.sinks)
-        report.metric("overlayd_rtsp_clients", "gauge", "Clients connected to an RTSP sink.",
-                      double(sink.clients.size()),
-                      StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe));
+    for (const stream::EncodedSinkState &sink : engine.sinks) {
+        const std::string sinkLabel =
+            StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe);
+        if (sink.kind == "rtsp")
+            report.metric("overlayd_rtsp_clients", "gauge", "Clients connected to an RTSP sink.",
+                          double(sink.clients.size()), sinkLabel);
+        if (sink.kind == "record") {
+            report.metric("overlayd_record_segments", "gauge", "Finished segments in a recording's folder.",
+                          double(sink.segments), sinkLabel);
+            report.metric("overlayd_record_bytes", "gauge", "Bytes of a recording's finished segments.",
+                          double(sink.bytes), sinkLabel);
+            report.metric("overlayd_record_deleted_total", "counter", "Segments retention deleted.",
+                          double(sink.deleted), sinkLabel);
+            report.metric("overlayd_record_disk_full", "gauge", "1 while a recording waits for disk space.",
+                          sink.diskFull ? 1.0 : 0.0, sinkLabel);
+            report.metric("overlayd_record_disk_full_total", "counter", "Times a full disk stopped a recording.",
+                          double(sink.diskFullStops), sinkLabel);
+        }
+        if (sink.kind == "push") {
+            report.metric("overlayd_push_connected", "gauge", "1 while a push's server takes the stream.",
+                          sink.connected ? 1.0 : 0.0, sinkLabel);
+            report.metric("overlayd_push_reconnects_total", "counter", "Connection attempts after a push's first.",
+                          double(sink.reconnects), sinkLabel);
+        }
+        if (sink.kind != "rtsp")
+            report.metric("overlayd_encoded_sink_dropped_total", "counter",
+                          "Access units a recording or push dropped while behind or not running.",
+                          double(sink.dropped), sinkLabel);
+    }
 
     const std::string family = "overlayd_stage_latency_seconds";
     const char *help = "Seconds from a frame's capture to a stage of the encoded path.";

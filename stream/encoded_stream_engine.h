@@ -48,6 +48,7 @@ struct RtspClientState {
 };
 
 struct EncodedSinkState {
+    std::string kind;     // "rtsp", "record" or "push": which of the fields below it fills
     std::string key;      // "sink[2]"
     std::string describe; // "rtsp://127.0.0.1:8554/cam"
     std::vector<RtspClientState> clients;

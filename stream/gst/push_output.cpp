@@ -173,6 +173,7 @@ gboolean PushOutput::onBusMessage(GstBus *, GstMessage *message, gpointer data)
 EncodedSinkState PushOutput::state() const
 {
     EncodedSinkState out;
+    out.kind = "push";
     out.key = options_.key;
     out.describe = options_.push.url;
     out.dropped = feed_.dropped();

@@ -88,7 +88,10 @@ Status RecordOutput::build()
     const bool mp4 = options_.record.container == RecordContainer::Mp4;
     // async-finalize: a segment's muxer finishes in the background while the next one starts; it is also the
     // only way to give the muxer properties (the fragments that make a killed MP4 readable).
-    g_object_set(mux, "max-size-time", guint64(options_.record.segmentSec * GST_SECOND), "async-finalize", TRUE,
+    // splitmuxsink cuts before a keyframe interval that would pass max-size-time by any amount, and a camera's
+    // timestamps jitter by microseconds: without the slack, segment_s = 2 with keyframes every second cuts 1 s files.
+    const guint64 maxTime = guint64(options_.record.segmentSec * GST_SECOND) + kSegmentSlackNs;
+    g_object_set(mux, "max-size-time", maxTime, "async-finalize", TRUE,
                  "muxer-factory", mp4 ? "mp4mux" : "matroskamux", nullptr);
     if (mp4) {
         GstStructure *properties =
@@ -221,6 +224,7 @@ gboolean RecordOutput::onTimer(gpointer data)
 EncodedSinkState RecordOutput::state() const
 {
     EncodedSinkState out;
+    out.kind = "record";
     out.key = options_.key;
     out.describe = store_.directory();
     out.dropped = feed_.dropped();

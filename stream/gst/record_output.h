@@ -26,6 +26,9 @@ namespace overlayd::stream::gst {
 
 // Fragments of a recording's MP4 files: what a power cut loses at most, after the picture group splitmuxsink holds.
 inline constexpr guint kFragmentMs = 1000;
+// Added to segment_s for splitmuxsink (record_output.cpp): above a loaded machine's timestamp jitter; a segment may
+// be this much longer than segment_s when the keyframe interval is shorter than it.
+inline constexpr guint64 kSegmentSlackNs = 100 * GST_MSECOND;
 // While stopped for space, the free space is looked at this often.
 inline constexpr guint kSpaceCheckMs = 1000;
 

@@ -210,6 +210,7 @@ bool RtspOutput::push(GstSample *sample)
 EncodedSinkState RtspOutput::state() const
 {
     EncodedSinkState out;
+    out.kind = "rtsp";
     out.key = options_.key;
     out.describe = "rtsp://" + options_.rtsp.listen + options_.rtsp.path;
     std::lock_guard lock(mutex_);

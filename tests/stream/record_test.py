@@ -241,6 +241,15 @@ def test_full_disk(overlayd, workdir):
             time.sleep(1.0)
         check(None not in frames and frames[1] > frames[0] and run.process.poll() is None,
               f"full disk: the stream goes on (frames {frames})")
+        import json
+        with daemon_fixture.loopback_opener.open(f"http://127.0.0.1:{http_port}/state", timeout=5) as r:
+            recording = [s for s in json.load(r)["encoder"]["sinks"] if s["kind"] == "record"]
+        check(len(recording) == 1 and recording[0]["disk_full"] and recording[0]["disk_full_stops"] >= 1,
+              f"full disk: /state says the recording waits for space ({recording})")
+        with daemon_fixture.loopback_opener.open(f"http://127.0.0.1:{http_port}/metrics", timeout=5) as r:
+            metrics = r.read().decode()
+        check(re.search(r'^overlayd_record_disk_full\{sink="sink\[0\]",url="[^"]*"\} 1(\.0)?$', metrics, re.M) is not None,
+              "full disk: /metrics overlayd_record_disk_full is 1")
         for name in os.listdir(mount):
             if SEGMENT_NAME.match(name):
                 os.remove(os.path.join(mount, name))

@@ -264,8 +264,8 @@ def main():
               ", ".join(f"{s} p50 {latency[s]['p50_s'] * 1000:g} ms p99 {latency[s]['p99_s'] * 1000:g} ms"
                         for s in stages))
         text = metrics(daemon.base)
-        counts = dict(re.findall(r'^overlayd_stage_latency_seconds_count\{stage="(\w+)"\} (\d+)$', text, re.M))
-        check(sorted(counts) == sorted(stages) and all(int(c) > 0 for c in counts.values()),
+        counts = dict(re.findall(r'^overlayd_stage_latency_seconds_count\{stage="(\w+)"\} (\d+(?:\.0)?)$', text, re.M))
+        check(sorted(counts) == sorted(stages) and all(float(c) > 0 for c in counts.values()),
               f"/metrics has overlayd_stage_latency_seconds for every stage: {counts}")
         check(after["encoder"]["keyframes"] > 0 and after["encoder"]["bitrate_kbps"] > 0,
               f"the encoder reports keyframes {after['encoder']['keyframes']}, "
