@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Backoff: doubling with a ceiling.
 #include "base/backoff.h"
 

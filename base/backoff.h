@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Backoff: the delays between attempts to reach something lost (a source, a push server), doubling from a floor
 // to a ceiling.
 #pragma once

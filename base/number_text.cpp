@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // formatted(): vsnprintf asked for the length first, then into a string of that length.
 #include "base/number_text.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Numbers as text without a fixed-size buffer: printf formats into a string sized by the formatted length, so a
 // large value (1e300 with "%.6f" is 308 digits) is printed whole, never truncated.
 #pragma once

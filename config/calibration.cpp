@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration import: picks the reader for a file and turns its camera matrix and coefficients into our types.
 #include "config/calibration.h"
 

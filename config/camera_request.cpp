@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JSON request bodies become TOML tables, so that the config file's readers judge them and every message is one a
 // config-file user would recognise.
 #include "config/camera_request.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraSpec: the camera as configured (pose, intrinsics, distortion, viewport), resolved to a Camera once the
 // stream's frame size is known (a V4L2 device may adjust the size; intrinsics then scale with it).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // loadConfigFile / loadConfigText: parse with toml++, read every section, then check what spans sections (frame
 // names, the camera composed through projection/), collecting every problem in one pass.
 #include "config/daemon_config.h"

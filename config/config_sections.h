@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The readers of each section of the config file, shared by the loader. Private to config/.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DaemonConfig: everything one overlayd instance runs from, loaded from a TOML file and validated in one pass.
 #pragma once
 

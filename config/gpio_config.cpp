@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[gpio.input]] and [[gpio.output]]: lines checked for shape here (chips and lines themselves only exist on the
 // running machine), layers against the scene's, and no line named twice.
 #include "config/config_sections.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [http]: the server's address, limits and control mode, checked as far as a file can be (the address parses, an
 // open control API listens only locally, a unix socket's folder exists, the token file holds a token: read by the
 // server's own reader); whether the port is free is known only when `run` binds it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[input.text]]: text slots fed by files; [[input.path]]: the points of a polyline or markers annotation from a
 // file; [[input.can]]: signals on a CAN bus, into the guide lines' steering or
 // a text slot. A target must exist in the scene (a typo would feed nothing, silently) and is fed by one input; a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // parseJsonBody: nlohmann's exceptions become a Malformed error; writeJson: nlohmann never throws for bad text.
 #include "config/json_body.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The limits of what one config may ask for, named in one place: docs/config.md "Limits" lists each with its key.
 // A value over a limit is refused at its key by the loader, so check-config and run refuse it alike.
 #pragma once

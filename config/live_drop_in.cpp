@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The drop-in is parsed with toml++, its [camera] merged with the live camera's keys and re-emitted by a small
 // emitter whose floating-point numbers are std::to_chars' shortest exact form (every double reads back bit for bit).
 #include "config/live_drop_in.h"

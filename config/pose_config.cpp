@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [camera] pose keys: every pose form of projection/pose.h, chosen by the key only that form has.
 #include "config/config_sections.h"
 

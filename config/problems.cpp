@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Problems and "did you mean": collecting config errors and suggesting the key a typo meant.
 #include "config/problems.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[sink]] kind = "record" and kind = "push": the encoded sinks that write segment files and publish to a server.
 // What starting them would refuse is refused here, at the key: a directory that is missing, not one, not writable
 // or recorded by another sink; a URL nothing can push to.

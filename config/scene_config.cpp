@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[frame]] scene-graph frames and [[annotation]] entries with their style.
 #include "config/config_sections.h"
 

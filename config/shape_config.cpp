@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The shape keys of an [[annotation]], one reader per type of overlay/shapes/annotation.h.
 #include "config/config_sections.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [daemon], [source] (with its synthetic, replay, v4l2 and libcamera sub-tables) and [[sink]].
 #include "config/config_sections.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [encoder] and the encoded kinds of [[sink]] (kind = "rtsp"): every key checked here, so that check-config refuses
 // what run would; whether an encoder element exists and a port is free is known only when run loads the engine.
 #include "config/config_sections.h"

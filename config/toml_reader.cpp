@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TableReader: typed access to a TOML table that records located problems instead of throwing; the compound values
 // (quaternions, number lists, points, colours, nested tables) after the scalars.
 #include "config/toml_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TableReader: typed, located access to one TOML table; every wrong type, bad value and unknown key becomes a
 // Problem with its file:line:column instead of stopping the load. Private to config/ (toml++ stays inside).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CanInputs: [[input.can]] at run time. Each signal's frames arrive on a raw CAN socket in the event loop; a valid
 // value drives its target (the guide lines' steering, or a text slot) through SceneControl. A value that is out of
 // range, or older than the input's timeout, is never shown as if it were true: the target shows "unknown" instead.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DaemonStatus: the running daemon as the HTTP API reads it (/state, /metrics): read-only, no way back into the
 // daemon. Daemon implements it; the API changes the scene only through SceneControl.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GpioControl: requesting and re-requesting lines, debounced input edges into layer changes, outputs that follow
 // the daemon's state.
 #include "control/gpio_control.h"

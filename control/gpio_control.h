@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GpioControl: the daemon's GPIO lines. Input edges are loop events (the line's fd in epoll) settled by a per-line
 // debounce timerfd (libgpiod v1 has no debounce), and switch layers through SceneControl like any other change;
 // outputs follow the daemon's state. A line that fails at run time is logged, released and requested again every

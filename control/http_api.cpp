@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HTTP API's answers. JSON goes out through nlohmann::json; JSON coming in is read by config/ (camera changes)
 // or here (a layer's visibility, a slot's text, pixels), each with the limits the config file has.
 #include "control/http_api.h"

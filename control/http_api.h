@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // HttpApi: what /state, /metrics and /api/... answer, from a read-only view of the daemon (DaemonStatus). Every
 // change goes through SceneControl, validated by the config file's own readers; a refused change answers 400 naming the
 // field and changes nothing. Loop thread only.

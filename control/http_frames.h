@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HTTP server's frames: a sink that encodes the overlaid stream to JPEG on its own worker thread (only while the
 // feed is wanted: nobody watching costs nothing), and the raw tap that encodes a frame before the overlay when a
 // `/snapshot?raw=1` waits for one.

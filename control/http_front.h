@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // HttpFront: the daemon's HTTP side. It owns the JPEG feed, the server and the API, wires the server into the
 // event loop (its epoll fd, a timeout timer, a one-second tick, the feed's wake-up fd) and makes the sink that
 // encodes the stream. The scene changes it asks for go through SceneControl like every other change.

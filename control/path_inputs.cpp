@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "control/path_inputs.h"
 
 #include "control/status_report.h"

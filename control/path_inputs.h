@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PathInputs: [[input.path]] at run time. Each file's folder is watched in the event loop (inotify); when the file
 // changes, its points replace its annotation's through SceneControl from the next frame on. A file that does not
 // parse is logged (file:line) and the points shown stay: bad input loses nothing.

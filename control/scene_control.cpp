@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneControl: validation of each change with the config's own code (CameraSpec::build composes the camera exactly
 // as loading [camera] does), and its application to the live renderer.
 #include "control/scene_control.h"

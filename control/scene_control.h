@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneControl: the one path by which the running scene changes. Every change is typed, validated by the code that
 // validates the config file, applied on the loop thread between two frames and visible in the next frame.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StatusReport: what the daemon's parts (StatusReporter) add for /state and /metrics. /state gets entries appended
 // to named lists ("sinks", "inputs", "input_health") and fields set; /metrics gets samples, written family by family
 // (one HELP and TYPE per name, its samples together, as the Prometheus text format wants), in the order each name

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TextInputs: [[input.text]] at run time. Each file's folder is watched in the event loop; when the file changes,
 // its first line goes into its text slot through SceneControl and shows from the next frame on.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // WatchedFiles: the inotify watches of the file inputs ([[input.text]], [[input.path]]) and their place in the event
 // loop; tells its owner which file changed, and keeps each input's health: following its file, or waiting for its
 // folder to come back, and the last error.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Daemon: start-up (signals, timers, config, sinks, the first open of the source) and stopping; then the event
 // loop's wiring, periodic stats and the watchdog; then SIGHUP reloads.
 #include "daemon/daemon.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Daemon: `overlayd run`. It loads the config, builds the sinks, and wires one event loop to the three parts that do
 // the work: the SourceSupervisor (the source, NO SIGNAL and reconnects), the HealthReporter (readiness, watchdog,
 // STATUS=, stats) and SceneControl (every change to the running scene, SIGHUP reloads among them).

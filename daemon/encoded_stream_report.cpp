@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedStreamReport: the encoder, the encoded sinks and the stage latencies for /state and /metrics.
 #include "daemon/encoded_stream_report.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedStreamReport: the encoded outputs as /state and /metrics show them: the encoder (kind, device, measured
 // bitrate, keyframes, frames dropped before it), each encoded sink with its clients (address, transport, since), and
 // the latency of every stage from capture.

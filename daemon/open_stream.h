@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // openStream: the one sequence that opens a stream, for `run` (each start, reconnect and reload) and `render`.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pipeline: the per-frame path and its statistics; then the sinks during a reload.
 #include "daemon/pipeline.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pipeline: a source's frame is blended in place by the stream's overlay, then handed to every sink's worker.
 #pragma once
 

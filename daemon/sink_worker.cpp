@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkWorker: the queue, the drop policy and the worker thread.
 #include "daemon/sink_worker.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkWorker: one sink on its own thread behind a bounded queue of pooled frame copies (or, for a zero-copy sink,
 // references to the source's buffers), so a slow sink never stalls the source; when the queue is full the sink's
 // drop policy applies and drops are counted. The pool's frames are allocated as the queue first needs them (a sink

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SourceSupervisor: opening and closing the source, and the frame path while it streams; then a reload that changes
 // the source, and the source while it is down.
 #include "daemon/source_supervisor.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SourceSupervisor: the source's life under `overlayd run`. It opens the stream (openStream), pulls frames while it
 // streams (paced by a timer, or woken by the device's fd), and while the source is down feeds the sinks NO SIGNAL
 // frames and retries with back-off. A camera that vanishes is waited for, never a reason to exit. A reload that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StageFactories: the production wiring, and what a reload must re-open.
 #include "daemon/stages.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StageFactories: how the daemon builds its source, sinks and overlay from a config. The real ones call the
 // drivers' and overlay's factories; tests substitute fakes.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameSink: where overlaid frames go (Y4M, raw, image snapshots, null, V4L2 output).
 #pragma once
 

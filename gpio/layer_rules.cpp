@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // layerVisibility: the show/hide precedence of layer_rules.h.
 #include "gpio/layer_rules.h"
 

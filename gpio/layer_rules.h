@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Which layers the GPIO inputs decide, and how, given which inputs are active. The precedence, for a layer named by
 // several inputs: hidden while any active input hides it; otherwise, if some inputs show it, visible exactly while at
 // least one of those is active; otherwise (only hiding inputs, none active) visible.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // AuthFailures: per-address windows of refused credentials.
 #include "http/auth_failures.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // AuthFailures: refused credentials per client address, so that guessing is slow (beyond kMaxAuthFailures within
 // kAuthWindowSec an address gets 429 without its credential being compared) and the log says who tried without
 // being flooded (one line per address per window, with the count).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Credentials: the users file's reader, the tokens and users compared in constant time, and which role a request
 // needs.
 #include "http/credentials.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Credentials: who may watch and who may change. A viewer credential opens the page, /stream, /snapshot, /state,
 // /metrics and the ground points (/api/project, /api/unproject); a control credential opens those and every change
 // and save. Each is a bearer token (a token file) or an HTTP basic user (users_file); every secret is compared in

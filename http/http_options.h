@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What [http] asks for: where to listen, how many clients, how fast and how good the stream is, and who may change
 // the scene. Compared whole (defaulted ==), so that a reload restarts the server only when [http] changed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The server's libmicrohttpd side: request bodies within their limit, the control check, snapshot waits and MJPEG
 // streams as suspended connections, and every answer with the headers a browser should see.
 #include "http/http_server.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // HttpServer: libmicrohttpd in its epoll mode, driven by the daemon's event loop (no thread per client; streams
 // and snapshot waits are suspended connections resumed when a JPEG is published). It serves the stream, snapshots
 // and the page itself and hands every other request to the daemon's API handler, after the control check.

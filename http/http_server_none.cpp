@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HttpServer of an overlayd built without libmicrohttpd (OVERLAYD_HTTP=OFF): it never starts, saying why. The
 // config refuses [http] first (httpBuiltIn), so only a caller that skipped the config meets this refusal.
 #include "http/http_server.h"

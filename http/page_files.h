@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The alignment page's files: only plain names of the known kinds, straight from one folder (no listing, no
 // subfolders, nothing reached through "..").
 #pragma once

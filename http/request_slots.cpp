@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RequestSlots: the bookkeeping behind the header and body deadlines and the caps on incomplete requests.
 #include "http/request_slots.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RequestSlots: which connections are in the middle of a request, since when, and which of them to close. A client
 // that trickles its headers a byte at a time keeps libmicrohttpd's idle timeout from ever firing, and a few hundred
 // of them would hold every slot; here each request has fixed deadlines (headers, then body) counted from its start,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TlsCertificate: PEM to GnuTLS's certificate list and private key, and the retrieve callback that serves them.
 #include "http/tls_certificate.h"
 

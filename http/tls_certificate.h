@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TlsCertificate: the certificate chain and key GnuTLS hands to each TLS handshake of the HTTP server. It is chosen
 // per handshake (libmicrohttpd's HTTPS_CERT_CALLBACK) rather than loaded into the daemon once, so that a reload can
 // put a renewed certificate in place while the open connections, MJPEG streams among them, go on.

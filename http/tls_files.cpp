@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // readTlsFiles: the one reader of http.tls_cert and http.tls_key, checked by GnuTLS as the server will load them.
 #include "http/tls_files.h"
 

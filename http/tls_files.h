@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The server's certificate chain and private key (PEM), read by the config loader, so that check-config refuses
 // what the server would, and so that a reload sees a renewed certificate as a changed [http] (the files' contents
 // are part of HttpOptions; the server swaps them in without closing a connection).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OverlayRenderer::create: validates the scene, the camera and the stream format, then renders once.
 #include "overlay/overlay_renderer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OverlayRenderer: one stream's overlay. World annotations are projected and rasterized once per change of scene,
 // camera or format; screen text whose tokens change (timestamp, frame number) lives on small layers of its own that
 // are re-rendered only when their text changes; the per-frame work is the native-format blend.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PrivacyMasks: each mask's polygon to pixel spans on camera changes, filled or pixelated per frame.
 #include "overlay/privacy_masks.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PrivacyMasks: a scene's mask annotations, burned into each frame before anything else reads it. Each mask's
 // polygon is rasterized to whole macropixels when the camera changes (a world mask is projected through it, so it
 // stays on its object), and per frame its spans are filled or pixelated in the frame's own format. No layer switch

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneRenderer: renders world layers on scene/camera/format changes and token text on text changes; the frame
 // path is the blend of what is cached.
 #include "overlay/scene_renderer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One NativeLayer per named layer (so switching a
 // layer off costs nothing and re-projects nothing): the layer is drawn on a full-frame RGBA canvas that all layers
 // share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its

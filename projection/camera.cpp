@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera: projection of points and segments with clipping before the divide, lens curves, and unprojection.
 #include "camera.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The camera: pose, projection, optional lens and viewport, composed once; projects, clips and unprojects.
 //
 // The pipeline for a world point X (homogeneous, so directions at infinity project too):

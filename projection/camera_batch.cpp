@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera::projectPoints: the 2-lane batch loop every CPU runs, and the choice of a wider one where the CPU has it.
 #include "camera.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera::projectPolygon: a filled world polygon (a privacy mask) clipped in clip space, so that a polygon reaching
 // behind the camera keeps the part in front instead of folding its hidden corners onto the image.
 #include "projection/camera.h"

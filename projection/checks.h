@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared validation helpers: every builder refuses NaN/inf and near-zero vectors with a clear message.
 #pragma once
 

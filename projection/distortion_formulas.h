@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-point distortion formulas, inline: shared by distortNormalized and Camera's batch loops so both agree.
 #pragma once
 

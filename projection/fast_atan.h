@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A vectorisable atan for the fisheye model: within 2 ulp of std::atan, no branches, one division.
 //
 // Reduction to |t| <= tan(pi/8): atan(a) = pi/2 + atan(-1/a) above tan(3 pi/8), pi/4 + atan((a - 1)/(a + 1))

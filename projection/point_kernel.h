@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The per-point projection from clip space to a pixel and a status, written once for any lane type.
 //
 // Camera::project runs it on one double, the batch loops (camera_batch*.cpp) on 2 or 4 lanes. Same operations in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera pose builders: the viewing pipeline's graphics forms, orientations, and OpenCV/ROS extrinsics.
 #include "pose.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Projection builders. Matrices follow GLM's right-handed *_NO / *_ZO conventions (column-major m[col][row]).
 #include "projection.h"
 

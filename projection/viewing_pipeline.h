@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The classic viewing pipeline (PRP/VPN/VUP, window, viewport), one matrix per step, as its textbook derivation
 // composes it (with the derivation's sign error corrected).
 //

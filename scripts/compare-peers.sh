@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # overlayd side by side with the tools users would pick instead: the same scene (overlay_scene_bench's Speed scene:
 # a perspective ground grid of 19 + 19 lines 2 px wide, an XYZ triad 3 px wide, 3 labels, anti-aliased) over the
 # same raw 1920x1080 YUYV frames (ffmpeg's testsrc2) with overlayd, FFmpeg's filters, OpenCV's drawing and

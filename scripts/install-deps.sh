@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian 12 packages overlayd needs, only those that are missing. On x86-64 and arm64 (a Raspberry Pi OS /
 # Debian 12 board) alike.
 #

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The recorder's directory through POSIX: readdir + fstatat without following links, rename(2), statvfs(3), and a
 // probe file made with mkstemp, since permission bits alone do not tell (root, read-only mounts, full quotas).
 #include "stream/directory_segment_store.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DirectorySegmentStore: a SegmentStore on a real directory (POSIX calls on its path).
 #pragma once
 

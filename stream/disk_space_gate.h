@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DiskSpaceGate: the full-disk policy of a recording. A write that finds no space stops the recording (the stream
 // and the other sinks go on); it starts again once the directory has room for a segment like the largest so far.
 #pragma once

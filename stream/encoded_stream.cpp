@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedStream and the FrameSink the pipeline writes it through.
 #include "stream/encoded_stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedStream: the daemon's side of the encoded outputs: the feed that copies each overlaid frame once for the
 // encoder, and the engine that encodes and serves it. The daemon keeps it for /state and /metrics and hands the
 // pipeline a FrameSink over it (sink()), which runs inline on the pipeline's thread: one copy into a free slot,

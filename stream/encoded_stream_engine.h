@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedStreamEngine: the one encode of the overlaid stream and the encoded sinks that share it. The daemon hands
 // it frames already copied (and converted, where needed) into an EncoderInput; an implementation owns everything
 // else: the encoder, the RTSP server, its own thread. The GStreamer implementation lives in a module loaded only

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncoderFeed: slots are allocated once per format; a slot goes back to the free list from whichever thread drops
 // the last reference to its EncoderInput.
 #include "stream/encoder_feed.h"

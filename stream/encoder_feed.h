@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncoderFeed: the one place a frame is copied for the encoder, converted to I420 on the way when the stream has
 // another format. A bounded set of slots: a slot is with the encoder until the engine drops the EncoderInput that
 // holds it (GStreamer lets go of the buffer), and a frame that finds every slot taken is dropped and counted, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // loadStreamEngine: dlopen() of the module, looked up where the build tree and the install put it.
 #include "stream/engine_loader.h"
 

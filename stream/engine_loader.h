@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The GStreamer engine is a module (overlayd-stream.so) that the daemon loads only when an encoded sink is
 // configured: a camera-only run, `--version` and `check-config` never map GStreamer. The module stays loaded
 // once loaded (GLib's type system cannot be unloaded).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Built without the encoded outputs (OVERLAYD_STREAM=OFF, or GStreamer missing): the config refuses them.
 #include "stream/engine_loader.h"
 

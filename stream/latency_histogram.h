@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LatencyHistogram: how long frames took to reach one stage, in Prometheus-style buckets (seconds). Header-only:
 // the GStreamer module fills some stages and the daemon's side the others.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Push state: the back-off restarts from its floor after each connection that worked.
 #include "stream/push_link.h"
 

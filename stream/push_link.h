@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PushLink: the state of one push to a server: connected or waiting to retry, with a back-off between attempts so a
 // server that is down costs a connect per delay, never the stream's time. Counted for /state and /metrics.
 #pragma once

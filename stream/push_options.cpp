@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Push URLs: the scheme picks the protocol; a host must follow it.
 #include "stream/push_options.h"
 

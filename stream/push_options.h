@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a user can configure about a push: one [[sink]] kind = "push", the encoded stream published to a server.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Segment bookkeeping over a SegmentStore. The store is listed again at each finish: other programs may delete or
 // move recordings, and the figures should say what is there, not what was written.
 #include "stream/record_directory.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RecordDirectory: the segments of one recording on its SegmentStore: names for new segments, the rename that
 // finishes one, what a crash left behind, retention, and the figures /state and /metrics show.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The file name extension of each container.
 #include "stream/record_options.h"
 

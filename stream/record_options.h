@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a user can configure about a recording: one [[sink]] kind = "record", a directory of segment files.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Retention by age, then by bytes, always from the oldest end.
 #include "stream/retention.h"
 

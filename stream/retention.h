@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Retention: which finished segments to delete, oldest first, to keep a recording within its byte and age budgets.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Segment names to and from UTC times, through gmtime_r/timegm (no time zone, no locale).
 #include "stream/segment_name.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Segment file names: the UTC time the segment started, sortable as text ("20261127T145700Z.mp4"), with a
 // ".partial" suffix while it is being written; "-1", "-2" ... when a second segment starts within the same second
 // (a restart).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SegmentStore: the directory a recording writes, as the recorder needs it; the seam its tests replace.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Names of the encoded outputs' choices, for logs, /state and the config's messages.
 #include "stream/stream_options.h"
 

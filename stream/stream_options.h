@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a user configures of the encoded outputs: the one encoder ([encoder]) and the sinks that share its output
 // ([[sink]] kind = "rtsp", and the other encoded kinds). Plain data: the config reader fills it, the engine reads it.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The command line, declared once with CLI11; its exceptions stay inside this file.
 #include "tools/cli.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd check-config` and `overlayd run`, and config loading with every problem reported.
 #include "tools/commands.h"
 

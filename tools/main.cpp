@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // overlayd: the camera-overlay daemon and its tools. Exceptions are start-up failures only, caught here once.
 #include <csignal>
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
 #include "alignment/points_file.h"
 #include "base/number_text.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd solve-pose`: the camera pose from a file of world points and the pixels they were seen at, printed in
 // the config's own pose forms (relative to the camera's mount frame) ready to paste under [camera].
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ReplaySource: the bookkeeping common to every file-backed source.
 #include "drivers/files/replay_base.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Controls: the registry answers what check-config can know; the camera's ControlInfoMap what only it knows.
 #include "drivers/libcamera/libcamera_controls.h"
 

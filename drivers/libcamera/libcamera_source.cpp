@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LibcameraSource: finding the camera, negotiating its stream, allocating and mapping buffers, starting and stopping;
 // then completed requests handed from libcamera's thread to the loop, lent as in-place frames.
 #include "drivers/libcamera/libcamera_source.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ray tracing of the checker ground. Unprojecting through a distorting lens is iterative and costs over a
 // microsecond. So 4x4 blocks are tried first from their four corners; in blocks that hold an edge, each pixel's
 // corners are traced, and pixels whose corners fall in different squares are supersampled from the corners (or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One ray of the checker scene: from a pixel position through the camera to a square of the ground plane, or the sky.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SyntheticSource: static patterns (bars, checkerboard, the 3D scene) are rendered and converted once at start()
 // and copied into each frame; the moving gradient and noise are drawn per frame. Timestamps are sequence / fps
 // (not the clock) so that two runs produce the same frames and metadata.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BufferPool: REQBUFS/QUERYBUF/mmap at creation, QBUF/DQBUF while streaming, and VIDIOC_EXPBUF for dmabuf export.
 #include "drivers/v4l2/buffer_pool.h"
 

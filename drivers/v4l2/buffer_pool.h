@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BufferPool: a device's MMAP buffers, requested, mapped, queued and dequeued.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // V4l2CaptureSource: opening, negotiation and the start of streaming; then dequeuing frames, lending them as
 // leases, and giving them back.
 #include "drivers/v4l2/capture_source.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // V4l2OutputSink: format set-up, buffer recycling and the stride-aware copy; then zero copy: the choice at open, the
 // DMABUF queue, and each lease queued and dropped when the device is done with it.
 #include "drivers/v4l2/output_sink.h"

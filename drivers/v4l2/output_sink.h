@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // V4l2OutputSink: writes the overlaid stream to a V4L2 output device (v4l2loopback, vivid's output node), by copy
 // into MMAP buffers or, zero copy, by queueing the capture buffers themselves (DMABUF import).
 #pragma once

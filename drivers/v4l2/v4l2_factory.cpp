@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The V4L2 entry points: the capture source and the output sink on the real kernel.
 #include "drivers/v4l2/v4l2_factory.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // VideoDevice: opening by path or card name with the capability checks, enumeration, format and rate, streaming on
 // and off.
 #include "drivers/v4l2/video_device.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The alignment page's logic: pose sliders -> PUT /api/camera, layer toggles, click-to-ground, save, and a /state
 // poll that never overwrites what the user is editing. Plain browser JS: the daemon serves only these three files.
 'use strict';

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JpegEncoder with the TurboJPEG API: Y'CbCr frames through tjCompressFromYUVPlanes from JfifPlanes, RGB frames
 // through tjCompress2 (which converts to full-range BT.601 itself).
 #include "media/jpeg/jpeg_encoder.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JpegEncoder: compresses frames to baseline JFIF with libjpeg-turbo, straight from the frame's own planes, for the
 // HTTP MJPEG stream and snapshots.
 #pragma once

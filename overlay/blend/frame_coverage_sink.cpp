@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameCoverageSink: set-up per frame and per item, and the staging of a row() call's opacities for the kernels. Luma
 // (or RGB) bytes and 4:2:2 chroma blend as rows arrive; 4:2:0 chroma opacity is summed over both luma rows of a
 // macropixel and each sample blended once, as its second row arrives.

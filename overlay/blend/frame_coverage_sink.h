@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameCoverageSink: blends coverage straight into a frame in its own pixel format -- the moving-camera path, with
 // no RGBA layer and no per-frame layer conversion. Chroma-aware like NativeLayer: a subsampled chroma sample takes
 // the coverage-weighted colour of its macropixel.

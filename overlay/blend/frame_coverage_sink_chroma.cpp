@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameCoverageSink's chroma: a 4:2:0 chroma row's groups blended once each, when its last luma row has added its
 // opacity (or the item leaves the row), with the item's mean opacity over each macropixel.
 #include "overlay/blend/frame_coverage_sink.h"

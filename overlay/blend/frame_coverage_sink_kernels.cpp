@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameCoverageSink's row paths: row() and rowRuns() (a thin line's run unstaged when the producer's row may be read
 // past it), packed 4:2:2 rows, luma with planar or semi-planar chroma, RGB; the pixel steps are in sink_steps.h
 // (built with -O3).

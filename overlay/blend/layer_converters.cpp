@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-layout conversion of the RGBA layer into native bytes. All format knowledge of the overlay lives here and runs
 // once per (layer, format, colorimetry); the per-frame blend is format-blind.
 #include "overlay/blend/layer_converters.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Converters from the RGBA overlay layer to a format's native bytes, one per pixel layout, chosen at configure time.
 #pragma once
 

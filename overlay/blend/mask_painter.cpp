@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MaskPainter: fills and pixelates masked spans, one sample kind at a time.
 #include "overlay/blend/mask_painter.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MaskPainter: a privacy mask burned into a frame in its own pixel format -- the masked pixels take one colour, or
 // the average of their block, sample plane by sample plane (luma and chroma averaged apart, no round trip through
 // RGB). The spans come widened to whole macropixels (SpanRows with the format's subsampling), so every chroma

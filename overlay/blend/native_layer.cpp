@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NativeLayer: conversion at configure time, and the per-frame blend over its runs.
 #include "overlay/blend/native_layer.h"
 

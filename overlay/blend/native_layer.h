@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NativeLayer: an OverlayLayer converted once into a frame format's own bytes, blended into every frame.
 #pragma once
 

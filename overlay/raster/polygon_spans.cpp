@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Polygon spans: a scanline fill at pixel centres with the nonzero winding rule.
 #include "overlay/raster/polygon_spans.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Polygon spans: which whole pixels a filled polygon covers, as runs per row -- the privacy masks' raster. A pixel
 // is inside when its centre is (the nonzero winding rule, so a self-crossing outline leaves no hole); rows can be
 // widened to whole macropixels so that no chroma sample is shared with a pixel outside.

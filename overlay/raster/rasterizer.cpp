@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Items become coverage rows: fills are solid rows, strokes are dashed first and then rasterized analytically
 // (StrokeRasterizer: a full-frame OpenCV mask cost more than a whole frame copy per redraw), text rows come from
 // the glyphs TextRenderer caches.

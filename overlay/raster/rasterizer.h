@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rasterizer: turns projected primitives into coverage rows for a CoverageSink -- fills as solid rows, strokes
 // through StrokeRasterizer, text from TextRenderer's cached glyph coverage.
 #pragma once

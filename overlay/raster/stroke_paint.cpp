@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StrokeRasterizer's pixel work for one row: merging the runs, coverage across a stroke for a run of pixels (vector
 // kernels for short and long runs, the exact per-pixel formula beside the ends) and trimming before the sink. The
 // semantics are in stroke_raster.cpp's header comment.

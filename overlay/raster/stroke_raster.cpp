@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StrokeRasterizer: stroked polylines -> coverage row by row, from each pixel's distance to the stroke.
 //
 // Semantics. Pixel centres are at integer coordinates (OpenCV's convention). A polyline of n points is n - 1

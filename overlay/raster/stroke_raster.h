@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StrokeRasterizer: anti-aliased coverage of stroked polylines computed per pixel from its distance to the stroke
 // (no full-frame mask): the cost follows the pixels covered, so a moving camera can redraw every frame.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The annotation model: what a user asks to be drawn, in world units (metres) in a named scene-graph frame, or in
 // screen pixels. Plain data: config/ fills it, overlay/ projects and rasterizes it.
 #pragma once

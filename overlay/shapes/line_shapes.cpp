@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for the shapes made of 3D lines: axes, grid, polyline, box, arc.
 #include "overlay/shapes/shape_context.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for shapes anchored at projected 3D points: markers and labels. Their size is in pixels, so only the
 // anchor goes through the projection; a clipped anchor (behind the camera) draws nothing.
 #include "overlay/shapes/shape_context.h"

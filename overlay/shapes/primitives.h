@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Projected 2D primitives: what an annotation becomes after projection, in top-left (memory order) pixel coordinates.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The rules each shape's numbers must follow; the message names the annotation and the value.
 #include "overlay/shapes/scene_checks.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for shapes derived from scene geometry: the horizon, vehicle guide lines and another camera's frustum.
 #include "overlay/shapes/shape_context.h"
 

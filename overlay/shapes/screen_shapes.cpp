@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for screen-space items: positions given in the viewport's origin convention (the user's), converted to
 // memory order here, no projection.
 #include "overlay/shapes/shape_context.h"

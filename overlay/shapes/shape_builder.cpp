@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The dispatch from each shape to its builder.
 #include "overlay/shapes/shape_builder.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ShapeContext: projection of an annotation's geometry through the camera into stroke and text primitives.
 #include "overlay/shapes/shape_context.h"
 

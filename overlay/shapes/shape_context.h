@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The state every shape builder shares, and the per-shape builders that turn an annotation into 2D primitives.
 #pragma once
 

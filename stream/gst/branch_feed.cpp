@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BranchFeed: the mutex guards the appsrc against attach/detach on the main loop thread while push() runs on the
 // encoder's streaming thread; pushing into an appsrc never blocks (block = false), so holding it is short.
 #include "stream/gst/branch_feed.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BranchFeed: hands the encoder's access units to the appsrc of a pipeline of its own (a recording's, a push's), so
 // that a branch that fails, blocks or is rebuilt never touches the encoder pipeline. Each new appsrc starts at a
 // keyframe with its timeline at 0; a branch that falls behind drops up to the next keyframe rather than stall or

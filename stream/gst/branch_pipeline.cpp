@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BranchPipeline: destroying a source that is dispatching is allowed; the loop keeps its own reference until the
 // callback returns.
 #include "stream/gst/branch_pipeline.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BranchPipeline: the pipeline of a recording or a push with its bus watch on the engine's main context, dropped
 // together; and the one retry/check timer each keeps on that context.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedOutput: an encoded sink that takes the encoder's access units through push(), as RtspOutput does: the
 // recording and the push, each with a pipeline of its own fed through a BranchFeed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // makeEncoderElement: auto takes the first V4L2 M2M H.264 encoder the registry knows (the v4l2 plugin registers
 // one element per encoder device it finds), else openh264.
 #include "stream/gst/encoder_element.h"

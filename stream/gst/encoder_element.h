@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The encoder element for the options: a V4L2 M2M encoder (v4l2*h264enc, one element per device), openh264enc or
 // x264enc, with the bitrate, keyframe interval and latency settings in each one's own property names.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GstStreamEngine: build() makes the encoder pipeline and the RTSP servers; push() wraps a feed slot in a buffer
 // whose release gives the slot back; onEncoded() counts and hands each access unit to every encoded sink.
 #include "stream/gst/gst_stream_engine.h"

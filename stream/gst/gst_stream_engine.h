@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GstStreamEngine: the GStreamer implementation of EncodedStreamEngine. Its pipeline, for frames of one format:
 //
 //   appsrc "feed" (I420, the feed's slots wrapped, not copied) ! <encoder> [! capsfilter profile] ! h264parse

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The module's one exported function: the binary finds it by name (engine_loader.cpp) after dlopen().
 #include <gst/gst.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PushOutput: the bus, the retry and the check timers run on the engine's main loop; the buffer probe on the
 // streaming thread only counts.
 #include "stream/gst/push_output.h"

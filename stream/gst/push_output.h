@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PushOutput: one kind = "push" sink. Its own pipeline, fed through a BranchFeed:
 //
 //   appsrc ! h264parse config-interval=-1 ! rtspclientsink (TCP)       rtsp://: ANNOUNCE, then RECORD

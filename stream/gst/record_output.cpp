@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RecordOutput: format-location runs on splitmuxsink's streaming thread, the bus and the timer on the engine's main
 // loop; the mutex guards the directory's bookkeeping they share.
 #include "stream/gst/record_output.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RecordOutput: one kind = "record" sink. Its own pipeline, fed through a BranchFeed:
 //
 //   appsrc ! h264parse ! splitmuxsink (mp4mux with 1 s fragments, or matroskamux; a new file every segment_s)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RtspOutput: the server's signals run on the engine's main loop thread, push() on the encoder's streaming thread;
 // the mutex guards what both touch (the media's appsrc, the clients).
 #include "stream/gst/rtsp_output.h"

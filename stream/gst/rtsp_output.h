@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RtspOutput: one kind = "rtsp" sink: a gst-rtsp-server on its address with one shared media at its path. The
 // media's pipeline is an appsrc fed the encoder's access units (push()), so every client of the mount shares the
 // one encode; RTP goes over UDP or TCP interleaved as the client asks. A new media starts at a keyframe, and every

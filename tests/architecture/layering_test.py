@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The folder layering of docs/architecture.md, checked: every #include "folder/..." in a production folder must name
 a folder that the table below lets it use, and inside a folder the includes between its files (a .cpp and its .h
 counted as one) form no cycle. A new edge is a design decision: change the table and the document together. Exit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A privacy mask against an opaque overlay of the same area, in the same run (BM_Mask/<kind>/<format>/<size>):
 //   opaque_overlay  the cached overlay path: a NativeLayer of the polygon drawn opaque (OpenCV fillPoly) blended
 //   fill            the mask filled with a colour (MaskPainter::fill over the polygon's macropixel spans)

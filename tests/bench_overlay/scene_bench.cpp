@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The overlay's Speed section: a ground grid of 40 lines 2 px wide, an axes triad 3 px wide and 3 text labels seen by
 // a pitched-down camera, at 1280x720 and 1920x1080 in YUYV and NV12:
 //   static       per-frame blend of the unchanged overlay;

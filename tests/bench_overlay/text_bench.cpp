@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The README's demo scene (config/examples/demo.toml, read through the config loader: grid, axes, labels, a
 // timestamp and a frame counter, both on translucent boxes) blended on cold frames as the daemon does it, frame
 // number and wall clock advancing like a 30 fps camera's, timed from the 300th frame on:

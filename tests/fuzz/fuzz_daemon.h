@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A daemon for the fuzz targets that drive the HTTP API: started once from a fixed config written to a folder of its
 // own (where the config's relative files live too), with the API it would serve.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the live camera survives a save. The input is a PUT /api/camera body (JSON); when the change is
 // accepted over the config's camera, the changed camera is saved into the drop-in beside the config (merged with
 // what a fixed earlier drop-in holds), the config is loaded again through the loader, and the loaded camera must

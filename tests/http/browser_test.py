@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """The alignment page in a real browser against a real `overlayd run`: pose edit, click-to-ground, layer toggle.
 
     tests/http/browser_test.py --overlayd build/daemon/overlayd --workdir /tmp/bt [--config config/examples/demo.toml]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd's HTTP request deadlines through the real binary: bytes that trickle in do not extend them.
 
     tests/http/deadline_test.py --overlayd build/daemon/overlayd --workdir /tmp/deadline

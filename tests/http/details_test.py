@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """What a user notices about the HTTP API, through the real binary: stable sink labels in /metrics and /state, the
 intrinsics the camera really projects with, the capture time on every JPEG, a fresh first /stream part, refusals
 that touch no file, a log line for every change, partial poses, plain JSON errors and readable numbers.

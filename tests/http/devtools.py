@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Headless Chromium driven over the DevTools protocol: just enough for browser_test.py (evaluate, click, screenshot).
 
 Uses Debian's python3-websocket; a pyenv or venv interpreter does not see Debian's dist-packages, so fall back to it.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd's HTTP server against hostile clients on loopback, through the real binary:
 
     tests/http/hostile_test.py --overlayd build/daemon/overlayd --workdir /tmp/hostile

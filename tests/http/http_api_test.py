@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The HTTP API through the real path: `overlayd run` with [http] on loopback, every endpoint and every refusal
 checked with curl (a real client), the stream read by ffprobe, the overlay in snapshots found where /api/project
 says, a pose change seen in the next snapshot, save then restart, and a SIGHUP reload of [http].

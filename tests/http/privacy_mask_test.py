@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Privacy masks through the real binary: a screen mask and a world mask, each filled and pixelated, checked in every
 output the daemon has on this machine without a VM -- /snapshot, /snapshot?raw=1, a part of /stream (MJPEG) and the
 Y4M sink -- against the same scene without the masks (the V4L2 output is the VM tier's: tests/vm). Inside a filled

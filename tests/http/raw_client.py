@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Raw-socket clients for the hostile-client tests: a request with any bytes (lies included), a client that trickles,
 the daemon's fds and memory from /proc, and a counter of /stream parts. Sources may be any 127.x.y.z address: Linux
 routes all of 127/8 to loopback, so one machine can stand for many client addresses."""

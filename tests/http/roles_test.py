@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd's viewer and control credentials through the real binary:
 
     tests/http/roles_test.py --overlayd build/daemon/overlayd --workdir /tmp/roles

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """POST /api/save keeps the whole live camera, through the real binary: every camera key PUT through /api/camera,
 saved, then `overlayd project` on the saved config (a separate process reading the config and its drop-in) gives the
 pixels the live /api/project gives, to 1e-9 px; a restarted daemon's pose-only save keeps the field of view an

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd's HTTPS through the real binary, with a test CA that `openssl` makes in WORKDIR:
 
     tests/http/tls_test.py --overlayd build/daemon/overlayd --workdir /tmp/tls

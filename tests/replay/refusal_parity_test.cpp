@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // check-config promises what run does: every config of tests/data/config/refusals/ is refused by check-config,
 // render and run alike, through the real binary, with the same "file:line:column: key: reason" line and exit
 // status 2; every config of tests/data/config/accepted/ is accepted by all three. A row is a file: its first line

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd over a long run: reloads good and bad, a sink reader that leaves and comes back, RSS, fds and threads flat.
 
     tests/soak/soak_test.py --overlayd build/daemon/overlayd --workdir /tmp/soak [--seconds 180]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """CPU per frame of overlay + encode against the encode alone, same source, same encoder, same run: `overlayd run`
 at 720p30 NV12 (synthetic scene) with an RTSP sink and openh264, with and without a demo-like overlay (a grid, a
 thick polyline, a clock text), each for 20 s after 3 s of warm-up, CPU time read from /proc/PID/stat. Two rounds,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """kind = "record" and kind = "push" through the real path: `overlayd run` (synthetic source, [encoder] openh264)
 writing segments read back by ffprobe, and pushing into ffmpeg listeners:
 - segments: 2 s segments for 9 s give 4 complete files (named by their UTC start) whose durations ffprobe reads

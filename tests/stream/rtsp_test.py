@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """kind = "rtsp" through the real path: `overlayd run` (synthetic source, an overlay, [encoder] openh264, an RTSP
 sink on a free port) read by real clients:
 - ffprobe over UDP and over TCP interleaved reports h264 at the stream's size and rate;

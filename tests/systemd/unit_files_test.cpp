@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The installed units, checked by systemd's own tools: systemd-analyze verify and security, and systemd-sysusers.
 #include <array>
 #include <cstdio>

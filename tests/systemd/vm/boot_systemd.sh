@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: Apache-2.0
 # Opt-in (not in CTest): boots Debian 12 with systemd as PID 1 in QEMU (TCG) and proves that the installed
 # overlayd@.service reaches active (running) under its hardening and that the watchdog restarts a stalled instance.
 # Needs root, mmdebstrap, cpio, qemu-system-x86 and the guest kernel cached by tests/vm/run.sh.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Backoff: 0.5 s doubling to an 8 s ceiling, back to 0.5 s after a success.
 #include "base/backoff.h"
 

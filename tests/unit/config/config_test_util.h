@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers shared by the config tests: loading TOML text, the problems as text, OpenCV's reference projection.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every example under config/examples/ loads without a problem and builds its camera; the README's demo has the
 // scene the README promises.
 #include <filesystem>

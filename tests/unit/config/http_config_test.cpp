@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [http] and the HTTP API's camera requests, read by the config file's readers: defaults, every refusal at its key,
 // the drop-in `POST /api/save` writes read back over the main file.
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[input.text]]: a slot some text shows, fed once, from a file whose folder exists; [[input.can]]: a signal layout
 // that fits the 8 data bytes, an id within its width, a target the scene has, fed once; every refusal at its key.
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The limits of docs/config.md "Limits": every number has a range (the message gives it, for a large finite value as
 // for inf), counts and lengths are refused at the first entry over, the renderer's own rules and the sinks' are
 // refused at their key by the loader (so that check-config refuses what run would), and "did you mean" costs

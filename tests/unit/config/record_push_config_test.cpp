@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[sink]] kind = "record" and "push": read into DaemonConfig::stream, every bad value refused at its key with its
 // line, and what starting would refuse (a missing, non-directory or shared directory; a scheme nothing can push to)
 // refused by the loader, so check-config and run agree.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [encoder] and kind = "rtsp" sinks: the documented defaults, every key's refusal at file:line:key, the limits by
 // name; built without GStreamer both are refused whole, saying which CMake option.
 #include "config_test_util.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FakeGpio's provider and lines.
 #include "fake_gpio.h"
 

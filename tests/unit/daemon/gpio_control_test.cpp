@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GpioControl against simulated lines: start state read, active-low, debounce, the show/hide precedence through
 // SceneControl, outputs across the daemon's states, reloads that keep unchanged lines, busy and lost lines.
 #include "control/gpio_control.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PathInputs on real files: the file's points replace the annotation's through SceneControl; a malformed version is
 // refused naming its line and the points shown stay; a missing file is an empty path; a rebuilt renderer keeps them.
 #include "control/path_inputs.h"

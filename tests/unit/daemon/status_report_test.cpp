@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The one status interface: /state and /metrics write out what each part of the daemon reports of itself, so a new
 // kind of input or sink shows up without an edit to the HTTP API, and a metric family's samples stay together.
 #include "control/status_report.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frame path in steady state allocates nothing: the real stages (the synthetic source drawing the demo's
 // checkerboard scene, the demo's overlay, a Pipeline, a null sink and a copying sink) run 300 frames after a
 // warm-up while every malloc of this test binary is counted, frame by frame.

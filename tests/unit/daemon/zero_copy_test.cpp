@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Zero copy through the daemon: a lease-taking sink gets a reference to the source's own buffer (given back when
 // its last holder drops it, on whatever thread), every other sink a copy; the stats say how many; the config key
 // and what it makes the source do.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The checkerboard scene against Camera::project: on either side of every projected checker edge the colour is the
 // square's expected shade, for plain and distorting lenses and both viewport origins.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The synthetic source: determinism across runs, each pattern's defining property, metadata, stalling, leases.
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>

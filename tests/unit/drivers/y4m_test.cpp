@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Y4M: our sink read back by ffprobe/ffmpeg (size, pix_fmt, frame count, colours) and by our replay (same bytes);
 // ffmpeg's own files read by our replay; truncated and malformed files give Malformed errors naming the frame.
 #include <filesystem>

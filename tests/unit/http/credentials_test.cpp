@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Credentials: bearer tokens and basic users give their roles, anything else none; which role a request needs; the
 // users file's refusals name the line and never the password.
 #include "http/credentials.h"

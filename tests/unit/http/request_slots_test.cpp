@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RequestSlots: the deadlines count from a phase's start whatever happens meanwhile, and a newcomer always finds
 // room by closing the slowest incomplete request (of its address, then of all), never a stream or an answer.
 #include "http/request_slots.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Privacy masks against independent references: which pixels a polygon covers (a winding number at every pixel
 // centre, brute force), the fill (test_frames' own encoding of the colour, byte by byte), the pixelation (block
 // averages summed here from the bytes test_frames says belong to each block) -- in every pixel format, with the

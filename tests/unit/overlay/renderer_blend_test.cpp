@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer end to end in every format: colours, partial alpha, untouched bytes, layers, token text, errors.
 #include <string>
 #include <vector>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // viewing_pipeline_test: the classic viewing pipeline's worked mappings (window, viewport, NDC) hold for our matrices.
 #include <cmath>
 #include <random>

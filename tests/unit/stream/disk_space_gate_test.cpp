@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The full-disk policy: stop once, resume when a segment fits again.
 #include "stream/disk_space_gate.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncodedStream behind a fake engine: the pipeline's sink opens the engine for the stream (I420 of its size),
 // writes inline, hands the engine frames that are released when it lets go, and closes it.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EncoderFeed: the one copy for the encoder, to I420, checked against the frame's own samples; slots bounded, a
 // frame that finds none dropped and counted, a slot given back when its last holder lets go (from any thread).
 #include <gtest/gtest.h>

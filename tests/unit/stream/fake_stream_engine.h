@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FakeStreamEngine: an EncodedStreamEngine that keeps what it is pushed, for the daemon's side's tests. Frames stay
 // held (as GStreamer would hold them in its queues) until the test releases them.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LatencyHistogram: samples land in the bucket whose upper bound first covers them (Prometheus' le), and a
 // quantile is the bound of the bucket holding it, checked against hand-counted samples.
 #include <gtest/gtest.h>

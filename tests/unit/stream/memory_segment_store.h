@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MemorySegmentStore: a SegmentStore in a map, with failures on demand, for the recorder's tests.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Push URLs and the reconnect state.
 #include "stream/push_link.h"
 #include "stream/push_options.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RecordDirectory: finishing, crash leftovers, retention and the figures, on a store in memory; and the real
 // directory store on a temporary folder.
 #include "stream/record_directory.h"

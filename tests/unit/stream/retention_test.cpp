@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Retention: oldest first, by age and by bytes, never the segment being written.
 #include "stream/retention.h"
 

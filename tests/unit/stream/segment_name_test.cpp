@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Segment names: UTC start times (references from `date -u -d @SECONDS +%Y%m%dT%H%M%SZ`), round trips, and what is
 // not ours.
 #include "stream/segment_name.h"

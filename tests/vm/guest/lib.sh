@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Helpers for the guest checks (busybox sh): result lines, vivid set-up, overlayd, and pixel reads from Y4M and
 # raw YUYV files. Every check prints "PASS <name>: ..." or "FAIL <name>: ..."; the host counts those lines.
 

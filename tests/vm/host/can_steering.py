@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Host half of the VM tier's CAN steering check (tests/vm/guest/checks/90-can-steering.sh).
 
 The guest sent steering-wheel angles A and B over vcan0 and kept overlayd's /snapshot JPEGs: one per angle, one after

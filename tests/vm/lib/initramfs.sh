@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The guest's initramfs, in concatenated cpio archives (the kernel unpacks them in order): a base with busybox
 # and the kernel modules, cached per kernel version, and a per-run archive with the V4L2 tools, overlayd, all
 # their libraries, the guest /init and the checks. overlayd's ~150 libraries (OpenCV's closure, 190 MB) are in

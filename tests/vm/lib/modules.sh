@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Out-of-tree kernel modules the Debian image lacks: vimc (a media-controller camera for libcamera) and gpio-sim,
 # gpio-mockup and irq_sim (CONFIG_GPIO_SIM and CONFIG_IRQ_SIM are off in Debian), built from linux-source against
 # the matching headers. vivid itself ships in the image, signed, and is used as is.

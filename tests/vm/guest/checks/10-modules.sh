@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The kernel modules the harness builds out of tree load in Debian's kernel: vimc registers a media device,
 # gpio-mockup a GPIO chip (gpio-sim needs configfs set-up; loading it proves the irq_sim patch links).
 . /vm/lib.sh

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Loopback proof: overlayd captures vivid instance 0 (black pattern) and writes the overlaid stream to instance
 # 1's HDMI output, which vivid loops back (loop_video=1) to instance 1's HDMI capture input. v4l2-ctl reads the
 # looped frames: the axes must be where `overlayd project` puts them, so the overlay went through a real kernel

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # overlayd's HTTP MJPEG stream side by side with µStreamer (Debian 12's ustreamer 4.9, its default CPU encoder, the
 # baseline a user would otherwise run): the same vivid capture, HDMI input at 1280x720p30 YUYV, streamed to ONE
 # client (curl, reading /stream for $STREAM_S seconds) on the guest's loopback, first by overlayd (configs/
