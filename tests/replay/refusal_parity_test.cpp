@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 struct Row {
     std::string path;    // the config, absolute
     std::string refusal; // "LINE:COLUMN: KEY: WORDS" from its first line; empty: it must be accepted
-    std::string needs;   // the optional part it needs ("http", "libcamera", "gpiod"), from its second line
+    std::string needs;   // the optional part it needs ("http", "libcamera", "gpiod", "stream"), from its second line
 };
 
 // Whether this build has the optional part a row needs (OVERLAYD_FEATURES: " http libcamera gpiod ", from CMake).
