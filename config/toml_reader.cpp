@@ -341,9 +341,10 @@ std::optional<std::vector<glm::dvec3>> TableReader::points(std::string_view key,
             *screen = false;
         const size_t wanted = screen && *screen ? 2 : 3;
         if (size != wanted) {
-            const char *expected = !screen ? "an [x, y, z] point" : i == 0 ? "an [x, y] or [x, y, z] point"
-                                                                : wanted == 2 ? "an [x, y] point like the first"
-                                                                              : "an [x, y, z] point like the first";
+            const char *expected = !screen       ? "an [x, y, z] point"
+                                   : i == 0      ? "an [x, y] or [x, y, z] point"
+                                   : wanted == 2 ? "an [x, y] point like the first"
+                                                 : "an [x, y, z] point like the first";
             problemAt(element, path, std::string("expected ") + expected + ", got " + typeName(element));
             return std::nullopt;
         }

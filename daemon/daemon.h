@@ -120,7 +120,7 @@ private:
     // The encoded outputs the running sinks feed, and those buildSinks() made for sinks not yet switched in.
     std::shared_ptr<stream::EncodedStream> stream_, builtStream_;
     EncodedStreamReport streamReport_{stream_}; // reports whichever encoded stream runs, or nothing
-    HttpFront http_;        // after everything its API reads
+    HttpFront http_;                            // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running
     std::optional<SignalReader> signals_; // created before any sink thread, so that every thread blocks them

@@ -122,8 +122,8 @@ void EncodedStreamReport::report(StatusReport &report) const
         }
         if (sink.kind != "rtsp")
             report.metric("overlayd_encoded_sink_dropped_total", "counter",
-                          "Access units a recording or push dropped while behind or not running.",
-                          double(sink.dropped), sinkLabel);
+                          "Access units a recording or push dropped while behind or not running.", double(sink.dropped),
+                          sinkLabel);
     }
 
     const std::string family = "overlayd_stage_latency_seconds";

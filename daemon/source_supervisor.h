@@ -12,12 +12,12 @@
 #include <optional>
 #include <string>
 
+#include "base/backoff.h"
 #include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
 #include "control/run_state.h"
 #include "control/scene_control.h"
-#include "base/backoff.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
 #include "daemon/open_stream.h"

@@ -32,7 +32,7 @@ struct StageFactories {
     // The encoded outputs' engine (the GStreamer module, loaded on first use); asked only when an encoded sink is
     // configured.
     std::function<Result<std::unique_ptr<stream::EncodedStreamEngine>>(const stream::StreamOptions &,
-                                                                        const stream::EngineLog &)>
+                                                                       const stream::EngineLog &)>
         streamEngine;
 };
 

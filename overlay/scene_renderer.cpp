@@ -305,8 +305,9 @@ Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
 {
     for (const Annotation &annotation : scene_.annotations)
         if (!enabled && isMask(annotation) && annotation.style.layer == name)
-            return makeError(ErrorCode::InvalidArgument, "layer \"" + std::string(name) + "\" holds the privacy mask \"" +
-                                                             annotation.name + "\", which cannot be hidden");
+            return makeError(ErrorCode::InvalidArgument, "layer \"" + std::string(name) +
+                                                             "\" holds the privacy mask \"" + annotation.name +
+                                                             "\", which cannot be hidden");
     for (Layer &layer : layers_) {
         if (layer.name == name) {
             layer.enabled = enabled;

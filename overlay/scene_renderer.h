@@ -113,7 +113,7 @@ private:
     std::vector<Layer> layers_;
     std::vector<TextSlot> texts_;
     std::vector<ImageSprite> images_;
-    PrivacyMasks masks_; // kept out of layers_: no layer switch reaches them
+    PrivacyMasks masks_;                 // kept out of layers_: no layer switch reaches them
     std::vector<std::string> slotNames_; // the {slot:NAME} tokens the scene's texts use
     SlotTexts slotTexts_;
     FrameCoverageSink frameSink_;

@@ -5,8 +5,7 @@
 
 namespace overlayd {
 
-Status Camera::projectPolygon(std::span<const glm::dvec4> world, std::vector<glm::dvec2> &out,
-                              double tolerancePx) const
+Status Camera::projectPolygon(std::span<const glm::dvec4> world, std::vector<glm::dvec2> &out, double tolerancePx) const
 {
     out.clear();
     if (path_.wide)

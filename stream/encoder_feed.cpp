@@ -79,7 +79,8 @@ bool EncoderFeed::copyInto(uint8_t *slot, const FrameView &frame)
         for (unsigned row = 0; row < h; row += 2) {
             const uint8_t *top = frame.planes[0].data + size_t(row) * frame.planes[0].stride;
             const uint8_t *bottom = top + frame.planes[0].stride;
-            uint8_t *toY = y + size_t(row) * w, *toU = u + size_t(row / 2) * (w / 2), *toV = v + size_t(row / 2) * (w / 2);
+            uint8_t *toY = y + size_t(row) * w, *toU = u + size_t(row / 2) * (w / 2),
+                    *toV = v + size_t(row / 2) * (w / 2);
             for (unsigned x = 0; x < w; ++x)
                 toY[x] = top[2 * x], toY[w + x] = bottom[2 * x];
             for (unsigned x = 0; x < w / 2; ++x) {

@@ -68,12 +68,15 @@ double oddShare(double t, double w)
 // ground axis as the filter's half-width (dark where exactly one of the column and the row is odd).
 bool blendFootprint(const PixelCorners &corners, double squareMetres, uint8_t *px)
 {
-    const glm::dvec2 lo = glm::min(glm::min(corners.tl.point, corners.tr.point), glm::min(corners.bl.point, corners.br.point));
-    const glm::dvec2 hi = glm::max(glm::max(corners.tl.point, corners.tr.point), glm::max(corners.bl.point, corners.br.point));
+    const glm::dvec2 lo =
+        glm::min(glm::min(corners.tl.point, corners.tr.point), glm::min(corners.bl.point, corners.br.point));
+    const glm::dvec2 hi =
+        glm::max(glm::max(corners.tl.point, corners.tr.point), glm::max(corners.bl.point, corners.br.point));
     const glm::dvec2 centre = 0.5 * (lo + hi) / squareMetres, extent = (hi - lo) / squareMetres;
     if (std::max(extent.x, extent.y) < kFootprintFiltered)
         return false;
-    const double oddX = oddShare(centre.x, std::max(extent.x, 1e-3)), oddY = oddShare(centre.y, std::max(extent.y, 1e-3));
+    const double oddX = oddShare(centre.x, std::max(extent.x, 1e-3)),
+                 oddY = oddShare(centre.y, std::max(extent.y, 1e-3));
     const double dark = oddX * (1.0 - oddY) + oddY * (1.0 - oddX);
     for (unsigned k = 0; k < 3; ++k)
         px[k] = uint8_t(std::lround(kSceneLight[k] + dark * (double(kSceneDark[k]) - kSceneLight[k])));

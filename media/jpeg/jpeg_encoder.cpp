@@ -94,8 +94,8 @@ Status JpegEncoder::compressYcbcr(const FrameView &frame, Colorimetry colorimetr
     }
     unsigned char *buffer = reserve(frame, subsampling);
     size = jpeg_.size();
-    if (tjCompressFromYUVPlanes(handle_.get(), planes, int(frame.width), strides.data(), int(frame.height),
-                                subsampling, &buffer, &size, quality, TJFLAG_NOREALLOC) != 0)
+    if (tjCompressFromYUVPlanes(handle_.get(), planes, int(frame.width), strides.data(), int(frame.height), subsampling,
+                                &buffer, &size, quality, TJFLAG_NOREALLOC) != 0)
         return failed(frame);
     return Ok{};
 }

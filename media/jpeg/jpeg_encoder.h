@@ -62,7 +62,7 @@ private:
     std::unique_ptr<void, HandleDeleter> handle_; // a tjhandle
     JpegChroma chroma_;
     std::array<std::vector<uint8_t>, 2> halved_; // Cb, Cr at 4:2:0 (JpegChroma::Halved)
-    JfifMapping mapping_{Colorimetry{}};          // rebuilt only when the colorimetry changes
+    JfifMapping mapping_{Colorimetry{}};         // rebuilt only when the colorimetry changes
     JfifPlanes planes_;
     std::vector<uint8_t> jpeg_; // tjBufSize() bytes: libjpeg-turbo writes into it without reallocating
 };

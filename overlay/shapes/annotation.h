@@ -179,9 +179,9 @@ struct MaskShape {
     unsigned blockPx = 16;
 };
 
-using Shape = std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape,
-                           HorizonShape, GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape,
-                           ImageShape, MaskShape>;
+using Shape =
+    std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape, HorizonShape,
+                 GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape, ImageShape, MaskShape>;
 
 struct Annotation {
     std::string name;                       // for logs and error messages

@@ -97,10 +97,9 @@ Result<EncoderElement> makeEncoderElement(const EncoderOptions &options, double 
     }
     // openh264 encodes constrained baseline only; the others are told the profile through their output caps.
     if (out.factory != "openh264enc")
-        out.outputCaps = gst_caps_new_simple("video/x-h264", "profile", G_TYPE_STRING,
-                                             options.profile == Profile::Baseline ? "constrained-baseline"
-                                                                                  : profileName(options.profile),
-                                             nullptr);
+        out.outputCaps = gst_caps_new_simple(
+            "video/x-h264", "profile", G_TYPE_STRING,
+            options.profile == Profile::Baseline ? "constrained-baseline" : profileName(options.profile), nullptr);
     return out;
 }
 

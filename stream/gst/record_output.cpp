@@ -92,8 +92,8 @@ Status RecordOutput::build()
     // splitmuxsink cuts before a keyframe interval that would pass max-size-time by any amount, and a camera's
     // timestamps jitter by microseconds: without the slack, segment_s = 2 with keyframes every second cuts 1 s files.
     const guint64 maxTime = guint64(options_.record.segmentSec * GST_SECOND) + kSegmentSlackNs;
-    g_object_set(mux, "max-size-time", maxTime, "async-finalize", TRUE,
-                 "muxer-factory", mp4 ? "mp4mux" : "matroskamux", nullptr);
+    g_object_set(mux, "max-size-time", maxTime, "async-finalize", TRUE, "muxer-factory", mp4 ? "mp4mux" : "matroskamux",
+                 nullptr);
     if (mp4) {
         GstStructure *properties =
             gst_structure_new("properties", "fragment-duration", G_TYPE_UINT, kFragmentMs, nullptr);

@@ -75,8 +75,8 @@ Status RtspOutput::start(GMainContext *context)
     gst_rtsp_media_factory_set_launch(factory, "( appsrc name=encoded is-live=true format=time ! h264parse "
                                                "config-interval=-1 ! rtph264pay name=pay0 pt=96 config-interval=-1 )");
     gst_rtsp_media_factory_set_shared(factory, TRUE); // one media, one pipeline, for every client of the mount
-    gst_rtsp_media_factory_set_protocols(factory, GstRTSPLowerTrans(GST_RTSP_LOWER_TRANS_UDP |
-                                                                    GST_RTSP_LOWER_TRANS_TCP));
+    gst_rtsp_media_factory_set_protocols(factory,
+                                         GstRTSPLowerTrans(GST_RTSP_LOWER_TRANS_UDP | GST_RTSP_LOWER_TRANS_TCP));
     g_signal_connect(factory, "media-configure", G_CALLBACK(onMediaConfigure), this);
     GstRTSPMountPoints *mounts = gst_rtsp_server_get_mount_points(server_);
     gst_rtsp_mount_points_add_factory(mounts, options_.rtsp.path.c_str(), factory);
@@ -86,8 +86,8 @@ Status RtspOutput::start(GMainContext *context)
     GError *error = nullptr;
     source_ = gst_rtsp_server_create_source(server_, nullptr, &error);
     if (source_ == nullptr) {
-        std::string message = options_.key + ": RTSP cannot listen on " + options_.rtsp.listen + ": " +
-                              (error ? error->message : "?");
+        std::string message =
+            options_.key + ": RTSP cannot listen on " + options_.rtsp.listen + ": " + (error ? error->message : "?");
         g_clear_error(&error);
         return makeError(ErrorCode::Io, message);
     }

@@ -47,7 +47,7 @@ private:
     GSource *source_ = nullptr;
 
     mutable std::mutex mutex_;
-    GstElement *appsrc_ = nullptr; // the shared media's, while one is prepared (a reference)
+    GstElement *appsrc_ = nullptr;  // the shared media's, while one is prepared (a reference)
     GstRTSPMedia *media_ = nullptr; // its media (a reference), whose signal is ours to disconnect
     bool waitingForKeyframe_ = true;
     GstClockTime offset_ = GST_CLOCK_TIME_NONE; // the encoder's time of the media's first access unit

@@ -29,8 +29,8 @@ constexpr const char *kFamily = "BM_Mask";
 std::vector<cv::Point> outline(unsigned width, unsigned height)
 {
     const int w = int(width), h = int(height);
-    return {{w / 10, h / 10}, {w * 6 / 10, h / 8}, {w * 7 / 10, h / 2}, {w / 2, h * 4 / 10},
-            {w * 6 / 10, h * 8 / 10}, {w / 8, h * 7 / 10}};
+    return {{w / 10, h / 10},    {w * 6 / 10, h / 8},      {w * 7 / 10, h / 2},
+            {w / 2, h * 4 / 10}, {w * 6 / 10, h * 8 / 10}, {w / 8, h * 7 / 10}};
 }
 
 SpanRows maskSpans(unsigned width, unsigned height, const MaskPainter &painter)

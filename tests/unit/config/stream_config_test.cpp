@@ -110,7 +110,9 @@ TEST(StreamConfig, EveryRefusalIsAtItsKey)
 {
     if (!streamBuiltIn())
         GTEST_SKIP() << "built without the encoded outputs";
-    const auto encoder = [](const std::string &line) { return loadInvalid(kBase + kRtsp + "[encoder]\n" + line); };
+    const auto encoder = [](const std::string &line) {
+        return loadInvalid(kBase + kRtsp + "[encoder]\n" + line);
+    };
     EXPECT_TRUE(hasProblem(encoder("encoder = \"nvenc\"\n"), "encoder.encoder", "auto | v4l2 | openh264 | x264"));
     EXPECT_TRUE(hasProblem(encoder("codec = \"h265\"\n"), "encoder.codec", "h264"));
     EXPECT_TRUE(hasProblem(encoder("device = \"video11\"\n"), "encoder.device", "/dev/video11"));
@@ -125,7 +127,9 @@ TEST(StreamConfig, EveryRefusalIsAtItsKey)
     EXPECT_TRUE(hasProblem(encoder("queue = 9\n"), "encoder.queue", "8"));
     EXPECT_TRUE(hasProblem(encoder("bitrate = 5\n"), "encoder.bitrate", "unknown key"));
 
-    const auto rtsp = [](const std::string &lines) { return loadInvalid(kBase + kRtsp + lines); };
+    const auto rtsp = [](const std::string &lines) {
+        return loadInvalid(kBase + kRtsp + lines);
+    };
     EXPECT_TRUE(hasProblem(rtsp("listen = \"unix:/tmp/x\"\n"), "sink[0].listen", "HOST:PORT"));
     EXPECT_TRUE(hasProblem(rtsp("listen = \"127.0.0.1:0\"\n"), "sink[0].listen", "1 to 65535"));
     EXPECT_TRUE(hasProblem(rtsp("listen = \"nowhere\"\n"), "sink[0].listen", ""));
@@ -134,7 +138,7 @@ TEST(StreamConfig, EveryRefusalIsAtItsKey)
     EXPECT_TRUE(hasProblem(rtsp("path = \"/a b\"\n"), "sink[0].path", "mount point"));
     EXPECT_TRUE(hasProblem(rtsp("max_clients = 65\n"), "sink[0].max_clients", "64"));
     EXPECT_TRUE(hasProblem(rtsp("file = \"x\"\n"), "sink[0].file", "unknown key"));
-    EXPECT_TRUE(hasProblem(loadInvalid(kBase + kRtsp + kRtsp + "path = \"/other\"\n"), "sink[1].listen",
-                           "sink[0] already"));
+    EXPECT_TRUE(
+        hasProblem(loadInvalid(kBase + kRtsp + kRtsp + "path = \"/other\"\n"), "sink[1].listen", "sink[0] already"));
     EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"rtps\"\n"), "sink[0].kind", "rtsp"));
 }

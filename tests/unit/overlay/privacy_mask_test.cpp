@@ -51,9 +51,8 @@ std::vector<glm::dvec2> starOutline()
 // coordinates) inside the outline.
 std::vector<bool> expectedMask(const std::vector<glm::dvec2> &outline, const PixelFormatInfo &format)
 {
-    const unsigned hs = format.encoding == ColourEncoding::Yuv && format.cbOffset != kNoComponent
-                            ? format.hSubSampling
-                            : 1,
+    const unsigned hs = format.encoding == ColourEncoding::Yuv && format.cbOffset != kNoComponent ? format.hSubSampling
+                                                                                                  : 1,
                    vs = hs == 1 ? 1 : format.vSubSampling;
     std::vector<bool> inside(kWidth * kHeight), masked(kWidth * kHeight);
     for (unsigned y = 0; y < kHeight; ++y)
@@ -112,8 +111,7 @@ PrivacyMasks screenMask(const std::vector<glm::dvec2> &outline, std::optional<Rg
 }
 
 class PrivacyMaskFormat : public testing::TestWithParam<std::string>
-{
-};
+{};
 
 TEST(PolygonSpans, CoverThePixelsWhoseCentresTheWindingNumberPutsInside)
 {
@@ -180,7 +178,9 @@ TEST_P(PrivacyMaskFormat, PixelationIsEachBlocksAverageOfItsMaskedSamples)
     const std::vector<bool> masked = expectedMask(starOutline(), *format.format);
     // Sums and counts per (kind, block), from the original bytes.
     std::map<std::tuple<char, int, int>, std::pair<unsigned, unsigned>> blocks;
-    const auto blockOf = [&](char kind, cv::Point pixel) { return std::tuple(kind, pixel.x / 8, pixel.y / 8); };
+    const auto blockOf = [&](char kind, cv::Point pixel) {
+        return std::tuple(kind, pixel.x / 8, pixel.y / 8);
+    };
     forEachByte(original, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
         if (masked[pixel.y * kWidth + pixel.x]) {
             auto &[sum, count] = blocks[blockOf(kind, pixel)];
