@@ -64,7 +64,9 @@ Result<EncoderElement> makeV4l2(const EncoderOptions &options, unsigned gop)
 Result<EncoderElement> makeEncoderElement(const EncoderOptions &options, double fps)
 {
     const double rate = fps > 0 ? fps : 30.0;
-    const unsigned gop = std::max(1u, unsigned(std::lround(options.keyframeIntervalSec * rate)));
+    // The engine forces keyframes every keyframe_s by the frames' times; the encoder's own count of frames is a
+    // fallback set past it, so that at the nominal rate the two never place keyframes a frame apart.
+    const unsigned gop = std::max(2u, unsigned(std::lround(2 * options.keyframeIntervalSec * rate)));
     EncoderElement out;
     if (options.kind == EncoderKind::V4l2 || options.kind == EncoderKind::Auto) {
         auto v4l2 = makeV4l2(options, gop);

@@ -61,6 +61,7 @@ Status GstStreamEngine::build(const EngineFormat &format)
 {
     format_ = format;
     firstCapture_.reset();
+    nextKeyframe_ = 0;
     auto encoder = makeEncoderElement(options_.encoder, format.fps);
     if (!encoder)
         return encoder.error();
@@ -160,6 +161,13 @@ void GstStreamEngine::push(EncoderInput frame)
     GST_BUFFER_PTS(buffer) = pts;
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
     GST_BUFFER_OFFSET(buffer) = held->sequence;
+    // Keyframes by time, not by frame count: when frames are dropped or a source runs slow, a count of frames
+    // spans more than keyframe_s, and recordings cut at keyframes would come out short.
+    if (pts >= nextKeyframe_) {
+        if (pts > 0) // the first frame is a keyframe anyway
+            requestKeyframe(pts);
+        nextKeyframe_ = pts + GstClockTime(options_.encoder.keyframeIntervalSec * GST_SECOND);
+    }
     const auto blended = GstClockTime(held->blendedTime.count()); // `held` may be gone once the buffer is pushed
     if (gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer) != GST_FLOW_OK) // takes the buffer either way
         return;
@@ -172,12 +180,12 @@ void GstStreamEngine::push(EncoderInput frame)
         blendedAt_.pop_front();
 }
 
-void GstStreamEngine::requestKeyframe()
+void GstStreamEngine::requestKeyframe(GstClockTime at)
 {
     if (encoder_ == nullptr)
         return;
     GstPad *pad = gst_element_get_static_pad(encoder_, "src");
-    gst_pad_send_event(pad, gst_video_event_new_upstream_force_key_unit(GST_CLOCK_TIME_NONE, TRUE, 0));
+    gst_pad_send_event(pad, gst_video_event_new_upstream_force_key_unit(at, TRUE, 0));
     gst_object_unref(pad);
 }
 

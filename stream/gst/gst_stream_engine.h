@@ -38,8 +38,9 @@ public:
 
 private:
     Status build(const EngineFormat &format);
-    // An upstream force-key-unit event to the encoder: the next frame is encoded as an IDR.
-    void requestKeyframe();
+    // An upstream force-key-unit event to the encoder: the frame whose running time is `at` or later (the next
+    // frame when `at` is none) is encoded as an IDR.
+    void requestKeyframe(GstClockTime at = GST_CLOCK_TIME_NONE);
     static GstFlowReturn onEncoded(GstAppSink *sink, gpointer self);
     static gboolean onBusMessage(GstBus *, GstMessage *message, gpointer self);
 
@@ -56,6 +57,7 @@ private:
     std::vector<std::unique_ptr<RtspOutput>> rtsp_;
     std::vector<std::unique_ptr<EncodedOutput>> outputs_; // recordings and pushes
     std::optional<std::chrono::nanoseconds> firstCapture_;
+    GstClockTime nextKeyframe_ = 0; // PTS: the first frame at or past it is forced to be a keyframe
 
     mutable std::mutex mutex_;
     EngineState state_;
