@@ -49,7 +49,10 @@ cp docs/*.md "$doc/"
 sed -e "s/@VERSION@/$version/" man/overlayd.1.scd | scdoc > "$stage/usr/share/man/man1/overlayd.1"
 python3 man/config_page.py docs/config.md "$out/overlayd.toml.5.scd" "$version"
 scdoc < "$out/overlayd.toml.5.scd" > "$stage/usr/share/man/man5/overlayd.toml.5"
-sed -e "s/@VERSION@/$version/" -e "s/@DATE@/$(date -R -u -d "@${SOURCE_DATE_EPOCH:-$(git log -1 --format=%ct 2>/dev/null || date +%s)}")/" \
+# The Maintainer field and the change log's signature: Debian's own variables (as dch reads them), so whoever ships
+# the package names themselves; without them, the project's placeholder address.
+maintainer="${DEBFULLNAME:-The overlayd authors} <${DEBEMAIL:-overlayd@example.org}>"
+sed -e "s/@VERSION@/$version/" -e "s|@MAINTAINER@|$maintainer|" -e "s/@DATE@/$(date -R -u -d "@${SOURCE_DATE_EPOCH:-$(git log -1 --format=%ct 2>/dev/null || date +%s)}")/" \
     debian/changelog.in > "$doc/changelog"
 gzip -9n "$stage"/usr/share/man/man*/* "$doc/changelog"
 find "$doc" -name '*.md' -size +4k -exec gzip -9n {} +
@@ -75,7 +78,7 @@ depends=$(cd "$scratch" && "${shlibdeps[@]}" 2>"$scratch/warnings" | sed -n 's/^
 install -m 755 debian/postinst debian/prerm debian/postrm "$stage/DEBIAN/"
 echo /etc/overlayd/overlayd.toml > "$stage/DEBIAN/conffiles"
 size=$(du -sk --exclude=DEBIAN "$stage" | cut -f1)
-sed -e "s/@VERSION@/$version/" -e "s/@ARCH@/$arch/" -e "s/@SIZE@/$size/" -e "s/@SHLIBS@/$depends/" \
+sed -e "s/@VERSION@/$version/" -e "s|@MAINTAINER@|$maintainer|" -e "s/@ARCH@/$arch/" -e "s/@SIZE@/$size/" -e "s/@SHLIBS@/$depends/" \
     debian/control.in > "$stage/DEBIAN/control"
 (cd "$stage" && find . -path ./DEBIAN -prune -o -type f -printf '%P\0' | LC_ALL=C sort -z | xargs -0 md5sum) \
     > "$stage/DEBIAN/md5sums"
