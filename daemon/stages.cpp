@@ -6,6 +6,7 @@
 
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
+#include "overlay/scene_renderer.h"
 #include "stream/engine_loader.h"
 
 namespace overlayd {
@@ -17,7 +18,7 @@ Result<std::unique_ptr<OverlayRenderer>> buildRenderer(const OverlayScene &scene
 {
     if (scene.annotations.empty())
         return std::unique_ptr<OverlayRenderer>();
-    return OverlayRenderer::create(scene, camera, format);
+    return SceneRenderer::create(scene, camera, format);
 }
 
 } // namespace

@@ -36,7 +36,7 @@ struct StageFactories {
         streamEngine;
 };
 
-// makeSource, makeSink, and OverlayRenderer::create for the negotiated stream.
+// makeSource, makeSink, and SceneRenderer::create for the negotiated stream.
 StageFactories defaultStageFactories();
 
 // Whether the source renders its frames through the stream's camera (the synthetic checkerboard scene).

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // OverlayRenderer: one stream's overlay. World annotations are projected and rasterized once per change of scene,
 // camera or format; screen text whose tokens change (timestamp, frame number) lives on small layers of its own that
-// are re-rendered only when their text changes; the per-frame work is the native-format blend.
+// are re-rendered only when their text changes; the per-frame work is the native-format blend. The interface the
+// daemon holds; SceneRenderer::create (overlay/scene_renderer.h) makes the one implementation.
 #pragma once
 
 #include <memory>
@@ -23,11 +24,6 @@ class OverlayRenderer
 {
 public:
     virtual ~OverlayRenderer() = default;
-
-    // Configure time: validates the scene (unknown frames, non-finite values, widths, sizes) and renders it for a
-    // stream. The camera's viewport must have the stream's frame size.
-    static Result<std::unique_ptr<OverlayRenderer>> create(const OverlayScene &scene, const Camera &camera,
-                                                           const StreamFormat &format);
 
     // The camera moved or changed (dynamic overlays): the next blend re-projects. A camera that changes before every
     // frame is drawn straight into each frame; one that then holds still is rendered into the cached layers again.

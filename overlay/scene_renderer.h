@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One NativeLayer per named layer (so switching a
+// SceneRenderer: the OverlayRenderer, made by SceneRenderer::create. One NativeLayer per named layer (so switching a
 // layer off costs nothing and re-projects nothing): the layer is drawn on a full-frame RGBA canvas that all layers
 // share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its
 // memory is proportional to what it draws. A screen text with tokens (a frame counter, a clock, a slot) keeps its
@@ -31,6 +31,11 @@ namespace overlayd {
 class SceneRenderer final : public OverlayRenderer
 {
 public:
+    // Configure time: validates the scene (unknown frames, non-finite values, widths, sizes) and renders it for a
+    // stream. The camera's viewport must have the stream's frame size.
+    static Result<std::unique_ptr<OverlayRenderer>> create(const OverlayScene &scene, const Camera &camera,
+                                                           const StreamFormat &format);
+
     SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera, const StreamFormat &format);
 
     Status setCamera(const Camera &camera) override;

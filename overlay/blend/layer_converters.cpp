@@ -101,7 +101,7 @@ private:
     bool valid_ = false;
 };
 
-void convertLumaPlane(const OverlayLayer &layer, const PixelFormatInfo &, const YcbcrEncoder &encoder, NativeLayer &out)
+void convertLumaPlane(const OverlayLayer &layer, const PixelFormatInfo &, const YcbcrEncoder &encoder, NativeRuns &out)
 {
     LumaCache luma(encoder);
     for (const Span &span : layer.spans()) {
@@ -113,7 +113,7 @@ void convertLumaPlane(const OverlayLayer &layer, const PixelFormatInfo &, const 
     }
 }
 
-void convertRgb(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &, NativeLayer &out)
+void convertRgb(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &, NativeRuns &out)
 {
     const unsigned bytes = format.planes[0].bytesPerGroup;
     for (const Span &span : layer.spans()) {
@@ -134,7 +134,7 @@ void convertRgb(const OverlayLayer &layer, const PixelFormatInfo &format, const 
 }
 
 void convertPacked422(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                      NativeLayer &out)
+                      NativeRuns &out)
 {
     Scratch scratch;
     LumaCache luma(encoder);
@@ -178,7 +178,7 @@ void forChromaIntervals(const OverlayLayer &layer, const PixelFormatInfo &format
 }
 
 void convertSemiPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                       NativeLayer &out)
+                       NativeRuns &out)
 {
     convertLumaPlane(layer, format, encoder, out);
     forChromaIntervals(layer, format, encoder,
@@ -196,7 +196,7 @@ void convertSemiPlanar(const OverlayLayer &layer, const PixelFormatInfo &format,
 }
 
 void convertPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                   NativeLayer &out)
+                   NativeRuns &out)
 {
     convertLumaPlane(layer, format, encoder, out);
     forChromaIntervals(layer, format, encoder,

@@ -3,14 +3,14 @@
 #pragma once
 
 #include "media/pixel_format.h"
-#include "overlay/blend/native_layer.h"
+#include "overlay/blend/native_runs.h"
 #include "overlay/blend/ycbcr.h"
 #include "overlay/raster/overlay_layer.h"
 
 namespace overlayd {
 
 using LayerConverter = void (*)(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                                NativeLayer &out);
+                                NativeRuns &out);
 
 LayerConverter layerConverter(PixelLayout layout);
 

@@ -84,7 +84,7 @@ std::unique_ptr<OverlayRenderer> benchRenderer(benchmark::State &state, const ch
                                                unsigned height)
 {
     auto renderer =
-        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
+        SceneRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());
         return nullptr;
@@ -208,7 +208,7 @@ std::unique_ptr<OverlayRenderer> reverseRenderer(benchmark::State &state, const 
                                                  unsigned height)
 {
     auto renderer =
-        OverlayRenderer::create(reverseScene(), reverseCamera(width, height), streamFormat(formatName, width, height));
+        SceneRenderer::create(reverseScene(), reverseCamera(width, height), streamFormat(formatName, width, height));
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());
         return nullptr;

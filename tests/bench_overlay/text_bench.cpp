@@ -18,7 +18,7 @@
 
 #include "cold_frames.h"
 #include "config/daemon_config.h"
-#include "overlay/overlay_renderer.h"
+#include "overlay/scene_renderer.h"
 
 #ifndef OVERLAYD_DEMO_CONFIG
 #error "OVERLAYD_DEMO_CONFIG must name config/examples/demo.toml"
@@ -48,7 +48,7 @@ std::unique_ptr<OverlayRenderer> demoRenderer(benchmark::State &state, const std
     format.width = width;
     format.height = height;
     format.colorimetry = config->source.colorimetry.value_or(Colorimetry{});
-    auto renderer = camera ? OverlayRenderer::create(config->scene, *camera, format)
+    auto renderer = camera ? SceneRenderer::create(config->scene, *camera, format)
                            : Result<std::unique_ptr<OverlayRenderer>>(camera.error());
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());
