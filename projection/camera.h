@@ -87,7 +87,7 @@ public:
 
     // The visible part of a flat, closed 3D polygon as a pixel outline (memory order; empty when nothing is seen):
     // clipped against the near, far and guard-band side planes before the divide, each edge curved through the lens
-    // to within tolerancePx (camera_polygon.cpp). A lens that sees behind the camera has no such clip: refused.
+    // to within tolerancePx. A lens that sees behind the camera has no such clip: refused.
     Status projectPolygon(std::span<const glm::dvec4> world, std::vector<glm::dvec2> &out,
                           double tolerancePx = kDefaultCurveTolerancePx) const;
 
