@@ -126,7 +126,8 @@ Status GstStreamEngine::build(const EngineFormat &format)
         if (sinkOptions.kind != EncodedSinkKind::Rtsp) {
             std::unique_ptr<EncodedOutput> output;
             if (sinkOptions.kind == EncodedSinkKind::Record)
-                output = std::make_unique<RecordOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+                output = std::make_unique<RecordOutput>(sinkOptions, options_.encoder.keyframeIntervalSec, log_,
+                                                        [this] { requestKeyframe(); });
             else
                 output = std::make_unique<PushOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
             if (auto started = output->start(context_); !started)
@@ -162,11 +163,15 @@ void GstStreamEngine::push(EncoderInput frame)
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
     GST_BUFFER_OFFSET(buffer) = held->sequence;
     // Keyframes by time, not by frame count: when frames are dropped or a source runs slow, a count of frames
-    // spans more than keyframe_s, and recordings cut at keyframes would come out short.
+    // spans more than keyframe_s, and recordings cut at keyframes would come out short. On a grid from the first
+    // frame, each on the first frame at or past its point: late frames do not push the later keyframes back, so a
+    // recording's segments stay segment_s long.
     if (pts >= nextKeyframe_) {
         if (pts > 0) // the first frame is a keyframe anyway
             requestKeyframe(pts);
-        nextKeyframe_ = pts + GstClockTime(options_.encoder.keyframeIntervalSec * GST_SECOND);
+        const auto interval = GstClockTime(options_.encoder.keyframeIntervalSec * GST_SECOND);
+        while (nextKeyframe_ <= pts)
+            nextKeyframe_ += interval;
     }
     const auto blended = GstClockTime(held->blendedTime.count()); // `held` may be gone once the buffer is pushed
     if (gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer) != GST_FLOW_OK) // takes the buffer either way

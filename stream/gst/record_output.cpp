@@ -3,6 +3,8 @@
 // loop; the mutex guards the directory's bookkeeping they share.
 #include "stream/gst/record_output.h"
 
+#include <algorithm>
+
 #include <gst/app/gstappsrc.h>
 
 #include <cstdio>
@@ -25,10 +27,10 @@ std::string baseName(const std::string &path)
 
 } // namespace
 
-RecordOutput::RecordOutput(const EncodedSinkOptions &options, const EngineLog &log,
+RecordOutput::RecordOutput(const EncodedSinkOptions &options, double keyframeIntervalSec, const EngineLog &log,
                            std::function<void()> requestKeyframe)
-    : options_(options), log_(log), feed_(std::move(requestKeyframe)), store_(options.record.directory),
-      directory_(store_, options.record.container, limitsOf(options.record))
+    : options_(options), keyframeIntervalSec_(keyframeIntervalSec), log_(log), feed_(std::move(requestKeyframe)),
+      store_(options.record.directory), directory_(store_, options.record.container, limitsOf(options.record))
 {}
 
 RecordOutput::~RecordOutput()
@@ -89,9 +91,11 @@ Status RecordOutput::build()
     const bool mp4 = options_.record.container == RecordContainer::Mp4;
     // async-finalize: a segment's muxer finishes in the background while the next one starts; it is also the
     // only way to give the muxer properties (the fragments that make a killed MP4 readable).
-    // splitmuxsink cuts before a keyframe interval that would pass max-size-time by any amount, and a camera's
-    // timestamps jitter by microseconds: without the slack, segment_s = 2 with keyframes every second cuts 1 s files.
-    const guint64 maxTime = guint64(options_.record.segmentSec * GST_SECOND) + kSegmentSlackNs;
+    // splitmuxsink cuts before a keyframe interval that would pass max-size-time by any amount, and keyframes land
+    // up to a frame period after their grid points: without the slack, segment_s = 2 with keyframes every second cut
+    // 1 s files, and every 0.5 s at 15 fps 1.6 s files.
+    const guint64 slack = std::max(kMinSegmentSlackNs, guint64(keyframeIntervalSec_ / 2 * GST_SECOND));
+    const guint64 maxTime = guint64(options_.record.segmentSec * GST_SECOND) + slack;
     g_object_set(mux, "max-size-time", maxTime, "async-finalize", TRUE, "muxer-factory", mp4 ? "mp4mux" : "matroskamux",
                  nullptr);
     if (mp4) {

@@ -27,16 +27,20 @@ namespace overlayd::stream::gst {
 
 // Fragments of a recording's MP4 files: what a power cut loses at most, after the picture group splitmuxsink holds.
 inline constexpr guint kFragmentMs = 1000;
-// Added to segment_s for splitmuxsink (record_output.cpp): above a loaded machine's timestamp jitter; a segment may
-// be this much longer than segment_s when the keyframe interval is shorter than it.
-inline constexpr guint64 kSegmentSlackNs = 100 * GST_MSECOND;
+// Added to segment_s for splitmuxsink (record_output.cpp), at least: splitmuxsink cuts before a picture group that
+// would pass its limit by any amount. The engine places keyframes on a grid of keyframe_s from the first frame, each
+// on the first frame at or past its grid point, so a picture group ends up to a frame period late; the slack is half
+// a keyframe interval, and never less than this (a loaded machine's timestamp jitter).
+inline constexpr guint64 kMinSegmentSlackNs = 100 * GST_MSECOND;
 // While stopped for space, the free space is looked at this often.
 inline constexpr guint kSpaceCheckMs = 1000;
 
 class RecordOutput : public EncodedOutput
 {
 public:
-    RecordOutput(const EncodedSinkOptions &options, const EngineLog &log, std::function<void()> requestKeyframe);
+    // keyframeIntervalSec: the encoder's keyframe_s, by which the segments' cuts are placed.
+    RecordOutput(const EncodedSinkOptions &options, double keyframeIntervalSec, const EngineLog &log,
+                 std::function<void()> requestKeyframe);
     ~RecordOutput() override;
 
     Status start(GMainContext *context) override;
@@ -54,6 +58,7 @@ private:
     void handle(GstMessage *message);
 
     EncodedSinkOptions options_;
+    double keyframeIntervalSec_;
     EngineLog log_;
     BranchFeed feed_;
     DirectorySegmentStore store_;
