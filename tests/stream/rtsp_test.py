@@ -61,6 +61,15 @@ def check(ok, what):
         failures.append(what)
 
 
+def verdict(log_path, lines=15):
+    """The exit status: 1 with the failed checks and the daemon's last log lines when any failed."""
+    if failures:
+        print(f"{len(failures)} check(s) failed:\n" + "\n".join(failures))
+        print("".join(open(log_path, encoding="utf-8", errors="replace").readlines()[-lines:]))
+        return 1
+    return 0
+
+
 def rtsp_config(http_port, rtsp_port, keyframe_interval=1.0):
     return SCENE + daemon_fixture.http_section(http_port, control="off") + f"""
 [encoder]
@@ -281,11 +290,7 @@ def main():
     finally:
         status = daemon.stop()
         check(status == 0, f"overlayd stops cleanly on SIGTERM: exit {status}")
-    if failures:
-        print(f"{len(failures)} check(s) failed:\n" + "\n".join(failures))
-        print("".join(open(daemon.log_path, encoding="utf-8", errors="replace").readlines()[-15:]))
-        return 1
-    return 0
+    return verdict(daemon.log_path)
 
 
 if __name__ == "__main__":
