@@ -3,6 +3,7 @@
 // of the engine's module and an RTSP port tried, so that check-config refuses what run would.
 #include "config/config_sections.h"
 
+#include <cstdlib>
 #include <map>
 
 #include "http/listen_address.h"
@@ -93,12 +94,25 @@ void checkEncoderThere(TableReader &root, TableReader *table, const StreamOption
 {
     if (!options.enabled())
         return;
-    if (auto there = checkEncoder(options.encoder); !there) {
-        if (table)
-            table->problem("encoder", there.error().message);
-        else
-            root.problem("encoder", "no [encoder], so encoder = \"auto\": " + there.error().message);
+    auto there = checkEncoder(options.encoder);
+    if (there)
+        return;
+    if (table) {
+        table->problem("encoder", there.error().message);
+        return;
     }
+    // No [encoder]: the first encoded sink's kind is what asked for one ("sink[2]" is the third [[sink]]).
+    const std::string &key = options.sinks.front().key;
+    const toml::node *sinks = root.node("sink");
+    const toml::array *array = sinks ? sinks->as_array() : nullptr;
+    const size_t index = std::strtoul(key.c_str() + key.find('[') + 1, nullptr, 10);
+    const toml::table *sink = array && index < array->size() ? (*array)[index].as_table() : nullptr;
+    const toml::node *kind = sink ? sink->get("kind") : nullptr;
+    const std::string message = "no [encoder], so encoder = \"auto\": " + there.error().message;
+    if (kind)
+        root.problemAt(*kind, key + ".kind", message);
+    else
+        root.problem("encoder", message);
 }
 
 } // namespace

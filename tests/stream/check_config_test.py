@@ -56,7 +56,7 @@ def main():
                              r"element is not installed", without)
     check(ok, f"x264 not installed: {said}")
     config = write(workdir, "auto.toml", SOURCE + rtsp(port))
-    ok, said = refused_alike(overlayd, config, r"auto\.toml:\d+:\d+: encoder: no \[encoder\], so encoder = \"auto\": "
+    ok, said = refused_alike(overlayd, config, r"auto\.toml:7:8: sink\[0\]\.kind: no \[encoder\], so encoder = \"auto\": "
                              r"the openh264enc element is not installed", without)
     check(ok, f"openh264 not installed, encoder = \"auto\": {said}")
 
