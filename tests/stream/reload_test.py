@@ -3,7 +3,7 @@
 """SIGHUP with an RTSP sink, through the real binary and a real client (ffmpeg over TCP):
 - a reload that keeps [encoder] and the encoded sinks as they were (another sink added) keeps the engine: the
   client that watched before goes on decoding through the reload, still the server's one client (same address, same
-  start);
+  start); and when the source's size changes too, the kept engine is opened again for it;
 - a reload that changes the encoder (bitrate) and the mount (/cam to /cam2) on the same port is accepted: the old
   server closes before the new one binds, and a client of the new mount decodes;
 - a reload whose RTSP port another program holds is refused at the file's listen key; one whose port another
@@ -23,10 +23,11 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "http"))
 import daemon_fixture  # noqa: E402
-from rtsp_test import arguments, SCENE, check, decode, verdict, write  # noqa: E402
+from rtsp_test import SCENE, arguments, check, decode, probe, verdict, write  # noqa: E402
 
-def config(http_port, rtsp_port, path="/cam", bitrate=2000, extra=""):
-    return SCENE + daemon_fixture.http_section(http_port, control="off") + f"""
+def config(http_port, rtsp_port, path="/cam", bitrate=2000, extra="", small=False):
+    scene = SCENE.replace("width = 640", "width = 320").replace("height = 360", "height = 240") if small else SCENE
+    return scene + daemon_fixture.http_section(http_port, control="off") + f"""
 [encoder]
 encoder = "openh264"
 bitrate_kbps = {bitrate}
@@ -114,8 +115,15 @@ def main():
         if why:
             print("  the first client said: " + why)
 
+        # The same encoded outputs while the source's size changes and a sink goes: the kept engine is opened again
+        # for the new size.
+        answer = reload(daemon, config(http_port, rtsp_port, small=True), path, 1)
+        check(answer.find("reloaded ") >= 0, f"a reload that changes the source's size and keeps the RTSP sink: {answer}")
+        stream = probe(url, "tcp")
+        check((stream.get("width"), stream.get("height")) == (320, 240), f"ffprobe sees the new size: {stream}")
+
         # 2. The encoder and the mount changed, the port the same: the old server goes before the new one binds.
-        answer = reload(daemon, config(http_port, rtsp_port, path="/cam2", bitrate=1500), path, 1)
+        answer = reload(daemon, config(http_port, rtsp_port, path="/cam2", bitrate=1500), path, 2)
         check(answer.find("reloaded ") >= 0, f"a reload that changes bitrate and mount on the same port: {answer}")
         count, _ = decode(f"rtsp://127.0.0.1:{rtsp_port}/cam2", "tcp", 30)
         check(count == 30, f"a client of the new mount decodes 30 frames: {count}")
@@ -125,7 +133,7 @@ def main():
             holder.bind(("127.0.0.1", 0))
             holder.listen(1)
             held = holder.getsockname()[1]
-            answer = reload(daemon, config(http_port, held, path="/cam3"), path, 2)
+            answer = reload(daemon, config(http_port, held, path="/cam3"), path, 3)
             check(re.search(rf"reload refused.*reload.toml:\d+:\d+: sink\[0\].listen: 127.0.0.1:{held} is in use by ",
                             answer) is not None, f"a reload onto a port another program holds is refused at its key: {answer}")
         # 4. One the file cannot tell is taken (another overlayd holds it: the loader lets a running daemon's port
@@ -136,7 +144,7 @@ def main():
                                       workdir, other_http)
         try:
             other.wait_ready()
-            answer = reload(daemon, config(http_port, other_rtsp, path="/cam3"), path, 3)
+            answer = reload(daemon, config(http_port, other_rtsp, path="/cam3"), path, 4)
             check("reload refused" in answer and f"127.0.0.1:{other_rtsp}" in answer,
                   f"a reload onto a port another overlayd holds is refused when its engine cannot bind: {answer}")
         finally:
