@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// [encoder] and the encoded kinds of [[sink]] (kind = "rtsp"): every key checked here, so that check-config refuses
-// what run would; whether an encoder element exists and a port is free is known only when run loads the engine.
+// [encoder] and the encoded kinds of [[sink]] (kind = "rtsp"): every key checked here, the encoder's element asked
+// of the engine's module and an RTSP port tried, so that check-config refuses what run would.
 #include "config/config_sections.h"
 
+#include <cstdlib>
 #include <map>
 
 #include "http/listen_address.h"
+#include "stream/engine_loader.h"
+#include "stream/listen_check.h"
 
 namespace overlayd::config {
 
@@ -25,6 +28,8 @@ void readRtsp(TableReader &sink, RtspSinkOptions &out)
             sink.problem("listen", address.error().message);
         else if (address->kind == http::ListenAddress::Kind::Unix)
             sink.problem("listen", "an RTSP server listens on HOST:PORT, not a unix socket");
+        else if (auto free = checkListenable(address->host, address->port); !free)
+            sink.problem("listen", free.error().message);
         else
             out.host = address->host, out.port = address->port;
     }
@@ -81,15 +86,50 @@ void readEncodedSink(TableReader &sink, StreamOptions &out)
     out.sinks.push_back(std::move(options));
 }
 
+namespace {
+
+// The encoder an encoded sink would start, asked of the engine's module as run would ask it: an element that is not
+// installed (x264enc, openh264enc) or no V4L2 M2M encoder is refused at [encoder] encoder.
+void checkEncoderThere(TableReader &root, TableReader *table, const StreamOptions &options)
+{
+    if (!options.enabled())
+        return;
+    auto there = checkEncoder(options.encoder);
+    if (there)
+        return;
+    if (table) {
+        table->problem("encoder", there.error().message);
+        return;
+    }
+    // No [encoder]: the first encoded sink's kind is what asked for one ("sink[2]" is the third [[sink]]).
+    const std::string &key = options.sinks.front().key;
+    const toml::node *sinks = root.node("sink");
+    const toml::array *array = sinks ? sinks->as_array() : nullptr;
+    const size_t index = std::strtoul(key.c_str() + key.find('[') + 1, nullptr, 10);
+    const toml::table *sink = array && index < array->size() ? (*array)[index].as_table() : nullptr;
+    const toml::node *kind = sink ? sink->get("kind") : nullptr;
+    const std::string message = "no [encoder], so encoder = \"auto\": " + there.error().message;
+    if (kind)
+        root.problemAt(*kind, key + ".kind", message);
+    else
+        root.problem("encoder", message);
+}
+
+} // namespace
+
 void readEncoder(TableReader &root, StreamOptions &out)
 {
     auto table = root.table("encoder");
-    if (!table)
+    if (!table) {
+        if (streamBuiltIn())
+            checkEncoderThere(root, nullptr, out);
         return;
+    }
     if (!streamBuiltIn()) {
         root.problem("encoder", std::string(kBuiltWithout) + "[encoder] is not available");
         return;
     }
+    const size_t before = table->problems().size(); // the element is asked for only when every key was read
     EncoderOptions &encoder = out.encoder;
     if (auto codec = table->choice<int>("codec", {{"h264", 0}}))
         (void)codec; // the one codec so far; the key is there so that a config says what it gets
@@ -119,6 +159,8 @@ void readEncoder(TableReader &root, StreamOptions &out)
     if (auto queued = table->integer("queue", 1, kMaxQueuedFrames))
         encoder.queuedFrames = unsigned(*queued);
     table->finish();
+    if (table->problems().size() == before)
+        checkEncoderThere(root, &*table, out);
 }
 
 } // namespace overlayd::config

@@ -114,7 +114,22 @@ Result<DaemonConfig> Daemon::loadConfig(std::vector<ConfigProblem> &problems)
     return loaded;
 }
 
-std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &config, Status &status)
+namespace {
+
+// The encoded outputs' sink: its name is its /state and /metrics identity, as the HTTP JPEG feed is "http". Its RTSP
+// ports and record directories are one place, its path, that a reload's new encoder takes over: it opens only once
+// the running one has closed (Pipeline::replaceSinks). No file sink's path begins with '['.
+constexpr const char *kEncoderSinkName = "encoder";
+constexpr const char *kEncoderSinkPath = "[encoder]";
+
+bool isEncoderSink(const SinkWorker &sink)
+{
+    return sink.options().name == kEncoderSinkName && sink.options().path == kEncoderSinkPath;
+}
+
+} // namespace
+
+std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &config, Status &status, bool keepStream)
 {
     std::vector<std::unique_ptr<SinkWorker>> sinks;
     std::vector<SinkOptions> all = config.sinks;
@@ -135,8 +150,8 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
     }
     if (config.http.enabled)
         sinks.push_back(std::make_unique<SinkWorker>(http_.makeSink(), HttpFront::sinkOptions(), logger_));
-    builtStream_.reset();
-    if (config.stream.enabled()) {
+    builtStream_ = keepStream ? stream_ : nullptr;
+    if (config.stream.enabled() && !keepStream) {
         auto engine = factories_.streamEngine(config.stream, [this](int level, const std::string &message) {
             // syslog priorities, as the engine numbers them
             logger_.log(level <= 3   ? LogLevel::Error
@@ -152,7 +167,8 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
         }
         builtStream_ = std::make_shared<stream::EncodedStream>(config.stream, std::move(*engine));
         SinkOptions encoder;
-        encoder.name = "encoder"; // its /state and /metrics identity, as the HTTP JPEG feed is "http"
+        encoder.name = kEncoderSinkName;
+        encoder.path = kEncoderSinkPath;
         sinks.push_back(std::make_unique<SinkWorker>(builtStream_->sink(), encoder, logger_));
     }
     return sinks;
@@ -348,6 +364,8 @@ Result<Daemon::ReopenedParts> Daemon::switchConfig(DaemonConfig next)
                                wantsZeroCopy(config_) != wantsZeroCopy(next);
     const bool sinksChanged =
         config_.sinks != next.sinks || config_.http.enabled != next.http.enabled || config_.stream != next.stream;
+    // The same [encoder] and encoded sinks: the running engine goes on, and its RTSP clients with it.
+    const bool streamKept = stream_ && config_.stream == next.stream;
     // The candidate scene carries the live layer choices and slot texts; the live one is not touched until the switch.
     SceneControl scene = scene_.withScene(next.scene, next.camera);
     std::optional<SourceSupervisor::Staged> stream;
@@ -393,10 +411,13 @@ Result<Daemon::ReopenedParts> Daemon::switchConfig(DaemonConfig next)
     // closed, and the pipeline re-opens them itself if it fails.
     if (sinksChanged) {
         Status built = Ok{};
-        auto sinks = buildSinks(next, built);
+        auto sinks = buildSinks(next, built, streamKept);
         if (!built)
             return inFile(next, "sink", built.error());
-        if (auto replaced = pipeline_.replaceSinks(std::move(sinks), format); !replaced)
+        const Pipeline::KeepSink keep = [streamKept](const SinkWorker &sink) {
+            return streamKept && isEncoderSink(sink);
+        };
+        if (auto replaced = pipeline_.replaceSinks(std::move(sinks), format, keep); !replaced)
             return inFile(next, "sink", replaced.error());
         stream_ = builtStream_;
     } else if (format.format && format != pipeline_.format()) {

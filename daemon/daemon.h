@@ -98,7 +98,10 @@ private:
                       std::unique_ptr<OverlayRenderer> renderer);
     void onFrameDelivered();
     void armStats();
-    std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);
+    // The sinks of a config; with keepStream, without the encoded outputs' sink: the running one goes on (its
+    // [encoder] and encoded sinks are the config's).
+    std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status,
+                                                        bool keepStream = false);
     void applyLogLevel();
     uint64_t sinkFailures() const;
     void shutdown();

@@ -190,30 +190,58 @@ Status openFor(SinkWorker &sink, const StreamFormat &format)
 
 } // namespace
 
-Status Pipeline::replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format)
+Status Pipeline::replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format,
+                              const KeepSink &keep)
 {
-    const auto takesOver = [this](const SinkWorker &sink) {
-        return std::any_of(sinks_.begin(), sinks_.end(),
-                           [&](const auto &running) { return sameOutput(*running, sink); });
+    const auto kept = [&keep](const SinkWorker &sink) {
+        return keep && keep(sink);
     };
+    const auto takesOver = [this, &kept](const SinkWorker &sink) {
+        return std::any_of(sinks_.begin(), sinks_.end(),
+                           [&](const auto &running) { return !kept(*running) && sameOutput(*running, sink); });
+    };
+    const bool newFormat = format != format_;
+    // Gives up: the new sinks close, and the running ones are open for the running format again (those closed, and
+    // the kept ones that a new format re-opened).
+    const auto refuse = [&](Status failed) {
+        for (auto &each : sinks)
+            (void)each->close();
+        for (auto &running : sinks_)
+            if (!running->isOpen() || (newFormat && kept(*running)))
+                if (auto opened = openFor(*running, format_); !opened)
+                    logger_.error(opened.error().message);
+        return failed;
+    };
+    if (newFormat)
+        for (auto &running : sinks_)
+            if (kept(*running))
+                if (auto opened = openFor(*running, format); !opened)
+                    return refuse(opened);
     // First the sinks that write elsewhere, while the running ones still write; then, once those have written what
     // they hold and closed, the ones that take over their files and devices.
     for (const bool afterRunning : {false, true}) {
         if (afterRunning)
-            closeSinks();
+            for (auto &running : sinks_)
+                if (!kept(*running))
+                    if (auto closed = running->close(); !closed)
+                        logger_.error(cat(running->describe(), ": ", closed.error().message));
         for (auto &sink : sinks) {
             if (takesOver(*sink) != afterRunning)
                 continue;
-            if (auto opened = openFor(*sink, format); !opened) {
-                for (auto &each : sinks)
-                    (void)each->close();
-                if (afterRunning)
-                    restoreSinks();
-                return opened;
-            }
+            if (auto opened = openFor(*sink, format); !opened)
+                return refuse(opened);
         }
     }
+    // The kept sinks move over with their counters' last reading, so that the stats line goes on from it.
+    std::vector<SinkCounters> lastCounters(sinks.size(), SinkCounters{});
+    for (size_t i = 0; i < sinks_.size(); ++i)
+        if (kept(*sinks_[i])) {
+            sinks.push_back(std::move(sinks_[i]));
+            lastCounters.push_back(lastCounters_[i]);
+        }
+    std::erase(sinks_, nullptr);
     setSinks(std::move(sinks));
+    lastCounters_ = std::move(lastCounters);
     format_ = format;
     return Ok{};
 }

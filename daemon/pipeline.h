@@ -58,8 +58,11 @@ public:
     Status openSinks(const StreamFormat &format);
     // A reload's sinks take over from the running ones, every one open for `format` (the new stream's or the running
     // one's), or none of them: on failure the running sinks run on as they were and the error names the sink
-    // (replaceSinks in pipeline.cpp says in which order they open).
-    Status replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format);
+    // (replaceSinks in pipeline.cpp says in which order they open). A running sink that `keep` picks is not
+    // replaced: it goes on open (re-opened only for a new format) and joins the new sinks, after them.
+    using KeepSink = std::function<bool(const SinkWorker &)>;
+    Status replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format,
+                        const KeepSink &keep = {});
     // The running sinks for the stream format a reload's new source negotiated; when one cannot take it, every sink
     // is opened for the running format again and the error names the sink.
     Status reopenSinks(const StreamFormat &format);

@@ -54,6 +54,7 @@ test_packages=(
     gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly
     gstreamer1.0-rtsp
     libopenh264-7
+    python3-gi gir1.2-gst-rtsp-server-1.0 # tests/stream's RTSP RECORD server, which the push is proven against
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3
     scdoc man-db # the manual pages (man/) and man's check of them (tests/man)

@@ -111,6 +111,10 @@ public:
 using CreateEngineFunction = EncodedStreamEngine *(*)(const StreamOptions *options, const EngineLog *log,
                                                       std::string *error);
 inline constexpr const char *kCreateEngineSymbol = "overlayd_stream_create_engine";
+// Its second: whether the encoder the options ask for is there (the element installed, a V4L2 M2M encoder present),
+// false with the reason in `error`; for the config loader, so that check-config refuses what run would.
+using CheckEncoderFunction = bool (*)(const EncoderOptions *options, std::string *error);
+inline constexpr const char *kCheckEncoderSymbol = "overlayd_stream_check_encoder";
 // The module's file name, next to the binary in the build tree or in the library folder when installed.
 inline constexpr const char *kModuleFileName = "overlayd-stream.so";
 

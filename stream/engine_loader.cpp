@@ -25,6 +25,7 @@ std::string executableFolder()
 struct Module {
     void *handle = nullptr;
     CreateEngineFunction create = nullptr;
+    CheckEncoderFunction check = nullptr;
     std::string error;
 };
 
@@ -48,12 +49,21 @@ Module openModule()
             return module;
         }
         module.create = reinterpret_cast<CreateEngineFunction>(dlsym(module.handle, kCreateEngineSymbol));
-        if (module.create == nullptr)
+        module.check = reinterpret_cast<CheckEncoderFunction>(dlsym(module.handle, kCheckEncoderSymbol));
+        if (module.create == nullptr || module.check == nullptr)
             module.error = place + " has no " + kCreateEngineSymbol + ": not an overlayd stream module";
         return module;
     }
     module.error =
         std::string("the encoded outputs' module ") + kModuleFileName + " is not installed (looked in " + tried + ")";
+    return module;
+}
+
+const Module &theModule()
+{
+    static std::once_flag once;
+    static Module module;
+    std::call_once(once, [] { module = openModule(); });
     return module;
 }
 
@@ -66,16 +76,25 @@ bool streamBuiltIn()
 
 Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOptions &options, const EngineLog &log)
 {
-    static std::once_flag once;
-    static Module module;
-    std::call_once(once, [] { module = openModule(); });
-    if (module.create == nullptr)
+    const Module &module = theModule();
+    if (module.create == nullptr || module.check == nullptr)
         return makeError(ErrorCode::NotFound, module.error);
     std::string error;
     EncodedStreamEngine *engine = module.create(&options, &log, &error);
     if (engine == nullptr)
         return makeError(ErrorCode::Unsupported, error);
     return std::unique_ptr<EncodedStreamEngine>(engine);
+}
+
+Status checkEncoder(const EncoderOptions &options)
+{
+    const Module &module = theModule();
+    if (module.check == nullptr)
+        return Ok{}; // no module: run says so when it loads the engine; a unit test's binary has none beside it
+    std::string error;
+    if (!module.check(&options, &error))
+        return makeError(ErrorCode::NotFound, error);
+    return Ok{};
 }
 
 } // namespace overlayd::stream

@@ -16,4 +16,9 @@ namespace overlayd::stream {
 // was installed to. An error names every place it looked, or what dlopen said.
 Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOptions &options, const EngineLog &log);
 
+// Whether the encoder the options ask for is on this machine (its GStreamer element installed; for v4l2 an M2M
+// H.264 encoder, at `device` if one is named), asked of the module: the config loader refuses it at its key. Ok
+// when the module itself is not found (loadStreamEngine says that) or the build has no encoded outputs.
+Status checkEncoder(const EncoderOptions &options);
+
 } // namespace overlayd::stream

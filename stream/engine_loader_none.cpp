@@ -15,4 +15,9 @@ Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOption
                                              "(CMake option OVERLAYD_STREAM, GStreamer)");
 }
 
+Status checkEncoder(const EncoderOptions &)
+{
+    return Ok{}; // the config refuses [encoder] itself
+}
+
 } // namespace overlayd::stream

@@ -1,26 +1,55 @@
 // SPDX-License-Identifier: Apache-2.0
-// The module's one exported function: the binary finds it by name (engine_loader.cpp) after dlopen().
+// The module's exported functions: the binary finds them by name (engine_loader.cpp) after dlopen().
 #include <gst/gst.h>
 
+#include "stream/gst/encoder_element.h"
 #include "stream/gst/gst_stream_engine.h"
 
 using overlayd::stream::EncodedStreamEngine;
+using overlayd::stream::EncoderOptions;
 using overlayd::stream::EngineLog;
 using overlayd::stream::StreamOptions;
+
+namespace {
+
+bool startGstreamer(std::string *error)
+{
+    GError *initError = nullptr;
+    if (gst_init_check(nullptr, nullptr, &initError))
+        return true;
+    *error = std::string("GStreamer does not start: ") + (initError ? initError->message : "?");
+    g_clear_error(&initError);
+    return false;
+}
+
+} // namespace
 
 extern "C" __attribute__((visibility("default"))) EncodedStreamEngine *
 overlayd_stream_create_engine(const StreamOptions *options, const EngineLog *log, std::string *error)
 {
-    GError *initError = nullptr;
-    if (!gst_init_check(nullptr, nullptr, &initError)) {
-        *error = std::string("GStreamer does not start: ") + (initError ? initError->message : "?");
-        g_clear_error(&initError);
+    if (!startGstreamer(error))
         return nullptr;
-    }
     try { // nothing may throw across the module's boundary
         return new overlayd::stream::gst::GstStreamEngine(*options, *log);
     } catch (const std::exception &e) {
         *error = e.what();
         return nullptr;
     }
+}
+
+// The element made as the engine would make it, and dropped: what is not installed is found without a pipeline.
+extern "C" __attribute__((visibility("default"))) bool overlayd_stream_check_encoder(const EncoderOptions *options,
+                                                                                     std::string *error)
+{
+    if (!startGstreamer(error))
+        return false;
+    auto made = overlayd::stream::gst::makeEncoderElement(*options, 0.0);
+    if (!made) {
+        *error = made.error().message;
+        return false;
+    }
+    gst_object_unref(gst_object_ref_sink(made->element));
+    if (made->outputCaps != nullptr)
+        gst_caps_unref(made->outputCaps);
+    return true;
 }

@@ -25,26 +25,9 @@ fov = 60.0
 [encoder]
 encoder = "openh264"
 """
-overlay = """
-[[annotation]]
-type = "grid"
-spacing = 1.0
-extent = 20.0
-major_every = 5
-style = { colour = "#ffffffb0", width = 1.0 }
-major_style = { colour = "#ffff00", width = 2.0 }
-[[annotation]]
-type = "polyline"
-points = [[-1.5, 1.0, 0.0], [-1.5, 8.0, 0.0]]
-style = { colour = "#ff00ff", width = 8.0 }
-[[annotation]]
-type = "text"
-text = "{time:%Y-%m-%d %H:%M:%S}"
-position = [10.0, 10.0]
-size_px = 24.0
-background = "#00000080"
-style = { colour = "white" }
-"""
+# The demo-like overlay the encoded row of scripts/compare-peers.sh draws too.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "peers"))
+from encoded import ANNOTATIONS as overlay  # noqa: E402
 def run(name, extra, port, seconds=20):
     path = f"{name}.toml"
     open(path, "w").write(base + extra + f'[[sink]]\nkind = "rtsp"\nlisten = "127.0.0.1:{port}"\npath = "/c"\n')

@@ -11,8 +11,8 @@ writing segments read back by ffprobe, and pushing into ffmpeg listeners:
 - a full filesystem (a 3 MiB tmpfs): the recording stops with a log line while the stream goes on, and records
   again once space is freed; every file on it reads (skipped, and said so, where mount is not permitted);
 - push: into `ffmpeg -listen 1` over RTMP and an SRT listener frames arrive; an RTMP server down at start and up
-  later is reached; into an RTSP listener (`ffmpeg -rtsp_flags listen`, through a proxy that fixes one word, see
-  rtsp_mode_proxy) it is tried and said SKIP when ffmpeg decodes nothing (it does not for gst-launch either).
+  later is reached; into an RTSP server in RECORD mode (gst-rtsp-server, rtsp_record_server.py) what arrives decodes
+  in ffmpeg (SKIP, with the reason, where python3-gi or its RTSP server typelib is missing).
 
     record_test.py --overlayd build/daemon/overlayd --workdir /tmp/record-test
 Exit 0 when every check passed, 1 when any failed (each check prints PASS, FAIL or SKIP with its numbers)."""
@@ -21,10 +21,8 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
 import sys
-import threading
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "http"))
@@ -265,45 +263,55 @@ def test_full_disk(overlayd, workdir):
         subprocess.run(["umount", mount])
 
 
-def rtsp_mode_proxy(listen_port, target_port, stop):
-    """ffmpeg 5.1's RTSP listener compares the Transport header's mode case-sensitively with "record" and refuses
-    rtspclientsink's (correct, RFC 2326: the method name) mode=RECORD. This relay lowers that one word; it touches
-    nothing else, so the push's own requests are what ffmpeg answers."""
-    server = socket.socket()
-    server.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-    server.bind(("127.0.0.1", listen_port))
-    server.listen(1)
-    server.settimeout(0.2)
+def record_server_python():
+    """A python that has GStreamer's introspection (python3-gi): this one, else Debian's."""
+    for python in (sys.executable, "/usr/bin/python3"):
+        if os.path.exists(python) and subprocess.run([python, "-c", "import gi"], capture_output=True).returncode == 0:
+            return python
+    return None
 
-    def pump(source, sink, rewrite):
-        try:
-            while not stop.is_set():
-                data = source.recv(65536)
-                if not data:
-                    break
-                sink.sendall(data.replace(b"mode=RECORD", b"mode=record") if rewrite else data)
-        except OSError:
-            pass
-        for s in (source, sink):
-            try:
-                s.shutdown(socket.SHUT_RDWR)
-            except OSError:
-                pass
 
-    while not stop.is_set():
-        try:
-            client, _ = server.accept()
-        except socket.timeout:
-            continue
-        try:
-            upstream = socket.create_connection(("127.0.0.1", target_port))
-        except OSError:
-            client.close()
-            continue
-        client.settimeout(None)
-        threading.Thread(target=pump, args=(client, upstream, True), daemon=True).start()
-        threading.Thread(target=pump, args=(upstream, client, False), daemon=True).start()
-    server.close()
+def test_rtsp_push(overlayd, workdir):
+    """Into a real RTSP RECORD server (gst-rtsp-server in record mode, rtsp_record_server.py): what it receives,
+    written as an H.264 byte stream, is decoded by ffmpeg at the stream's size."""
+    python = record_server_python()
+    if python is None:
+        print("SKIP push: RTSP into a RECORD server: python3-gi and gir1.2-gst-rtsp-server-1.0 are not installed "
+              "(scripts/install-deps.sh)", flush=True)
+        return
+    port = daemon_fixture.free_port()
+    out = os.path.join(workdir, "rtsp-push.h264")
+    if os.path.exists(out):
+        os.remove(out)
+    server = subprocess.Popen([python, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                     "rtsp_record_server.py"), str(port), "/cam", out, "30"],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    said = server.stdout.readline().strip()
+    if said.startswith("missing"):
+        server.wait()
+        print(f"SKIP push: RTSP into a RECORD server: {said} (python3-gi, gir1.2-gst-rtsp-server-1.0)", flush=True)
+        return
+    try:
+        check(said == "listening", f"push: the RTSP RECORD server listens: {said}")
+        run = Run(overlayd, workdir, "push-rtsp",
+                  config(f'[[sink]]\nkind = "push"\nurl = "rtsp://127.0.0.1:{port}/cam"\n'))
+        connected = run.wait_log(r"pushing to rtsp://", 15)
+        time.sleep(4)
+        run.stop()
+        time.sleep(0.5)
+    finally:
+        server.kill()
+        server.wait()
+    read = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                           "stream=codec_name,width,height,nb_read_frames", "-of", "default=nw=1", out],
+                          capture_output=True, text=True, timeout=30)
+    fields = dict(line.split("=", 1) for line in read.stdout.split() if "=" in line)
+    frames = int(fields["nb_read_frames"]) if fields.get("nb_read_frames", "").isdigit() else 0
+    check(connected and fields.get("codec_name") == "h264" and fields.get("width") == "320" and
+          fields.get("height") == "240" and frames >= 60,
+          f"push: a gst-rtsp-server RECORD server takes ANNOUNCE/SETUP/RECORD and ffmpeg decodes what it received: "
+          f"{frames} frames, {fields.get('width')}x{fields.get('height')} {fields.get('codec_name')} "
+          f"(the push logged that it pushes: {connected})")
 
 
 def listener(args, workdir, name):
@@ -319,13 +327,10 @@ def frames_received(workdir, name):
     return int(counts[-1]) if counts else 0
 
 
-def push_case(overlayd, workdir, name, url, ffmpeg_args, delay_server=0.0, wait=6.0, proxy=None):
+def push_case(overlayd, workdir, name, url, ffmpeg_args, delay_server=0.0, wait=6.0):
     run = Run(overlayd, workdir, "push-" + name, config(f'[[sink]]\nkind = "push"\nurl = "{url}"\n'))
     time.sleep(delay_server)
     process, log = listener(ffmpeg_args, workdir, name)
-    stop = threading.Event()
-    if proxy:
-        threading.Thread(target=rtsp_mode_proxy, args=(proxy[0], proxy[1], stop), daemon=True).start()
     time.sleep(wait)
     run.stop()
     time.sleep(0.5)
@@ -335,7 +340,6 @@ def push_case(overlayd, workdir, name, url, ffmpeg_args, delay_server=0.0, wait=
     except subprocess.TimeoutExpired:
         process.kill()
         process.wait()
-    stop.set()
     log.close()
     return frames_received(workdir, name), run
 
@@ -349,18 +353,7 @@ def test_push(overlayd, workdir):
     frames, _ = push_case(overlayd, workdir, "srt", f"srt://127.0.0.1:{port}",
                           ["-i", f"srt://127.0.0.1:{port}?mode=listener"], wait=6.0)
     check(frames >= 60, f"push: an SRT listener decodes the pushed stream ({frames} frames)")
-    port, relay = daemon_fixture.free_port(), daemon_fixture.free_port()
-    frames, _ = push_case(overlayd, workdir, "rtsp", f"rtsp://127.0.0.1:{relay}/cam",
-                          ["-rtsp_flags", "listen", "-rtsp_transport", "tcp", "-analyzeduration", "5000000", "-i",
-                           f"rtsp://127.0.0.1:{port}/cam"],
-                          wait=7.0, proxy=(relay, port))
-    if frames >= 60:
-        check(True, f"push: an RTSP listener (ffmpeg -rtsp_flags listen) decodes ANNOUNCE/RECORD ({frames} frames)")
-    else:
-        # Not counted as a pass: gst-launch's own rtspclientsink fails the same way into this listener, so the
-        # listener, not the push, is what does not work here (docs/streaming.md "Interoperability").
-        print(f"SKIP push: RTSP into ffmpeg 5.1's listener received {frames} frames: it finds no codec parameters "
-              "behind the relay, as it does for gst-launch's rtspclientsink; RTSP push unproven here", flush=True)
+    test_rtsp_push(overlayd, workdir)
     port = daemon_fixture.free_port()
     frames, run = push_case(overlayd, workdir, "late", f"rtmp://127.0.0.1:{port}/live/cam",
                             ["-listen", "1", "-i", f"rtmp://127.0.0.1:{port}/live/cam"], delay_server=3.0, wait=8.0)

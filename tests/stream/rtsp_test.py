@@ -61,6 +61,25 @@ def check(ok, what):
         failures.append(what)
 
 
+def arguments(doc):
+    """(the binary, the work folder, made) from --overlayd and --workdir."""
+    parser = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--overlayd", required=True)
+    parser.add_argument("--workdir", required=True)
+    args = parser.parse_args()
+    os.makedirs(args.workdir, exist_ok=True)
+    return os.path.abspath(args.overlayd), args.workdir
+
+
+def verdict(log_path, lines=15):
+    """The exit status: 1 with the failed checks and the daemon's last log lines when any failed."""
+    if failures:
+        print(f"{len(failures)} check(s) failed:\n" + "\n".join(failures))
+        print("".join(open(log_path, encoding="utf-8", errors="replace").readlines()[-lines:]))
+        return 1
+    return 0
+
+
 def rtsp_config(http_port, rtsp_port, keyframe_interval=1.0):
     return SCENE + daemon_fixture.http_section(http_port, control="off") + f"""
 [encoder]
@@ -192,23 +211,18 @@ def module_missing(overlayd, workdir):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--overlayd", required=True)
-    parser.add_argument("--workdir", required=True)
-    args = parser.parse_args()
-    os.makedirs(args.workdir, exist_ok=True)
-    overlayd = os.path.abspath(args.overlayd)
+    overlayd, workdir = arguments(__doc__)
 
-    footprint(overlayd, args.workdir)
-    module_missing(overlayd, args.workdir)
-    late_joiner(overlayd, args.workdir)
+    footprint(overlayd, workdir)
+    module_missing(overlayd, workdir)
+    late_joiner(overlayd, workdir)
 
     http_port, rtsp_port = daemon_fixture.free_port(), daemon_fixture.free_port()
-    config = write(args.workdir, "rtsp.toml", rtsp_config(http_port, rtsp_port))
+    config = write(workdir, "rtsp.toml", rtsp_config(http_port, rtsp_port))
     checked = subprocess.run([overlayd, "check-config", config], capture_output=True, text=True)
     check(checked.returncode == 0, f"check-config accepts the RTSP config: {checked.stderr.strip()[-200:]}")
     url = f"rtsp://127.0.0.1:{rtsp_port}/cam"
-    daemon = daemon_fixture.Daemon(overlayd, config, args.workdir, http_port)
+    daemon = daemon_fixture.Daemon(overlayd, config, workdir, http_port)
     try:
         daemon.wait_ready()
         mapped = gstreamer_mapped(daemon.process.pid)
@@ -224,7 +238,7 @@ def main():
         count, rgb = decode(url, "tcp", 60)
         check(count == 60, f"ffmpeg decodes 60 frames over TCP: {count}")
         if rgb:
-            with open(os.path.join(args.workdir, "last-frame.rgb"), "wb") as file:
+            with open(os.path.join(workdir, "last-frame.rgb"), "wb") as file:
                 file.write(rgb)
             line = share_near(rgb, project(overlayd, config, along(LINE)))
             decoy = share_near(rgb, project(overlayd, config, along(DECOY)))
@@ -274,18 +288,14 @@ def main():
 
         # The port is taken now: a second daemon on it stops at start, naming the address.
         second_http = daemon_fixture.free_port()
-        taken = write(args.workdir, "taken.toml", rtsp_config(second_http, rtsp_port))
+        taken = write(workdir, "taken.toml", rtsp_config(second_http, rtsp_port))
         done = subprocess.run([overlayd, "run", "--config", taken], capture_output=True, text=True, timeout=30)
         check(done.returncode != 0 and f"127.0.0.1:{rtsp_port}" in done.stderr,
               f"a taken port stops run: exit {done.returncode}, {done.stderr.strip().splitlines()[-1:]}")
     finally:
         status = daemon.stop()
         check(status == 0, f"overlayd stops cleanly on SIGTERM: exit {status}")
-    if failures:
-        print(f"{len(failures)} check(s) failed:\n" + "\n".join(failures))
-        print("".join(open(daemon.log_path, encoding="utf-8", errors="replace").readlines()[-15:]))
-        return 1
-    return 0
+    return verdict(daemon.log_path)
 
 
 if __name__ == "__main__":
