@@ -7,7 +7,7 @@
 
 # Debian's modules the checks load, with their dependencies (modprobe --show-depends): SocketCAN's core, raw
 # sockets and the virtual CAN bus for checks/90-can-steering.sh.
-VM_GUEST_MODULES="vivid vimc gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci can can-raw vcan"
+VM_GUEST_MODULES="vivid vimc vicodec gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci can can-raw vcan"
 
 vmBaseInitramfs() {
     local out=$VM_KCACHE/base.cpio root=$VM_KCACHE/base-root kimg=$VM_KCACHE/kimg
