@@ -10,6 +10,7 @@
 
 #include "stream/gst/encoder_element.h"
 #include "stream/gst/push_output.h"
+#include "stream/gst/file_output.h"
 #include "stream/gst/record_output.h"
 
 namespace overlayd::stream::gst {
@@ -71,7 +72,9 @@ Status GstStreamEngine::build(const EngineFormat &format)
     pipeline_ = gst_pipeline_new("overlayd-encoder");
     appsrc_ = gst_element_factory_make("appsrc", "feed");
     GstElement *filter = gst_element_factory_make("capsfilter", nullptr);
-    GstElement *parse = gst_element_factory_make("h264parse", nullptr);
+    // FWHT frames leave vicodec whole, one per buffer, each with its header: nothing to parse.
+    const bool h264 = options_.encoder.codec == Codec::H264;
+    GstElement *parse = gst_element_factory_make(h264 ? "h264parse" : "identity", nullptr);
     GstElement *tee = gst_element_factory_make("tee", "encoded");
     GstElement *queue = gst_element_factory_make("queue", nullptr);
     GstElement *sink = gst_element_factory_make("appsink", "rtsp");
@@ -103,10 +106,11 @@ Status GstStreamEngine::build(const EngineFormat &format)
         g_object_set(filter, "caps", encoder->outputCaps, nullptr);
         gst_caps_unref(encoder->outputCaps);
     }
-    GstCaps *au = gst_caps_from_string("video/x-h264,stream-format=byte-stream,alignment=au");
+    GstCaps *au = gst_caps_from_string(h264 ? "video/x-h264,stream-format=byte-stream,alignment=au" : "video/x-fwht");
     g_object_set(sink, "caps", au, "sync", FALSE, "max-buffers", 4u, "drop", TRUE, nullptr);
     gst_caps_unref(au);
-    g_object_set(parse, "config-interval", -1, nullptr);
+    if (h264)
+        g_object_set(parse, "config-interval", -1, nullptr);
     g_object_set(tee, "allow-not-linked", TRUE, nullptr);
     GstAppSinkCallbacks callbacks{};
     callbacks.new_sample = &GstStreamEngine::onEncoded;
@@ -127,10 +131,16 @@ Status GstStreamEngine::build(const EngineFormat &format)
             std::unique_ptr<EncodedOutput> output;
             if (sinkOptions.kind == EncodedSinkKind::Record)
                 output = std::make_unique<RecordOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+            else if (sinkOptions.kind == EncodedSinkKind::File)
+                output = std::make_unique<FileOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
             else
                 output = std::make_unique<PushOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
             if (auto started = output->start(context_); !started)
                 return started;
+            if (sinkOptions.kind == EncodedSinkKind::File)
+                log_(kLogInfo, sinkOptions.key + ": " + codecName(options_.encoder.codec) + " to " +
+                                   sinkOptions.file.path + " (" + encoder->factory +
+                                   (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
             outputs_.push_back(std::move(output));
             continue;
         }
