@@ -10,8 +10,9 @@ constexpr int kLogError = 3;
 
 } // namespace
 
-FileOutput::FileOutput(const EncodedSinkOptions &options, const EngineLog &log, std::function<void()> requestKeyframe)
-    : options_(options), log_(log), feed_(std::move(requestKeyframe))
+FileOutput::FileOutput(const EncodedSinkOptions &options, Codec codec, const EngineLog &log,
+                       std::function<void()> requestKeyframe)
+    : options_(options), log_(log), feed_(std::move(requestKeyframe), codec == Codec::Fwht)
 {}
 
 FileOutput::~FileOutput()

@@ -17,7 +17,8 @@ namespace overlayd::stream::gst {
 class FileOutput : public EncodedOutput
 {
 public:
-    FileOutput(const EncodedSinkOptions &options, const EngineLog &log, std::function<void()> requestKeyframe);
+    FileOutput(const EncodedSinkOptions &options, Codec codec, const EngineLog &log,
+               std::function<void()> requestKeyframe);
     ~FileOutput() override;
     FileOutput(const FileOutput &) = delete;
     FileOutput &operator=(const FileOutput &) = delete;

@@ -99,6 +99,12 @@ Status GstStreamEngine::build(const EngineFormat &format)
     GstCaps *raw = gst_caps_new_simple("video/x-raw", "format", G_TYPE_STRING, "I420", "width", G_TYPE_INT,
                                        int(format.width), "height", G_TYPE_INT, int(format.height), "framerate",
                                        GST_TYPE_FRACTION, fpsNum, 1000, nullptr);
+    // A V4L2 encoder's sink caps list the interlacing and the colorimetries the driver takes, and its accept-caps
+    // wants ours to be a subset: without the two fields vicodec refused the frames (not-negotiated). They say
+    // what GStreamer assumes when they are missing: progressive, BT.601 below 720 lines, BT.709 from there.
+    if (encoder->factory.starts_with("v4l2"))
+        gst_caps_set_simple(raw, "interlace-mode", G_TYPE_STRING, "progressive", "colorimetry", G_TYPE_STRING,
+                            format.height >= 720 ? "bt709" : "bt601", nullptr);
     // Live and unbounded here: the feed's slots bound what waits (every queued buffer holds one).
     g_object_set(appsrc_, "caps", raw, "is-live", TRUE, "format", GST_FORMAT_TIME, "block", FALSE, nullptr);
     gst_caps_unref(raw);
@@ -132,7 +138,8 @@ Status GstStreamEngine::build(const EngineFormat &format)
             if (sinkOptions.kind == EncodedSinkKind::Record)
                 output = std::make_unique<RecordOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
             else if (sinkOptions.kind == EncodedSinkKind::File)
-                output = std::make_unique<FileOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
+                output = std::make_unique<FileOutput>(sinkOptions, options_.encoder.codec, log_,
+                                                      [this] { requestKeyframe(); });
             else
                 output = std::make_unique<PushOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
             if (auto started = output->start(context_); !started)

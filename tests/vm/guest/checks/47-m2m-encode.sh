@@ -18,7 +18,8 @@ mkdir -p "$ART"
 
 config_for m2m-encode.toml /tmp/m2m.toml "device=\"$SRC\""
 rm -f "$FWHT"
-overlayd run --config /tmp/m2m.toml >/tmp/m2m-run.log 2>&1 &
+# GStreamer's warnings into the log kept as an artifact: a refused negotiation names the caps there.
+GST_DEBUG=2 overlayd run --config /tmp/m2m.toml >/tmp/m2m-run.log 2>&1 &
 pid=$!
 # Under TCG the first frames take a few seconds (GStreamer's registry scan, the encoder's start).
 wait_for 60 sh -c "[ \$(wc -c <$FWHT 2>/dev/null || echo 0) -gt 200000 ]"
