@@ -54,8 +54,8 @@ void checkFwht(TableReader &table, const StreamOptions &out)
                                    encoderKindName(out.encoder.kind) + "\"");
     for (const EncodedSinkOptions &sink : out.sinks)
         if (sink.kind != EncodedSinkKind::File)
-            table.problem("codec", "\"fwht\" goes to kind = \"file\" sinks only: " + sink.key +
-                                       " (kind = \"" + encodedSinkKindName(sink.kind) + "\") carries H.264");
+            table.problem("codec", "\"fwht\" goes to kind = \"file\" sinks only: " + sink.key + " (kind = \"" +
+                                       encodedSinkKindName(sink.kind) + "\") carries H.264");
 }
 
 void readFile(TableReader &sink, FileSinkOptions &out)

@@ -73,7 +73,8 @@ void BranchFeed::push(GstSample *sample)
         std::lock_guard lock(mutex_);
         if (appsrc_ == nullptr || buffer == nullptr)
             return;
-        const bool keyframe = fwht_ ? isFwhtKeyframe(buffer) : !GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT);
+        const bool keyframe =
+            fwht_ ? isFwhtKeyframe(buffer) : !GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT);
         if (gst_app_src_get_current_level_buffers(GST_APP_SRC(appsrc_)) >= kBranchBacklogBuffers) {
             askKeyframe = !waitingForKeyframe_;
             waitingForKeyframe_ = true;

@@ -48,11 +48,11 @@ Result<EncoderElement> makeV4l2(const EncoderOptions &options, unsigned gop)
         }
         // The stateful H.264 encoders' controls (bcm2835-codec, the Rockchip and Amlogic ones take these); vicodec
         // has no bitrate, its picture group is the generic GOP size.
-        const std::string controls =
-            options.codec == Codec::Fwht
-                ? "controls,video_gop_size=" + std::to_string(gop)
-                : "controls,video_bitrate=" + std::to_string(options.bitrateKbps * 1000) +
-                      ",h264_i_frame_period=" + std::to_string(gop) + ",repeat_sequence_header=1";
+        const std::string controls = options.codec == Codec::Fwht
+                                         ? "controls,video_gop_size=" + std::to_string(gop)
+                                         : "controls,video_bitrate=" + std::to_string(options.bitrateKbps * 1000) +
+                                               ",h264_i_frame_period=" + std::to_string(gop) +
+                                               ",repeat_sequence_header=1";
         GstStructure *structure = gst_structure_from_string(controls.c_str(), nullptr);
         g_object_set(element, "extra-controls", structure, nullptr);
         gst_structure_free(structure);
@@ -60,10 +60,9 @@ Result<EncoderElement> makeV4l2(const EncoderOptions &options, unsigned gop)
         g_object_force_floating(G_OBJECT(element)); // back to floating: the bin takes it
         return out;
     }
-    return makeError(ErrorCode::NotFound,
-                     options.device == "auto"
-                         ? "no " + what + " on this machine (GStreamer's v4l2 plugin lists none)"
-                         : "no " + what + " at " + options.device);
+    return makeError(ErrorCode::NotFound, options.device == "auto"
+                                              ? "no " + what + " on this machine (GStreamer's v4l2 plugin lists none)"
+                                              : "no " + what + " at " + options.device);
 }
 
 } // namespace

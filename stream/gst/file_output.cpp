@@ -21,8 +21,8 @@ FileOutput::~FileOutput()
     feed_.endOfStream();
     if (branch_.pipeline != nullptr) {
         GstBus *bus = gst_element_get_bus(branch_.pipeline);
-        if (GstMessage *message = gst_bus_timed_pop_filtered(bus, 3 * GST_SECOND,
-                                                             GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR)))
+        if (GstMessage *message =
+                gst_bus_timed_pop_filtered(bus, 3 * GST_SECOND, GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR)))
             gst_message_unref(message);
         gst_object_unref(bus);
     }

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "stream/gst/encoder_element.h"
-#include "stream/gst/push_output.h"
 #include "stream/gst/file_output.h"
+#include "stream/gst/push_output.h"
 #include "stream/gst/record_output.h"
 
 namespace overlayd::stream::gst {

@@ -169,6 +169,6 @@ TEST(StreamConfig, FwhtIsTheV4l2EncodersIntoAFileOnly)
                            "encoder.codec", "sink[1] (kind = \"record\") carries H.264"));
     EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\n"), "sink[0].path", "missing"));
     EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\npath = \"\"\n"), "sink[0].path", "empty"));
-    EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\npath = \"x\"\nport = 1\n"),
-                           "sink[0].port", "unknown key"));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\npath = \"x\"\nport = 1\n"), "sink[0].port",
+                           "unknown key"));
 }

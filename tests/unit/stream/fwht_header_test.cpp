@@ -16,7 +16,8 @@ namespace {
 // magic1, magic2, version 3, 640x480, flags, then colorspace .. size: eleven 32-bit words.
 std::vector<uint8_t> header(uint32_t flags)
 {
-    std::vector<uint8_t> bytes = {0x4f, 0x4f, 0x4f, 0x4f, 0xff, 0xff, 0xff, 0xff, 0, 0, 0, 3, 0, 0, 2, 0x80, 0, 0, 1, 0xe0};
+    std::vector<uint8_t> bytes = {0x4f, 0x4f, 0x4f, 0x4f, 0xff, 0xff, 0xff, 0xff, 0, 0,
+                                  0,    3,    0,    0,    2,    0x80, 0,    0,    1, 0xe0};
     for (int shift = 24; shift >= 0; shift -= 8)
         bytes.push_back(uint8_t(flags >> shift));
     bytes.resize(44 + 16, 0x11); // the other header words, then some frame data
