@@ -316,10 +316,11 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamO
                                                        // that an unknown kind's message names it.
                                                        {"rtsp", SinkKind::Null},
                                                        {"record", SinkKind::Null},
-                                                       {"push", SinkKind::Null}}))
+                                                       {"push", SinkKind::Null},
+                                                       {"file", SinkKind::Null}}))
             options.kind = *kind;
         else if (!sink.has("kind"))
-            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | rtsp | record | push");
+            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | rtsp | record | push | file");
         if (auto path = sink.string("path")) {
             options.path = *path;
             const bool writes = options.kind != SinkKind::Null && !path->empty();

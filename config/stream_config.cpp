@@ -49,13 +49,37 @@ void readRtsp(TableReader &sink, RtspSinkOptions &out)
         out.maxClients = unsigned(*clients);
 }
 
+// FWHT is encoded by vicodec only, and the encoded sinks so far carry H.264 only (RTP's H.264 payloader, MP4 and
+// Matroska muxers that take no FWHT): the file sink writes the stream as the encoder gives it.
+void checkFwht(TableReader &table, const StreamOptions &out)
+{
+    if (out.encoder.kind != EncoderKind::V4l2)
+        table.problem("codec", std::string("\"fwht\" is the kernel's test codec (vicodec): only encoder = \"v4l2\" "
+                                           "encodes it, not \"") +
+                                   encoderKindName(out.encoder.kind) + "\"");
+    for (const EncodedSinkOptions &sink : out.sinks)
+        if (sink.kind != EncodedSinkKind::File)
+            table.problem("codec", "\"fwht\" goes to kind = \"file\" sinks only: " + sink.key + " (kind = \"" +
+                                       encodedSinkKindName(sink.kind) + "\") carries H.264");
+}
+
+void readFile(TableReader &sink, FileSinkOptions &out)
+{
+    if (auto path = sink.string("path"); path && !path->empty())
+        out.path = *path;
+    else if (path)
+        sink.problem("path", "empty: the file the encoded stream is written to");
+    else
+        sink.problem("path", "missing: the file the encoded stream is written to");
+}
+
 } // namespace
 
 bool isEncodedSink(TableReader &sink)
 {
     const toml::node *kind = sink.node("kind");
     const auto text = kind ? kind->value<std::string>() : std::nullopt;
-    return text && (*text == "rtsp" || *text == "record" || *text == "push");
+    return text && (*text == "rtsp" || *text == "record" || *text == "push" || *text == "file");
 }
 
 void readEncodedSink(TableReader &sink, StreamOptions &out)
@@ -71,6 +95,9 @@ void readEncodedSink(TableReader &sink, StreamOptions &out)
     if (kind == "record") {
         options.kind = EncodedSinkKind::Record;
         readRecord(sink, out, options.record);
+    } else if (kind == "file") {
+        options.kind = EncodedSinkKind::File;
+        readFile(sink, options.file);
     } else if (kind == "push") {
         options.kind = EncodedSinkKind::Push;
         readPush(sink, options.push);
@@ -131,8 +158,8 @@ void readEncoder(TableReader &root, StreamOptions &out)
     }
     const size_t before = table->problems().size(); // the element is asked for only when every key was read
     EncoderOptions &encoder = out.encoder;
-    if (auto codec = table->choice<int>("codec", {{"h264", 0}}))
-        (void)codec; // the one codec so far; the key is there so that a config says what it gets
+    if (auto codec = table->choice<Codec>("codec", {{"h264", Codec::H264}, {"fwht", Codec::Fwht}}))
+        encoder.codec = *codec;
     if (auto kind = table->choice<EncoderKind>("encoder", {{"auto", EncoderKind::Auto},
                                                            {"v4l2", EncoderKind::V4l2},
                                                            {"openh264", EncoderKind::OpenH264},
@@ -158,6 +185,8 @@ void readEncoder(TableReader &root, StreamOptions &out)
         encoder.lowLatency = *lowLatency;
     if (auto queued = table->integer("queue", 1, kMaxQueuedFrames))
         encoder.queuedFrames = unsigned(*queued);
+    if (encoder.codec == Codec::Fwht)
+        checkFwht(*table, out);
     table->finish();
     if (table->problems().size() == before)
         checkEncoderThere(root, &*table, out);

@@ -99,7 +99,8 @@ EncodedStreamState EncodedStream::state() const
 
 std::string EncodedStream::describe() const
 {
-    std::string text = std::string("h264 (") + encoderKindName(options_.encoder.kind) + ")";
+    std::string text =
+        std::string(codecName(options_.encoder.codec)) + " (" + encoderKindName(options_.encoder.kind) + ")";
     for (const EncodedSinkOptions &sink : options_.sinks)
         if (sink.kind == EncodedSinkKind::Rtsp)
             text += " -> rtsp://" + sink.rtsp.listen + sink.rtsp.path;

@@ -32,4 +32,24 @@ const char *profileName(Profile profile)
     return "?";
 }
 
+const char *codecName(Codec codec)
+{
+    return codec == Codec::Fwht ? "fwht" : "h264";
+}
+
+const char *encodedSinkKindName(EncodedSinkKind kind)
+{
+    switch (kind) {
+    case EncodedSinkKind::Rtsp:
+        return "rtsp";
+    case EncodedSinkKind::Record:
+        return "record";
+    case EncodedSinkKind::Push:
+        return "push";
+    case EncodedSinkKind::File:
+        return "file";
+    }
+    return "?";
+}
+
 } // namespace overlayd::stream

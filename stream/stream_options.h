@@ -21,6 +21,11 @@ enum class EncoderKind {
 
 enum class Profile { Baseline, Main, High };
 
+// What the encoder makes. FWHT is the codec of the kernel's virtual M2M codec (vicodec): a test codec that nothing
+// plays, taken only through the V4L2 encoder path, so that the path a board's H.264 encoder takes is proven on a
+// kernel without one.
+enum class Codec { H264, Fwht };
+
 // Limits of the [encoder] keys (docs/config.md "Limits").
 inline constexpr unsigned kMinBitrateKbps = 64;
 inline constexpr unsigned kMaxBitrateKbps = 100000; // 100 Mbit/s: above any H.264 level a board encodes
@@ -30,6 +35,7 @@ inline constexpr unsigned kMaxQueuedFrames = 8;       // frames in flight toward
 
 struct EncoderOptions {
     EncoderKind kind = EncoderKind::Auto;
+    Codec codec = Codec::H264;
     std::string device = "auto"; // V4L2: /dev/videoN, or "auto" (the first M2M device that encodes H.264)
     unsigned bitrateKbps = 4000;
     double keyframeIntervalSec = 2.0;
@@ -41,7 +47,15 @@ struct EncoderOptions {
 };
 
 // The kinds of [[sink]] that take the encoder's output rather than raw frames.
-enum class EncodedSinkKind { Rtsp, Record, Push };
+enum class EncodedSinkKind { Rtsp, Record, Push, File };
+
+// kind = "file": the encoder's elementary stream as it comes (H.264 byte stream, or vicodec's FWHT frames, each
+// with its header), in one file: what a decoder driven by hand (v4l2-ctl on vicodec's decoder) reads.
+struct FileSinkOptions {
+    std::string path;
+
+    bool operator==(const FileSinkOptions &) const = default;
+};
 
 // Limits of an RTSP sink (docs/config.md "Limits").
 inline constexpr unsigned kMaxRtspClients = 64;
@@ -63,6 +77,7 @@ struct EncodedSinkOptions {
     RtspSinkOptions rtsp;     // kind = "rtsp"
     RecordSinkOptions record; // kind = "record"
     PushSinkOptions push;     // kind = "push"
+    FileSinkOptions file;     // kind = "file"
 
     bool operator==(const EncodedSinkOptions &) const = default;
 };
@@ -77,6 +92,8 @@ struct StreamOptions {
 
 const char *encoderKindName(EncoderKind kind);
 const char *profileName(Profile profile);
+const char *codecName(Codec codec);
+const char *encodedSinkKindName(EncodedSinkKind kind);
 
 // Whether this overlayd was built with the encoded outputs (CMake option OVERLAYD_STREAM, GStreamer).
 bool streamBuiltIn();

@@ -5,9 +5,23 @@
 
 #include <gst/app/gstappsrc.h>
 
-namespace overlayd::stream::gst {
+#include "stream/fwht_header.h"
 
-BranchFeed::BranchFeed(std::function<void()> requestKeyframe) : requestKeyframe_(std::move(requestKeyframe)) {}
+namespace overlayd::stream::gst {
+namespace {
+
+bool isFwhtKeyframe(GstBuffer *buffer)
+{
+    uint8_t header[kFwhtHeaderBytes];
+    const gsize copied = gst_buffer_extract(buffer, 0, header, sizeof(header));
+    return fwhtIsKeyframe(header, copied);
+}
+
+} // namespace
+
+BranchFeed::BranchFeed(std::function<void()> requestKeyframe, bool fwht)
+    : requestKeyframe_(std::move(requestKeyframe)), fwht_(fwht)
+{}
 
 BranchFeed::~BranchFeed()
 {
@@ -59,7 +73,8 @@ void BranchFeed::push(GstSample *sample)
         std::lock_guard lock(mutex_);
         if (appsrc_ == nullptr || buffer == nullptr)
             return;
-        const bool keyframe = !GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT);
+        const bool keyframe =
+            fwht_ ? isFwhtKeyframe(buffer) : !GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT);
         if (gst_app_src_get_current_level_buffers(GST_APP_SRC(appsrc_)) >= kBranchBacklogBuffers) {
             askKeyframe = !waitingForKeyframe_;
             waitingForKeyframe_ = true;

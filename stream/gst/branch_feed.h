@@ -20,7 +20,8 @@ inline constexpr guint64 kBranchBacklogBuffers = 90;
 class BranchFeed
 {
 public:
-    explicit BranchFeed(std::function<void()> requestKeyframe);
+    // `fwht`: keyframes are read from each frame's FWHT header (vicodec flags none of its encoded buffers).
+    explicit BranchFeed(std::function<void()> requestKeyframe, bool fwht = false);
     ~BranchFeed();
     BranchFeed(const BranchFeed &) = delete;
     BranchFeed &operator=(const BranchFeed &) = delete;
@@ -38,6 +39,7 @@ public:
 
 private:
     std::function<void()> requestKeyframe_;
+    bool fwht_ = false;
     mutable std::mutex mutex_;
     GstElement *appsrc_ = nullptr;
     bool waitingForKeyframe_ = true;

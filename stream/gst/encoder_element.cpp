@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // makeEncoderElement: auto takes the first V4L2 M2M H.264 encoder the registry knows (the v4l2 plugin registers
-// one element per encoder device it finds), else openh264.
+// one element per encoder device it finds), else openh264. FWHT (vicodec) comes through the same V4L2 path.
 #include "stream/gst/encoder_element.h"
 
 #include <cmath>
@@ -8,14 +8,16 @@
 namespace overlayd::stream::gst {
 namespace {
 
-// The v4l2 plugin's H.264 encoders: "v4l2h264enc" for the first device, "v4l2videoNh264enc" for others.
-std::vector<std::string> v4l2EncoderFactories()
+// The v4l2 plugin's encoders of `codec`: "v4l2h264enc" (or "v4l2fwhtenc") for the first device,
+// "v4l2videoNh264enc" for others.
+std::vector<std::string> v4l2EncoderFactories(Codec codec)
 {
+    const std::string suffix = std::string(codecName(codec)) + "enc";
     std::vector<std::string> names;
     GList *factories = gst_element_factory_list_get_elements(GST_ELEMENT_FACTORY_TYPE_ENCODER, GST_RANK_NONE);
     for (GList *item = factories; item != nullptr; item = item->next) {
         const std::string name = gst_plugin_feature_get_name(GST_PLUGIN_FEATURE(item->data));
-        if (name.starts_with("v4l2") && name.ends_with("h264enc"))
+        if (name.starts_with("v4l2") && name.ends_with(suffix))
             names.push_back(name);
     }
     gst_plugin_feature_list_free(factories);
@@ -33,7 +35,8 @@ std::string deviceOf(GstElement *element)
 
 Result<EncoderElement> makeV4l2(const EncoderOptions &options, unsigned gop)
 {
-    for (const std::string &name : v4l2EncoderFactories()) {
+    const std::string what = std::string("V4L2 M2M ") + (options.codec == Codec::Fwht ? "FWHT" : "H.264") + " encoder";
+    for (const std::string &name : v4l2EncoderFactories(options.codec)) {
         GstElement *element = gst_element_factory_make(name.c_str(), nullptr);
         if (element == nullptr)
             continue;
@@ -43,9 +46,13 @@ Result<EncoderElement> makeV4l2(const EncoderOptions &options, unsigned gop)
             gst_object_unref(element);
             continue;
         }
-        // The stateful encoders' controls (bcm2835-codec, vicodec, the Rockchip and Amlogic ones take these).
-        const std::string controls = "controls,video_bitrate=" + std::to_string(options.bitrateKbps * 1000) +
-                                     ",h264_i_frame_period=" + std::to_string(gop) + ",repeat_sequence_header=1";
+        // The stateful H.264 encoders' controls (bcm2835-codec, the Rockchip and Amlogic ones take these); vicodec
+        // has no bitrate, its picture group is the generic GOP size.
+        const std::string controls = options.codec == Codec::Fwht
+                                         ? "controls,video_gop_size=" + std::to_string(gop)
+                                         : "controls,video_bitrate=" + std::to_string(options.bitrateKbps * 1000) +
+                                               ",h264_i_frame_period=" + std::to_string(gop) +
+                                               ",repeat_sequence_header=1";
         GstStructure *structure = gst_structure_from_string(controls.c_str(), nullptr);
         g_object_set(element, "extra-controls", structure, nullptr);
         gst_structure_free(structure);
@@ -53,10 +60,9 @@ Result<EncoderElement> makeV4l2(const EncoderOptions &options, unsigned gop)
         g_object_force_floating(G_OBJECT(element)); // back to floating: the bin takes it
         return out;
     }
-    return makeError(ErrorCode::NotFound,
-                     options.device == "auto"
-                         ? std::string("no V4L2 M2M H.264 encoder on this machine (GStreamer's v4l2 plugin lists none)")
-                         : "no V4L2 M2M H.264 encoder at " + options.device);
+    return makeError(ErrorCode::NotFound, options.device == "auto"
+                                              ? "no " + what + " on this machine (GStreamer's v4l2 plugin lists none)"
+                                              : "no " + what + " at " + options.device);
 }
 
 } // namespace
@@ -97,8 +103,9 @@ Result<EncoderElement> makeEncoderElement(const EncoderOptions &options, double 
         gst_util_set_object_arg(G_OBJECT(out.element), "rate-control", "bitrate");
         gst_util_set_object_arg(G_OBJECT(out.element), "usage-type", "camera");
     }
-    // openh264 encodes constrained baseline only; the others are told the profile through their output caps.
-    if (out.factory != "openh264enc")
+    // openh264 encodes constrained baseline only; the others are told the profile through their output caps. FWHT
+    // has no profiles.
+    if (out.factory != "openh264enc" && options.codec == Codec::H264)
         out.outputCaps = gst_caps_new_simple(
             "video/x-h264", "profile", G_TYPE_STRING,
             options.profile == Profile::Baseline ? "constrained-baseline" : profileName(options.profile), nullptr);

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "stream/gst/encoder_element.h"
+#include "stream/gst/file_output.h"
 #include "stream/gst/push_output.h"
 #include "stream/gst/record_output.h"
 
@@ -71,7 +72,9 @@ Status GstStreamEngine::build(const EngineFormat &format)
     pipeline_ = gst_pipeline_new("overlayd-encoder");
     appsrc_ = gst_element_factory_make("appsrc", "feed");
     GstElement *filter = gst_element_factory_make("capsfilter", nullptr);
-    GstElement *parse = gst_element_factory_make("h264parse", nullptr);
+    // FWHT frames leave vicodec whole, one per buffer, each with its header: nothing to parse.
+    const bool h264 = options_.encoder.codec == Codec::H264;
+    GstElement *parse = gst_element_factory_make(h264 ? "h264parse" : "identity", nullptr);
     GstElement *tee = gst_element_factory_make("tee", "encoded");
     GstElement *queue = gst_element_factory_make("queue", nullptr);
     GstElement *sink = gst_element_factory_make("appsink", "rtsp");
@@ -96,6 +99,12 @@ Status GstStreamEngine::build(const EngineFormat &format)
     GstCaps *raw = gst_caps_new_simple("video/x-raw", "format", G_TYPE_STRING, "I420", "width", G_TYPE_INT,
                                        int(format.width), "height", G_TYPE_INT, int(format.height), "framerate",
                                        GST_TYPE_FRACTION, fpsNum, 1000, nullptr);
+    // A V4L2 encoder's sink caps list the interlacing and the colorimetries the driver takes, and its accept-caps
+    // wants ours to be a subset: without the two fields vicodec refused the frames (not-negotiated). They say
+    // what GStreamer assumes when they are missing: progressive, BT.601 below 720 lines, BT.709 from there.
+    if (encoder->factory.starts_with("v4l2"))
+        gst_caps_set_simple(raw, "interlace-mode", G_TYPE_STRING, "progressive", "colorimetry", G_TYPE_STRING,
+                            format.height >= 720 ? "bt709" : "bt601", nullptr);
     // Live and unbounded here: the feed's slots bound what waits (every queued buffer holds one).
     g_object_set(appsrc_, "caps", raw, "is-live", TRUE, "format", GST_FORMAT_TIME, "block", FALSE, nullptr);
     gst_caps_unref(raw);
@@ -103,10 +112,11 @@ Status GstStreamEngine::build(const EngineFormat &format)
         g_object_set(filter, "caps", encoder->outputCaps, nullptr);
         gst_caps_unref(encoder->outputCaps);
     }
-    GstCaps *au = gst_caps_from_string("video/x-h264,stream-format=byte-stream,alignment=au");
+    GstCaps *au = gst_caps_from_string(h264 ? "video/x-h264,stream-format=byte-stream,alignment=au" : "video/x-fwht");
     g_object_set(sink, "caps", au, "sync", FALSE, "max-buffers", 4u, "drop", TRUE, nullptr);
     gst_caps_unref(au);
-    g_object_set(parse, "config-interval", -1, nullptr);
+    if (h264)
+        g_object_set(parse, "config-interval", -1, nullptr);
     g_object_set(tee, "allow-not-linked", TRUE, nullptr);
     GstAppSinkCallbacks callbacks{};
     callbacks.new_sample = &GstStreamEngine::onEncoded;
@@ -128,10 +138,17 @@ Status GstStreamEngine::build(const EngineFormat &format)
             if (sinkOptions.kind == EncodedSinkKind::Record)
                 output = std::make_unique<RecordOutput>(sinkOptions, options_.encoder.keyframeIntervalSec, log_,
                                                         [this] { requestKeyframe(); });
+            else if (sinkOptions.kind == EncodedSinkKind::File)
+                output = std::make_unique<FileOutput>(sinkOptions, options_.encoder.codec, log_,
+                                                      [this] { requestKeyframe(); });
             else
                 output = std::make_unique<PushOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
             if (auto started = output->start(context_); !started)
                 return started;
+            if (sinkOptions.kind == EncodedSinkKind::File)
+                log_(kLogInfo, sinkOptions.key + ": " + codecName(options_.encoder.codec) + " to " +
+                                   sinkOptions.file.path + " (" + encoder->factory +
+                                   (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
             outputs_.push_back(std::move(output));
             continue;
         }

@@ -142,3 +142,33 @@ TEST(StreamConfig, EveryRefusalIsAtItsKey)
         hasProblem(loadInvalid(kBase + kRtsp + kRtsp + "path = \"/other\"\n"), "sink[1].listen", "sink[0] already"));
     EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"rtps\"\n"), "sink[0].kind", "rtsp"));
 }
+
+// FWHT is vicodec's codec: the V4L2 encoder only, into kind = "file" sinks only (no payloader or muxer takes it).
+TEST(StreamConfig, FwhtIsTheV4l2EncodersIntoAFileOnly)
+{
+    if (!streamBuiltIn())
+        GTEST_SKIP() << "built without the encoded outputs";
+    const std::string file = "[[sink]]\nkind = \"file\"\npath = \"/tmp/out.fwht\"\n";
+    const auto config = loadValid(kBase + file + "[encoder]\ncodec = \"fwht\"\nencoder = \"v4l2\"\n");
+    ASSERT_EQ(config.stream.sinks.size(), 1u);
+    EXPECT_EQ(config.stream.sinks[0].kind, EncodedSinkKind::File);
+    EXPECT_EQ(config.stream.sinks[0].file.path, "/tmp/out.fwht");
+    EXPECT_EQ(config.stream.encoder.codec, Codec::Fwht);
+    EXPECT_EQ(config.stream.encoder.kind, EncoderKind::V4l2);
+    // An H.264 byte stream goes to a file too.
+    EXPECT_EQ(loadValid(kBase + file).stream.encoder.codec, Codec::H264);
+
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + file + "[encoder]\ncodec = \"fwht\"\n"), "encoder.codec",
+                           "only encoder = \"v4l2\" encodes it, not \"auto\""));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + file + "[encoder]\ncodec = \"fwht\"\nencoder = \"openh264\"\n"),
+                           "encoder.codec", "not \"openh264\""));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + kRtsp + "[encoder]\ncodec = \"fwht\"\nencoder = \"v4l2\"\n"),
+                           "encoder.codec", "sink[0] (kind = \"rtsp\") carries H.264"));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + file + "[[sink]]\nkind = \"record\"\ndirectory = \"/tmp/r\"\n" +
+                                       "[encoder]\ncodec = \"fwht\"\nencoder = \"v4l2\"\n"),
+                           "encoder.codec", "sink[1] (kind = \"record\") carries H.264"));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\n"), "sink[0].path", "missing"));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\npath = \"\"\n"), "sink[0].path", "empty"));
+    EXPECT_TRUE(hasProblem(loadInvalid(kBase + "[[sink]]\nkind = \"file\"\npath = \"x\"\nport = 1\n"), "sink[0].port",
+                           "unknown key"));
+}

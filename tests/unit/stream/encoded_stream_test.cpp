@@ -17,7 +17,7 @@ TEST(EncodedStream, TheSinkFeedsTheEngineThroughBoundedSlots)
     test::FakeStreamEngine::Calls calls;
     StreamOptions options;
     options.encoder.queuedFrames = 2;
-    options.sinks.push_back({EncodedSinkKind::Rtsp, "sink[0]", {}, {}, {}});
+    options.sinks.push_back({EncodedSinkKind::Rtsp, "sink[0]", {}, {}, {}, {}});
     auto stream = std::make_shared<EncodedStream>(options, std::make_unique<test::FakeStreamEngine>(calls));
     std::unique_ptr<FrameSink> sink = stream->sink();
     EXPECT_TRUE(sink->writesInline());
