@@ -211,6 +211,12 @@ HttpResponse HttpApi::state()
                   {"stream_fps", http.streamFps},
                   {"parts_sent", http.partsSent},
                   {"requests", http.requests}}}};
+    // The config's pose (with its saved drop-in), for the page's "revert to the config".
+    const YawPitchRoll configured = yawPitchRollOf(config.camera.pose);
+    out["camera"]["configured"] = {{"position", vec3(configured.position)},
+                                   {"yaw", shown(configured.yawDeg)},
+                                   {"pitch", shown(configured.pitchDeg)},
+                                   {"roll", shown(configured.rollDeg)}};
     StatusReport parts(std::chrono::steady_clock::now());
     addParts(parts);
     parts.writeState(out);
