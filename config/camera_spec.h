@@ -77,7 +77,7 @@ public:
     // Filled by the config loader.
     Pose pose{}; // mount frame to camera
     std::string mountFrame = "world";
-    PoseKeysUsed poseKeys{}; // the config's pose form; the API's edits keep it
+    PoseKeysUsed poseKeys{};        // the config's pose form; the API's edits keep it
     glm::dmat4 worldFromMount{1.0}; // resolved from the scene graph when loading
 
     IntrinsicsForm form = IntrinsicsForm::FieldOfView;

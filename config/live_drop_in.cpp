@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -172,7 +172,7 @@ void putPose(const CameraSpec &spec, toml::table &camera)
         camera.insert_or_assign("orientation", numbers({tidy(q.w), tidy(q.x), tidy(q.y), tidy(q.z)}));
         camera.insert_or_assign("axes", spec.poseKeys.axes == CameraAxes::Optical  ? "optical"
                                         : spec.poseKeys.axes == CameraAxes::OpenGl ? "opengl"
-                                                                                    : "body");
+                                                                                   : "body");
         return;
     }
     case PoseForm::YawPitchRoll: {

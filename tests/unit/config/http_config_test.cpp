@@ -293,15 +293,19 @@ TEST(LiveDropIn, WritesThePoseInTheConfigsOwnForm)
     };
     const Form forms[] = {
         {"position = [0.0, -6.0, 3.0]\nyaw = 90.0\npitch = 25.0\n",
-         {"position = [0.5, -6.0, 3.0]", "yaw = 95.0", "pitch = 20.0", "roll = 0.0"}, {"rmat", "tvec"}},
-        {"eye = [0.0, -6.0, 3.0]\ntarget = [0.0, 4.0, 0.0]\n", {"eye = [0.5, -6.0, 3.0]", "target = ", "up = "},
+         {"position = [0.5, -6.0, 3.0]", "yaw = 95.0", "pitch = 20.0", "roll = 0.0"},
+         {"rmat", "tvec"}},
+        {"eye = [0.0, -6.0, 3.0]\ntarget = [0.0, 4.0, 0.0]\n",
+         {"eye = [0.5, -6.0, 3.0]", "target = ", "up = "},
          {"rmat", "yaw"}},
         {"eye = [0.0, -6.0, 3.0]\ngaze = [0.0, 1.0, -0.3]\n", {"eye = [0.5, -6.0, 3.0]", "gaze = ", "up = "}, {"rmat"}},
         {"prp = [0.0, -6.0, 3.0]\nvpn = [0.0, -1.0, 0.3]\n", {"prp = [0.5, -6.0, 3.0]", "vpn = ", "vup = "}, {"rmat"}},
         {"position = [0.0, -6.0, 3.0]\norientation = [0.5, -0.5, 0.5, -0.5]\naxes = \"optical\"\n",
-         {"position = [0.5, -6.0, 3.0]", "orientation = ", "axes = \"optical\""}, {"rmat", "yaw"}},
+         {"position = [0.5, -6.0, 3.0]", "orientation = ", "axes = \"optical\""},
+         {"rmat", "yaw"}},
         {"rvec = [1.9, 0.1, -0.05]\ntvec = [0.2, 1.1, 6.3]\n", {"rvec = ", "tvec = "}, {"rmat", "yaw"}},
-        {"rmat = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]\ntvec = [0.0, 2.0, 7.0]\n", {"rmat = ", "tvec = "},
+        {"rmat = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]\ntvec = [0.0, 2.0, 7.0]\n",
+         {"rmat = ", "tvec = "},
          {"yaw", "rvec"}},
     };
     const auto dir = scratch("form");
