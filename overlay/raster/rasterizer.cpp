@@ -99,7 +99,11 @@ void Rasterizer::drawStroke(const StrokeItem &item, CoverageSink &sink, glm::ive
 LayerRect Rasterizer::textBox(const TextItem &item) const
 {
     const TextRenderer::Box box = text_.measure(item.text, item.sizePx, item.antialias);
-    const int x = int(std::lround(item.anchor.x));
+    // Right: the box's last column on the anchor; Centre: its middle column (the left one of two).
+    const int shift = item.align == TextAlign::Right    ? box.width - 1
+                      : item.align == TextAlign::Centre ? (box.width - 1) / 2
+                                                        : 0;
+    const int x = int(std::lround(item.anchor.x)) - shift;
     const int y = int(std::lround(item.anchor.y)) - (item.anchorAtBottom ? box.height() - 1 : 0);
     return {x, y, x + box.width, y + box.height()};
 }
