@@ -315,8 +315,52 @@ function showCamera(camera, fromPoll) {
     showIntrinsics(camera.intrinsics);
 }
 
+// The lens field edits the intrinsics key the camera has: its field of view (along its fov_axis) for `fov`, the
+// focal length in pixels for `pinhole` (fy keeps its ratio to fx; the principal point and skew stay).
+let lensForm = null;
+let shownIntrinsics = null;
+
+function showLens(intrinsics) {
+    shownIntrinsics = intrinsics;
+    lensForm = intrinsics.form === 'fov' || intrinsics.form === 'pinhole' ? intrinsics.form : null;
+    $('lens-form').hidden = lensForm === null;
+    if (lensForm === null) return;
+    $('lens-label').textContent = lensForm === 'fov' ? `Field of view (°, ${intrinsics.fov_axis})` : 'Focal length fx (px)';
+    const field = $('lens');
+    field.max = lensForm === 'fov' ? '179' : '';
+    if (isBeingEdited(field, 'lens')) return;
+    field.value = round(lensForm === 'fov' ? intrinsics.fov : intrinsics.fx, 3);
+}
+
+async function sendLens() {
+    const value = $('lens').valueAsNumber;
+    const k = shownIntrinsics;
+    if (!Number.isFinite(value) || value <= 0 || !k || lensForm === null) {
+        setStatus('lens-status', 'The lens needs a number above 0.', true);
+        return;
+    }
+    const body = lensForm === 'fov' ? {fov: value}
+        : {pinhole: {fx: value, fy: value * k.fy / k.fx, cx: k.cx, cy: k.cy, skew: k.skew}};
+    try {
+        const camera = await control('PUT', '/api/camera', body);
+        setStatus('lens-status', 'Lens applied.');
+        showIntrinsics(camera.intrinsics);
+    } catch (error) {
+        setStatus('lens-status', error.message, true);
+    }
+}
+
+function setUpLens() {
+    $('lens').addEventListener('change', () => {
+        lastInputAt.set('lens', Date.now());
+        sendLens();
+    });
+    $('lens-form').addEventListener('submit', (event) => event.preventDefault());
+}
+
 function showIntrinsics(intrinsics) {
     if (!intrinsics) return;
+    showLens(intrinsics);
     for (const key of ['fx', 'fy', 'cx', 'cy']) {
         if (typeof intrinsics[key] === 'number') $(key).textContent = intrinsics[key].toFixed(2);
     }
@@ -626,6 +670,7 @@ async function pollState() {
 
 setUpToken();
 setUpPose();
+setUpLens();
 setUpSave();
 setUpImage();
 pollState();

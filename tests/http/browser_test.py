@@ -308,6 +308,24 @@ def revert(page, base):
     print(f'reverted to the config\'s pose {configured}')
 
 
+def edit_lens(page, base):
+    """The lens field edits the demo's own intrinsics key, its vertical field of view: 50 typed in is the camera's
+    vfov; 60 puts it back."""
+    label = page.wait_for("!document.getElementById('lens-form').hidden &&"
+                          " document.getElementById('lens-label').textContent", 5, 'the lens field')
+    if 'Field of view' not in label or 'vertical' not in label:
+        raise Failure(f'the demo\'s lens field is labelled {label!r}, not its vertical field of view')
+    for value in (50, 60):
+        page.evaluate(f"""(() => {{
+            const field = document.getElementById('lens');
+            field.value = '{value}';
+            field.dispatchEvent(new Event('change', {{bubbles: true}}));
+        }})()""")
+        poll(lambda: abs(get_state(base)['camera']['intrinsics']['vfov'] - value) < 1e-6, 5,
+             f'the camera\'s vfov to become {value}')
+    print(f'lens field {label!r}: vfov 50 applied, then 60')
+
+
 GROUND_MARKS = [(-2.0, 0.0, 0.0), (2.0, 0.0, 0.0), (-3.0, 6.0, 0.0), (3.0, 6.0, 0.0), (0.0, 12.0, 0.0),
                 (1.0, 3.0, 0.0)]
 
@@ -444,6 +462,7 @@ def run(args, workdir, cleanup):
     out_of_range_pitch(page, base)
     fine_control(page, base)
     revert(page, base)
+    edit_lens(page, base)
     collect_points(page, base, args.overlayd, os.path.join(workdir, 'overlayd.toml'), workdir)
     shown_intrinsics(page, base, args.config == os.path.abspath(daemon_fixture.DEMO))
     check_narrow(page, workdir)
