@@ -108,13 +108,27 @@ LayerRect Rasterizer::textBox(const TextItem &item) const
     return {x, y, x + box.width, y + box.height()};
 }
 
+int textPlatePadding(double sizePx)
+{
+    return std::max(kMinTextPlatePaddingPx, int(std::lround(kTextPlatePaddingPerPx * sizePx)));
+}
+
+LayerRect Rasterizer::plateBox(const TextItem &item) const
+{
+    LayerRect box = textBox(item);
+    const int padding = textPlatePadding(item.sizePx);
+    box.x0 -= padding;
+    box.x1 += padding;
+    return box;
+}
+
 void Rasterizer::drawText(const TextItem &item, CoverageSink &sink, glm::ivec2 origin, const LayerRect &clip)
 {
     if (item.text.empty() || !std::isfinite(item.anchor.x) || !std::isfinite(item.anchor.y))
         return;
     const LayerRect box = shifted(textBox(item), origin);
     if (item.background)
-        fill(*item.background, box.intersect(clip), sink);
+        fill(*item.background, shifted(plateBox(item), origin).intersect(clip), sink);
     const cv::Mat coverage = text_.render(item.text, item.sizePx, item.antialias);
     const LayerRect r = box.intersect(clip).intersect({box.x0, box.y0, box.x0 + coverage.cols, box.y0 + coverage.rows});
     if (r.empty())

@@ -21,6 +21,8 @@ namespace {
 
 constexpr int kWidth = 640, kHeight = 360;
 constexpr int kColumn = 320; // every box is placed by this column
+// The plate's padding past the text's box on each side (docs/config.md): 15% of the size, at least 2 px.
+constexpr int kPadding24 = 4, kPadding20 = 3;
 
 const std::string kScene = "[source]\nkind = \"synthetic\"\nformat = \"RGB24\"\nwidth = 640\nheight = 360\n"
                            "fps = 30.0\n[source.synthetic]\npattern = \"checkerboard\"\nchecker_px = 16384\n"
@@ -41,14 +43,16 @@ std::string label(int down, const std::string &align)
            "\"\nstyle = { colour = \"#00a000\" }\n";
 }
 
-// The first and last column of non-white pixels in rows [top, bottom).
-std::pair<int, int> inkColumns(const cv::Mat &bgr, int top, int bottom)
+// The first and last column of non-white pixels in rows [top, bottom) (the plate); `greenOnly`: of the letters'
+// green ink.
+std::pair<int, int> inkColumns(const cv::Mat &bgr, int top, int bottom, bool greenOnly = false)
 {
     int first = kWidth, last = -1;
     for (int y = top; y < bottom; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-            if (p[0] + p[1] + p[2] < 3 * 255 - 60) {
+            const bool ink = greenOnly ? p[1] > p[0] + 60 && p[1] > p[2] + 60 : p[0] + p[1] + p[2] < 3 * 255 - 60;
+            if (ink) {
                 first = std::min(first, x);
                 last = std::max(last, x);
             }
@@ -78,8 +82,9 @@ TEST(TextAlign, TextBoxesStartAtCentreOnAndEndAtTheirPosition)
     const auto unset = inkColumns(frame, 20, 60), left = inkColumns(frame, 80, 120),
                centre = inkColumns(frame, 140, 180), right = inkColumns(frame, 200, 240);
     EXPECT_EQ(unset, left) << "left is the default";
-    EXPECT_EQ(left.first, kColumn);
-    EXPECT_EQ(right.second, kColumn);
+    // The text's box starts or ends on the column; its plate reaches the padding further.
+    EXPECT_EQ(left.first, kColumn - kPadding24);
+    EXPECT_EQ(right.second, kColumn + kPadding24);
     const int width = left.second - left.first;
     EXPECT_GT(width, 50);
     EXPECT_EQ(centre.second - centre.first, width);
@@ -99,9 +104,24 @@ TEST(TextAlign, LabelsAlignOnTheirAnchor)
     const int column = int(std::lround(u)), row = int(std::lround(v));
     ASSERT_GT(row, 80);
     const auto left = inkColumns(frame, row - 70, row - 45), right = inkColumns(frame, row - 35, row - 10);
-    EXPECT_EQ(left.first, column);
-    EXPECT_EQ(right.second, column);
+    EXPECT_EQ(left.first, column - kPadding20);
+    EXPECT_EQ(right.second, column + kPadding20);
     EXPECT_EQ(left.second - left.first, right.second - right.first);
+}
+
+// The letters keep clear of their plate's edges: at least the padding between the ink and either end of the plate.
+TEST(TextPlate, LettersDoNotTouchItsEdges)
+{
+    const std::string dir = scratchDir("text_plate");
+    writeFile(dir + "/plate.toml", kScene + screenText(80, "left"));
+    const cv::Mat frame = renderFrameBgr("plate.toml", "RGB24", kWidth, kHeight, dir);
+    ASSERT_FALSE(frame.empty());
+    const auto plate = inkColumns(frame, 80, 120), letters = inkColumns(frame, 80, 120, true);
+    ASSERT_GE(letters.second, 0);
+    EXPECT_GE(letters.first - plate.first, kPadding24)
+        << "plate " << plate.first << ".." << plate.second << ", ink " << letters.first << ".." << letters.second;
+    EXPECT_GE(plate.second - letters.second, kPadding24)
+        << "plate " << plate.first << ".." << plate.second << ", ink " << letters.first << ".." << letters.second;
 }
 
 // WCAG 2's relative luminance of an 8-bit sRGB pixel (BGR).
