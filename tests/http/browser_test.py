@@ -247,7 +247,7 @@ def shown_intrinsics(page, base, centred):
     if abs(float(shown['cx']) - k['cx']) > 0.006 or abs(float(shown['cy']) - k['cy']) > 0.006:
         raise Failure(f'the page shows cx {shown["cx"]}, cy {shown["cy"]}; the camera uses {k["cx"]}, {k["cy"]}')
     width, height = get_state(base)['source']['width'], get_state(base)['source']['height']
-    if centred and abs(k['cx'] - (width - 1) / 2) > 1e-6 or abs(k['cy'] - (height - 1) / 2) > 1e-6:
+    if centred and (abs(k['cx'] - (width - 1) / 2) > 1e-6 or abs(k['cy'] - (height - 1) / 2) > 1e-6):
         raise Failure(f'a centred camera shows cx {k["cx"]}, cy {k["cy"]}, not the image centre '
                       f'({(width - 1) / 2}, {(height - 1) / 2}) with pixel centres at integers')
 
@@ -309,21 +309,32 @@ def revert(page, base):
 
 
 def edit_lens(page, base):
-    """The lens field edits the demo's own intrinsics key, its vertical field of view: 50 typed in is the camera's
-    vfov; 60 puts it back."""
+    """The lens field edits the camera's own intrinsics key: a `fov` camera's field of view along its axis (the
+    demo's vfov 50, then back), a `pinhole` camera's focal length (fx 10% longer with fy in proportion and the
+    principal point kept, then back)."""
     label = page.wait_for("!document.getElementById('lens-form').hidden &&"
                           " document.getElementById('lens-label').textContent", 5, 'the lens field')
-    if 'Field of view' not in label or 'vertical' not in label:
-        raise Failure(f'the demo\'s lens field is labelled {label!r}, not its vertical field of view')
-    for value in (50, 60):
+    k = get_state(base)['camera']['intrinsics']
+    if k['form'] == 'fov':
+        if 'Field of view' not in label or k['fov_axis'] not in label:
+            raise Failure(f'the fov camera\'s lens field is labelled {label!r}')
+        key = 'vfov' if k['fov_axis'] == 'vertical' else 'hfov'
+        steps = [(50.0, lambda now: abs(now[key] - 50.0) < 1e-6), (k['fov'], lambda now: abs(now[key] - k[key]) < 1e-6)]
+    else:
+        if 'Focal length' not in label:
+            raise Failure(f'the pinhole camera\'s lens field is labelled {label!r}')
+        longer = round(k['fx'] * 1.1, 3)
+        steps = [(longer, lambda now: abs(now['fx'] - longer) < 1e-6 and abs(now['fy'] / now['fx'] - k['fy'] / k['fx'])
+                  < 1e-6 and abs(now['cx'] - k['cx']) < 1e-6 and abs(now['cy'] - k['cy']) < 1e-6),
+                 (k['fx'], lambda now: abs(now['fx'] - k['fx']) < 1e-3)]
+    for value, reached in steps:
         page.evaluate(f"""(() => {{
             const field = document.getElementById('lens');
             field.value = '{value}';
             field.dispatchEvent(new Event('change', {{bubbles: true}}));
         }})()""")
-        poll(lambda: abs(get_state(base)['camera']['intrinsics']['vfov'] - value) < 1e-6, 5,
-             f'the camera\'s vfov to become {value}')
-    print(f'lens field {label!r}: vfov 50 applied, then 60')
+        poll(lambda: reached(get_state(base)['camera']['intrinsics']), 5, f'the lens field\'s {value} to apply')
+    print(f'lens field {label!r}: {steps[0][0]} applied, then {steps[1][0]}')
 
 
 GROUND_MARKS = [(-2.0, 0.0, 0.0), (2.0, 0.0, 0.0), (-3.0, 6.0, 0.0), (3.0, 6.0, 0.0), (0.0, 12.0, 0.0),
@@ -352,7 +363,11 @@ def collect_points(page, base, overlayd, config, workdir):
     if abs(width - natural) > 0.5:
         raise Failure(f'the 1:1 view shows the {natural} px image {width} px wide')
     query = ';'.join(','.join(str(c) for c in p) for p in GROUND_MARKS)
-    projected = json.loads(http(base, '/api/project?points=' + query)[0])
+    state = get_state(base)['source']
+    projected = [p for p in json.loads(http(base, '/api/project?points=' + query)[0])
+                 if p['visible'] and 0 <= p['pixel'][0] <= state['width'] - 1 and 0 <= p['pixel'][1] <= state['height'] - 1]
+    if len(projected) < 4:
+        raise Failure(f'only {len(projected)} of the ground marks {GROUND_MARKS} are in the frame: too few to solve')
     for n, point in enumerate(projected, 1):
         u, v = (round(c) for c in point['pixel'])
         click_pixel_actual_size(page, u, v)
@@ -361,7 +376,7 @@ def collect_points(page, base, overlayd, config, workdir):
         got = [float(c) for c in shown.split(',')]
         if math.dist(got, (u, v)) > 0.05:
             raise Failure(f'in the 1:1 view a click on pixel ({u}, {v}) gave {got}')
-        world = GROUND_MARKS[n - 1]
+        world = point['world']
         page.evaluate(f"""(() => {{
             const inputs = document.querySelectorAll('#click-results li:first-child input[data-axis]');
             {json.dumps(world)}.forEach((value, i) => {{
@@ -376,8 +391,8 @@ def collect_points(page, base, overlayd, config, workdir):
     csv_text = urllib.parse.unquote(href[len(prefix):])
     points = os.path.join(workdir, 'points.csv')
     open(points, 'w').write(csv_text)
-    if csv_text.count('\n') != len(GROUND_MARKS) + 1:
-        raise Failure(f'the points file has not a header and {len(GROUND_MARKS)} rows:\n{csv_text}')
+    if csv_text.count('\n') != len(projected) + 1:
+        raise Failure(f'the points file has not a header and {len(projected)} rows:\n{csv_text}')
     solved = subprocess.run([overlayd, 'solve-pose', '--config', config, '--points', points],
                             capture_output=True, text=True, timeout=60)
     if solved.returncode != 0:
@@ -390,7 +405,7 @@ def collect_points(page, base, overlayd, config, workdir):
     if math.dist(position, camera['position']) > 0.05 or abs(float(found.group(2)) - camera['yaw']) > 0.2 or \
             abs(float(found.group(3)) - camera['pitch']) > 0.2:
         raise Failure(f'solve-pose on the page\'s points gave {found.group(0)!r}; the camera is {camera}')
-    print(f'{len(GROUND_MARKS)} points clicked in the 1:1 view solve back to the pose: {found.group(0)!r}')
+    print(f'{len(projected)} points clicked in the 1:1 view solve back to the pose: {found.group(0)!r}')
 
 
 def token_flow(args, workdir, cleanup, browser):
