@@ -31,6 +31,18 @@ struct CalibrationRegion {
     bool operator==(const CalibrationRegion &) const = default;
 };
 
+// The pose keys a config wrote (config/pose_config.cpp): a save writes the live pose back in them, in the user's own
+// units and axes, rather than in a form the user did not choose.
+enum class PoseForm { LookAt, Gaze, PrpVpnVup, Orientation, YawPitchRoll, Rodrigues, Rt };
+
+struct PoseKeysUsed {
+    PoseForm form = PoseForm::Rt;
+    CameraAxes axes = CameraAxes::Body; // the orientation form's `axes`
+    double targetDistance = 1.0;        // look-at: how far the target was from the eye
+
+    bool operator==(const PoseKeysUsed &) const = default;
+};
+
 enum class IntrinsicsForm {
     FieldOfView,        // fovDeg across fovAxis, aspect from the viewport window (round circles)
     Frustum,            // bounds.left..top on the near plane (glFrustum)
@@ -65,6 +77,7 @@ public:
     // Filled by the config loader.
     Pose pose{}; // mount frame to camera
     std::string mountFrame = "world";
+    PoseKeysUsed poseKeys{};        // the config's pose form; the API's edits keep it
     glm::dmat4 worldFromMount{1.0}; // resolved from the scene graph when loading
 
     IntrinsicsForm form = IntrinsicsForm::FieldOfView;

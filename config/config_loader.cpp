@@ -92,7 +92,7 @@ bool readCamera(TableReader &root, const std::string &baseDirectory, DaemonConfi
     auto camera = root.table("camera");
     if (camera) {
         config.camera.mountFrame = camera->string("frame").value_or(SceneGraph::kWorld);
-        readPose(*camera, config.camera.pose);
+        readPose(*camera, config.camera.pose, &config.camera.poseKeys);
         readIntrinsics(*camera, baseDirectory, config.camera, keys);
         camera->finish();
     }

@@ -50,7 +50,8 @@ void readInputs(TableReader &root, const std::string &baseDirectory, const Overl
 void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
-bool readPose(TableReader &camera, Pose &out);
+// `used`, when given, learns which form the keys were in.
+bool readPose(TableReader &camera, Pose &out, PoseKeysUsed *used = nullptr);
 // Intrinsics, near/far, depth range, distortion and calibration of [camera].
 void readIntrinsics(TableReader &camera, const std::string &baseDirectory, CameraSpec &out, CameraKeys &keys);
 void readViewport(TableReader &viewport, ViewportSpec &out);

@@ -101,6 +101,16 @@ Shape readArc(TableReader &t)
     return s;
 }
 
+TextAlign readAlign(TableReader &t)
+{
+    return t
+        .choice<TextAlign>("align", {{"left", TextAlign::Left},
+                                     {"centre", TextAlign::Centre},
+                                     {"center", TextAlign::Centre},
+                                     {"right", TextAlign::Right}})
+        .value_or(TextAlign::Left);
+}
+
 Shape readLabel(TableReader &t)
 {
     LabelShape s;
@@ -109,6 +119,7 @@ Shape readLabel(TableReader &t)
     s.offsetPx = t.vec2("offset_px").value_or(s.offsetPx);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
+    s.align = readAlign(t);
     return s;
 }
 
@@ -142,6 +153,7 @@ Shape readScreenText(TableReader &t)
     s.position = t.vec2("position").value_or(s.position);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
+    s.align = readAlign(t);
     return s;
 }
 

@@ -61,6 +61,25 @@ json vec3(const glm::dvec3 &v)
     return json::array({shown(v.x), shown(v.y), shown(v.z)});
 }
 
+// The intrinsics key the camera was given by, so that the page edits that one (a field of view stays one).
+const char *intrinsicsFormName(IntrinsicsForm form)
+{
+    switch (form) {
+    case IntrinsicsForm::FieldOfView:
+        return "fov";
+    case IntrinsicsForm::Frustum:
+        return "frustum";
+    case IntrinsicsForm::Pinhole:
+        return "pinhole";
+    case IntrinsicsForm::Window:
+        return "window";
+    case IntrinsicsForm::Orthographic:
+    case IntrinsicsForm::WindowOrthographic:
+        break;
+    }
+    return "orthographic";
+}
+
 json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
 {
     const YawPitchRoll ypr = yawPitchRollOf(spec.pose);
@@ -94,7 +113,12 @@ json cameraJson(const CameraSpec &spec, const Result<Camera> &camera)
                              {"width", width},
                              {"height", height},
                              {"hfov", shown(glm::degrees(2.0 * std::atan(width / (2.0 * fx))))},
-                             {"vfov", shown(glm::degrees(2.0 * std::atan(height / (2.0 * fy))))}};
+                             {"vfov", shown(glm::degrees(2.0 * std::atan(height / (2.0 * fy))))},
+                             {"form", intrinsicsFormName(spec.form)}};
+        if (spec.form == IntrinsicsForm::FieldOfView) {
+            out["intrinsics"]["fov"] = shown(spec.fovDeg);
+            out["intrinsics"]["fov_axis"] = spec.fovAxis == FovAxis::Vertical ? "vertical" : "horizontal";
+        }
     }
     return out;
 }
@@ -211,6 +235,12 @@ HttpResponse HttpApi::state()
                   {"stream_fps", http.streamFps},
                   {"parts_sent", http.partsSent},
                   {"requests", http.requests}}}};
+    // The config's pose (with its saved drop-in), for the page's "revert to the config".
+    const YawPitchRoll configured = yawPitchRollOf(config.camera.pose);
+    out["camera"]["configured"] = {{"position", vec3(configured.position)},
+                                   {"yaw", shown(configured.yawDeg)},
+                                   {"pitch", shown(configured.pitchDeg)},
+                                   {"roll", shown(configured.rollDeg)}};
     StatusReport parts(std::chrono::steady_clock::now());
     addParts(parts);
     parts.writeState(out);

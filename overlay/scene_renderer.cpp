@@ -139,7 +139,9 @@ Status SceneRenderer::buildText(TextSlot &slot)
         slot.origins[i] = {box.x0, box.y0};
         if (!item.background)
             continue;
-        if (Status status = renderTextBox(slot, FillItem{*item.background, box.x0, box.y0, box.x1, box.y1}); !status)
+        const LayerRect plate = rasterizer_.plateBox(item);
+        if (Status status = renderTextBox(slot, FillItem{*item.background, plate.x0, plate.y0, plate.x1, plate.y1});
+            !status)
             return status;
         item.background.reset();
     }

@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "media/rgba.h"
+#include "overlay/shapes/primitives.h"
 #include "projection/pose.h"
 #include "projection/projection.h"
 #include "projection/scene_graph.h"
@@ -90,6 +91,7 @@ struct LabelShape {
     glm::dvec2 offsetPx{0.0}; // in the viewport's origin convention
     double sizePx = 16.0;     // text height
     std::optional<Rgba> background{};
+    TextAlign align = TextAlign::Left; // which column of the box sits at the anchor + offset
 };
 
 // Where the plane through `point` with `normal` meets infinity, drawn across the view.
@@ -149,9 +151,10 @@ struct ImageShape {
 // {time:%Y-%m-%d %H:%M:%S}), {ms} (milliseconds of the wall clock), {{ and }} for literal braces.
 struct ScreenTextShape {
     std::string text;
-    glm::dvec2 position{10.0, 10.0}; // the text box's corner nearest the origin
+    glm::dvec2 position{10.0, 10.0}; // the text box's corner nearest the origin (its column per `align`)
     double sizePx = 20.0;
     std::optional<Rgba> background{};
+    TextAlign align = TextAlign::Left;
 };
 struct CrosshairShape {
     std::optional<glm::dvec2> position{}; // default: the viewport centre

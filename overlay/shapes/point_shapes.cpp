@@ -61,7 +61,7 @@ void buildLabel(const ShapeContext &ctx, const LabelShape &shape)
 {
     if (const auto pixel = ctx.point(shape.anchor))
         ctx.text(shape.text, *pixel + ctx.camera.viewport().offsetToTopLeft(shape.offsetPx), shape.sizePx,
-                 ctx.style.colour, shape.background);
+                 ctx.style.colour, shape.background, shape.align);
 }
 
 } // namespace overlayd

@@ -12,7 +12,7 @@ namespace overlayd {
 void buildScreenText(const ShapeContext &ctx, const ScreenTextShape &shape)
 {
     ctx.text(shape.text, ctx.camera.viewport().toTopLeft(shape.position), shape.sizePx, ctx.style.colour,
-             shape.background);
+             shape.background, shape.align);
 }
 
 void buildCrosshair(const ShapeContext &ctx, const CrosshairShape &shape)

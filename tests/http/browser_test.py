@@ -11,11 +11,15 @@ Exit 0: pass; 1: a check failed (the message says which); 2: set-up failed. Boun
 """
 import argparse
 import json
+import math
 import os
+import re
 import shutil
 import signal
 import sys
+import subprocess
 import time
+import urllib.parse
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -243,9 +247,165 @@ def shown_intrinsics(page, base, centred):
     if abs(float(shown['cx']) - k['cx']) > 0.006 or abs(float(shown['cy']) - k['cy']) > 0.006:
         raise Failure(f'the page shows cx {shown["cx"]}, cy {shown["cy"]}; the camera uses {k["cx"]}, {k["cy"]}')
     width, height = get_state(base)['source']['width'], get_state(base)['source']['height']
-    if centred and abs(k['cx'] - (width - 1) / 2) > 1e-6 or abs(k['cy'] - (height - 1) / 2) > 1e-6:
+    if centred and (abs(k['cx'] - (width - 1) / 2) > 1e-6 or abs(k['cy'] - (height - 1) / 2) > 1e-6):
         raise Failure(f'a centred camera shows cx {k["cx"]}, cy {k["cy"]}, not the image centre '
                       f'({(width - 1) / 2}, {(height - 1) / 2}) with pixel centres at integers')
+
+
+def pose_value(base, key):
+    camera = get_state(base)['camera']
+    return camera['position']['xyz'.index(key)] if key in 'xyz' else camera[key]
+
+
+def step_by_key(page, base, element, key, press, shift, expected_step):
+    """Focuses `element` (a pose field or slider), presses an arrow key and waits for /state's `key` to move by
+    expected_step: the page's own step (0.01 m, 0.1 degree; Shift ten times that), not the element's native one."""
+    before = pose_value(base, key)
+    page.evaluate(f"document.getElementById({json.dumps(element)}).focus()")
+    page.press(press, shift=shift)
+    target = round(before + expected_step, 6)
+    poll(lambda: abs(pose_value(base, key) - target) < 1e-6, 5,
+         f'{press}{" with Shift" if shift else ""} on #{element} to move {key} {before} -> {target}')
+
+
+def fine_control(page, base):
+    """Arrow keys step fields and sliders by 0.01 m / 0.1 degree, Shift by ten times that; "Fine sliders" narrows a
+    position slider to +-1 m, so that a 20 px drag moves centimetres (it moved metres over +-20 m)."""
+    step_by_key(page, base, 'x', 'x', 'ArrowUp', True, 0.1)
+    step_by_key(page, base, 'x', 'x', 'ArrowDown', False, -0.01)
+    step_by_key(page, base, 'yaw-slider', 'yaw', 'ArrowRight', True, 1.0)
+    step_by_key(page, base, 'yaw-slider', 'yaw', 'ArrowLeft', False, -0.1)
+    page.evaluate("document.getElementById('fine').click()")
+    spans = page.evaluate("""(() => Object.fromEntries(['x', 'yaw'].map((key) => {
+        const range = document.getElementById(key + '-slider');
+        return [key, Number(range.max) - Number(range.min)]; })))()""")
+    if abs(spans['x'] - 2) > 1e-9 or spans['yaw'] > 10 + 1e-9:
+        raise Failure(f'fine sliders span {spans}, not x 2 m and yaw at most 10 degrees')
+    time.sleep(1.6)  # the page's "being edited" window after the key presses: the drag below starts from the server's x
+    before = pose_value(base, 'x')
+    box = page.evaluate("""(() => { const r = document.getElementById('x-slider');
+        r.scrollIntoView({block: 'center'}); return r.getBoundingClientRect().toJSON(); })()""")
+    thumb = box['left'] + box['width'] * (before - float(page.evaluate("document.getElementById('x-slider').min"))) / 2
+    page.drag(thumb, box['top'] + box['height'] / 2, 20)
+    poll(lambda: abs(pose_value(base, 'x') - before) > 1e-9, 5, 'the fine x slider drag to move the camera')
+    time.sleep(0.5)
+    moved = abs(pose_value(base, 'x') - before)
+    if moved > 0.5:  # 20 px of +-1 m, plus the thumb's half width if the press missed its centre
+        raise Failure(f'a 20 px drag of the fine x slider ({box["width"]} px wide) moved x by {moved} m')
+    page.evaluate("document.getElementById('fine').click()")
+    print(f'keys: 0.01 m / 0.1 degree, Shift 10x; a 20 px fine drag moved x {moved:.3f} m')
+
+
+def revert(page, base):
+    """"Revert to the config" puts back the config's pose (/state camera.configured) after edits."""
+    configured = get_state(base)['camera']['configured']
+    if abs(get_state(base)['camera']['yaw'] - configured['yaw']) < 1e-6:
+        set_yaw(page, base)
+    page.evaluate("document.getElementById('revert').click()")
+    poll(lambda: all(abs(get_state(base)['camera'][key] - configured[key]) < 1e-6 for key in ('yaw', 'pitch', 'roll'))
+         and math.dist(get_state(base)['camera']['position'], configured['position']) < 1e-6, 5,
+         f'the pose to go back to the config\'s {configured}')
+    print(f'reverted to the config\'s pose {configured}')
+
+
+def edit_lens(page, base):
+    """The lens field edits the camera's own intrinsics key: a `fov` camera's field of view along its axis (the
+    demo's vfov 50, then back), a `pinhole` camera's focal length (fx 10% longer with fy in proportion and the
+    principal point kept, then back)."""
+    label = page.wait_for("!document.getElementById('lens-form').hidden &&"
+                          " document.getElementById('lens-label').textContent", 5, 'the lens field')
+    k = get_state(base)['camera']['intrinsics']
+    if k['form'] == 'fov':
+        if 'Field of view' not in label or k['fov_axis'] not in label:
+            raise Failure(f'the fov camera\'s lens field is labelled {label!r}')
+        key = 'vfov' if k['fov_axis'] == 'vertical' else 'hfov'
+        steps = [(50.0, lambda now: abs(now[key] - 50.0) < 1e-6), (k['fov'], lambda now: abs(now[key] - k[key]) < 1e-6)]
+    else:
+        if 'Focal length' not in label:
+            raise Failure(f'the pinhole camera\'s lens field is labelled {label!r}')
+        longer = round(k['fx'] * 1.1, 3)
+        steps = [(longer, lambda now: abs(now['fx'] - longer) < 1e-6 and abs(now['fy'] / now['fx'] - k['fy'] / k['fx'])
+                  < 1e-6 and abs(now['cx'] - k['cx']) < 1e-6 and abs(now['cy'] - k['cy']) < 1e-6),
+                 (k['fx'], lambda now: abs(now['fx'] - k['fx']) < 1e-3)]
+    for value, reached in steps:
+        page.evaluate(f"""(() => {{
+            const field = document.getElementById('lens');
+            field.value = '{value}';
+            field.dispatchEvent(new Event('change', {{bubbles: true}}));
+        }})()""")
+        poll(lambda: reached(get_state(base)['camera']['intrinsics']), 5, f'the lens field\'s {value} to apply')
+    print(f'lens field {label!r}: {steps[0][0]} applied, then {steps[1][0]}')
+
+
+GROUND_MARKS = [(-2.0, 0.0, 0.0), (2.0, 0.0, 0.0), (-3.0, 6.0, 0.0), (3.0, 6.0, 0.0), (0.0, 12.0, 0.0),
+                (1.0, 3.0, 0.0)]
+
+
+def click_pixel_actual_size(page, u, v):
+    """In the 1:1 view: scrolls the frame to image pixel (u, v) and clicks that pixel's centre."""
+    box = page.evaluate(f"""(() => {{
+        const frame = document.getElementById('frame');
+        frame.scrollIntoView({{block: 'start'}});
+        frame.scrollLeft = {u} - frame.clientWidth / 2;
+        frame.scrollTop = {v} - frame.clientHeight / 2;
+        return document.getElementById('stream').getBoundingClientRect().toJSON(); }})()""")
+    page.click(box['left'] + u + 0.5, box['top'] + v + 0.5)
+
+
+def collect_points(page, base, overlayd, config, workdir):
+    """The 1:1 view shows one image pixel per CSS pixel, so clicks land on the pixels meant; the clicked points,
+    given their world coordinates, download as a CSV that `overlayd solve-pose` reads and solves back to the live
+    pose."""
+    page.evaluate("document.getElementById('points-clear').click()")
+    page.evaluate("document.getElementById('zoom').click()")
+    width = page.evaluate("document.getElementById('stream').getBoundingClientRect().width")
+    natural = page.evaluate("document.getElementById('stream').naturalWidth")
+    if abs(width - natural) > 0.5:
+        raise Failure(f'the 1:1 view shows the {natural} px image {width} px wide')
+    query = ';'.join(','.join(str(c) for c in p) for p in GROUND_MARKS)
+    state = get_state(base)['source']
+    projected = [p for p in json.loads(http(base, '/api/project?points=' + query)[0])
+                 if p['visible'] and 0 <= p['pixel'][0] <= state['width'] - 1 and 0 <= p['pixel'][1] <= state['height'] - 1]
+    if len(projected) < 4:
+        raise Failure(f'only {len(projected)} of the ground marks {GROUND_MARKS} are in the frame: too few to solve')
+    for n, point in enumerate(projected, 1):
+        u, v = (round(c) for c in point['pixel'])
+        click_pixel_actual_size(page, u, v)
+        shown = page.wait_for(f"document.querySelectorAll('#click-results li').length === {n} &&"
+                              " document.querySelector('#click-results li').dataset.pixel", 5, f'click {n}')
+        got = [float(c) for c in shown.split(',')]
+        if math.dist(got, (u, v)) > 0.05:
+            raise Failure(f'in the 1:1 view a click on pixel ({u}, {v}) gave {got}')
+        world = point['world']
+        page.evaluate(f"""(() => {{
+            const inputs = document.querySelectorAll('#click-results li:first-child input[data-axis]');
+            {json.dumps(world)}.forEach((value, i) => {{
+                inputs[i].value = String(value);
+                inputs[i].dispatchEvent(new Event('input', {{bubbles: true}}));
+            }}); }})()""")
+    page.evaluate("document.getElementById('zoom').click()")
+    href = page.evaluate("document.getElementById('points-download').href")
+    prefix = 'data:text/csv;charset=utf-8,'
+    if not href.startswith(prefix):
+        raise Failure(f'the points link is {href[:80]!r}, not a CSV')
+    csv_text = urllib.parse.unquote(href[len(prefix):])
+    points = os.path.join(workdir, 'points.csv')
+    open(points, 'w').write(csv_text)
+    if csv_text.count('\n') != len(projected) + 1:
+        raise Failure(f'the points file has not a header and {len(projected)} rows:\n{csv_text}')
+    solved = subprocess.run([overlayd, 'solve-pose', '--config', config, '--points', points],
+                            capture_output=True, text=True, timeout=60)
+    if solved.returncode != 0:
+        raise Failure(f'solve-pose refused the page\'s points ({solved.returncode}): {solved.stderr}\n{csv_text}')
+    found = re.search(r'# position = \[([^\]]*)\]\s*# yaw = (\S+)\s*# pitch = (\S+)', solved.stdout)
+    if not found:
+        raise Failure(f'no pose in solve-pose\'s output:\n{solved.stdout}')
+    position = [float(c) for c in found.group(1).split(',')]
+    camera = get_state(base)['camera']
+    if math.dist(position, camera['position']) > 0.05 or abs(float(found.group(2)) - camera['yaw']) > 0.2 or \
+            abs(float(found.group(3)) - camera['pitch']) > 0.2:
+        raise Failure(f'solve-pose on the page\'s points gave {found.group(0)!r}; the camera is {camera}')
+    print(f'{len(projected)} points clicked in the 1:1 view solve back to the pose: {found.group(0)!r}')
 
 
 def token_flow(args, workdir, cleanup, browser):
@@ -315,6 +475,10 @@ def run(args, workdir, cleanup):
     click_centre(page, base)
     hide_layer(page, base)
     out_of_range_pitch(page, base)
+    fine_control(page, base)
+    revert(page, base)
+    edit_lens(page, base)
+    collect_points(page, base, args.overlayd, os.path.join(workdir, 'overlayd.toml'), workdir)
     shown_intrinsics(page, base, args.config == os.path.abspath(daemon_fixture.DEMO))
     check_narrow(page, workdir)
     if page.problems:

@@ -59,10 +59,11 @@ def check_sinks(daemon, workdir):
 
 
 def demo_pixel(world, fx, fy, cx, cy):
-    """The demo camera's pixel for a world point, worked out here from its config (3 m up, 6 m behind the origin,
-    looking along +Y pitched 25 degrees down): pixel centres at integers, as [camera.pinhole] takes them."""
+    """The demo camera's pixel for a world point, worked out here from its config (3 m up, 6 m behind the origin and
+    1.5 m to its right, looking along +Y pitched 25 degrees down): pixel centres at integers, as [camera.pinhole]
+    takes them."""
     pitch = math.radians(25.0)
-    d = [world[0] - 0.0, world[1] + 6.0, world[2] - 3.0]
+    d = [world[0] - 1.5, world[1] + 6.0, world[2] - 3.0]
     forward = (0.0, math.cos(pitch), -math.sin(pitch))
     up = (0.0, math.sin(pitch), math.cos(pitch))
     z = sum(a * b for a, b in zip(d, forward))
@@ -71,7 +72,7 @@ def demo_pixel(world, fx, fy, cx, cy):
 
 def check_intrinsics(daemon, workdir):
     """/state's intrinsics are those the camera projects with, in [camera.pinhole]'s convention: fov = 60 vertical
-    on 1280x720 is fy = 360 / tan(30 deg), cx = 639.5, cy = 359.5; the origin lands at (639.5, 376.54)."""
+    on 1280x720 is fy = 360 / tan(30 deg), cx = 639.5, cy = 359.5; the origin lands at (500.02, 376.54)."""
     k = daemon.state()["camera"]["intrinsics"]
     f = 360.0 / math.tan(math.radians(30.0))
     expected = {"fx": f, "fy": f, "cx": 639.5, "cy": 359.5}
@@ -80,7 +81,7 @@ def check_intrinsics(daemon, workdir):
     status, projected = curl_json(daemon.base, "/api/project?points=" + ";".join(",".join(map(str, p)) for p in points))
     check(status == 200, f"/api/project: {status}")
     origin = projected[0]["pixel"]
-    check(math.dist(origin, [639.5, 376.54]) < 0.01, f"the origin projects to {origin}, not (639.5, 376.54)")
+    check(math.dist(origin, [500.02, 376.54]) < 0.01, f"the origin projects to {origin}, not (500.02, 376.54)")
     for point, answer in zip(points, projected):
         mine = demo_pixel(point, k["fx"], k["fy"], k["cx"], k["cy"])
         check(math.dist(mine, answer["pixel"]) < 1e-5,
@@ -177,7 +178,7 @@ def check_live_pose_said(daemon, workdir):
     check(done.returncode == 0 and "live pose" not in done.stderr, f"check-config without a drop-in: {done.stderr}")
 
 
-HOME = {"position": [0.0, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0}
+HOME = {"position": [1.5, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0}
 
 
 def check_changes_logged(daemon, workdir):
@@ -255,8 +256,14 @@ def check_readable_numbers(daemon, workdir):
           camera["roll"] == 0, f"/state's pose: {camera}")
     status, result = curl_json(daemon.base, "/api/save", "POST", "", token=TOKEN)
     check(status == 200, f"POST /api/save: {status} {result}")
-    comments = "".join(line for line in open(result["saved"]).readlines() if line.startswith("#"))
+    saved = open(result["saved"]).read()
+    comments = "".join(line for line in saved.splitlines(keepends=True) if line.startswith("#"))
     os.remove(result["saved"])
+    # The pose in the config's own keys and units (position + yaw/pitch/roll in degrees), not a matrix.
+    keys = saved[saved.index("[camera]"):]
+    check("\nposition = [5.03, -6.0, 3.0]\n" in keys and "\nyaw = 90.0\n" in keys and "\npitch = 25.0\n" in keys and
+          "\nroll = 0.0\n" in keys and "rmat" not in keys and "tvec" not in keys,
+          f"the saved pose is not in the config's form (position, yaw, pitch, roll):\n{saved}")
     check("position = [5.03, -6.0, 3.0], yaw = 90.0, pitch = 25.0, roll = 0.0" in comments and
           not LONG_NUMBER.search(comments), f"the saved file's header: {comments}")
     status, result = curl_json(daemon.base, "/api/camera", "PUT", json.dumps(HOME), token=TOKEN)

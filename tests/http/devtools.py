@@ -139,6 +139,22 @@ class Page:
             self.call('Input.dispatchMouseEvent', type=kind, x=x, y=y, button='left',
                       clickCount=0 if kind == 'mouseMoved' else 1)
 
+    def press(self, key, shift=False):
+        """A key pressed and released on the focused element, as a keyboard sends it (arrow keys: 'ArrowUp')."""
+        codes = {'ArrowLeft': 37, 'ArrowUp': 38, 'ArrowRight': 39, 'ArrowDown': 40}
+        for kind in ('rawKeyDown', 'keyUp'):
+            self.call('Input.dispatchKeyEvent', type=kind, key=key, code=key, modifiers=8 if shift else 0,
+                      windowsVirtualKeyCode=codes.get(key, 0))
+
+    def drag(self, x, y, dx):
+        """A left-button drag from (x, y) by dx CSS pixels across, in small moves as a hand makes them."""
+        self.call('Input.dispatchMouseEvent', type='mouseMoved', x=x, y=y)
+        self.call('Input.dispatchMouseEvent', type='mousePressed', x=x, y=y, button='left', clickCount=1)
+        for step in range(1, 11):
+            self.call('Input.dispatchMouseEvent', type='mouseMoved', x=x + dx * step / 10, y=y, button='left',
+                      buttons=1)
+        self.call('Input.dispatchMouseEvent', type='mouseReleased', x=x + dx, y=y, button='left', clickCount=1)
+
     def screenshot(self, path):
         png = base64.b64decode(self.call('Page.captureScreenshot', format='png')['data'])
         with open(path, 'wb') as file:

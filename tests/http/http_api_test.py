@@ -116,7 +116,7 @@ def check_overlay_where_projected(base, workdir, tag):
 
 # Numbers no config file may hold (a denormal, the largest doubles) and what a JSON parser makes of overflow.
 EXTREMES = (5e-324, -5e-324, 1e-300, 1e308, -1e308, "1e400")
-HOME = {"position": [0.0, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0, "fov": 60.0, "near": 0.1,
+HOME = {"position": [1.5, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0, "fov": 60.0, "near": 0.1,
         "far": 200.0, "distortion": {"model": "none"}}
 
 
