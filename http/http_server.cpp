@@ -519,7 +519,8 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
     }
     const std::string &url = request.path;
     const bool reading = method == "GET" || method == "HEAD";
-    if (!reading && method != "PUT" && method != "POST" && method != "DELETE") // DELETE: a WHEP hang-up
+    const bool hangUp = method == "DELETE" && url.starts_with("/whep/"); // WHEP's one DELETE
+    if (!reading && method != "PUT" && method != "POST" && !hangUp)
         return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));
     if (!reading && (url == "/stream" || url == "/snapshot")) // before the credential check: none makes it right
         return answer(connection, HttpResponse::error(405, "GET " + url));

@@ -213,7 +213,9 @@ Result<std::string> WebrtcPeer::negotiate(GMainContext *context, const WebrtcOpt
         GstWebRTCRTPTransceiver *transceiver = nullptr;
         g_object_get(sink, "transceiver", &transceiver, nullptr);
         if (transceiver != nullptr) {
-            g_object_set(transceiver, "direction", GST_WEBRTC_RTP_TRANSCEIVER_DIRECTION_SENDONLY, nullptr);
+            // NACKs answered from rtpbin's retransmission buffer (RTX), when the viewer offers them
+            g_object_set(transceiver, "direction", GST_WEBRTC_RTP_TRANSCEIVER_DIRECTION_SENDONLY, "do-nack", TRUE,
+                         nullptr);
             gst_object_unref(transceiver);
         }
         gst_object_unref(sink);

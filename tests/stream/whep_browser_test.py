@@ -52,7 +52,9 @@ CONNECT = """(async () => {
   window.connectedAt = null;
   pc.onconnectionstatechange = () => { if (pc.connectionState === 'connected') window.connectedAt = performance.now(); };
   window.answeredAt = performance.now();
-  return {status: 201, location: window.whep, took: took};
+  return {status: 201, location: window.whep, took: took,
+          nack: text.split(String.fromCharCode(10)).map(line => line.trim())
+                .filter(line => / nack$/.test(line) || /rtx[/]/.test(line))};
 })()"""
 STATS = """(async () => {
   let video = null;
@@ -101,6 +103,8 @@ def main():
         check(answered.get("status") == 201, f"the browser's POST /whep: 201 ({json.dumps(answered)[:300]})")
         if answered.get("status") != 201:
             return
+        check(any(line.endswith(" nack") for line in answered.get("nack", [])),
+              f"the answer takes the browser's NACKs ({answered.get('nack')})")
         started = time.monotonic()
         stats = None
         while time.monotonic() - started < 15:
