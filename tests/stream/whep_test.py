@@ -6,7 +6,8 @@ the defaults) watched by an independent receiver built here with GStreamer's web
   candidates are host candidates only (no ice_servers);
 - the receiver decodes at least 60 frames of the stream's size, while /state lists one peer;
 - a second offer past max_peers = 1 is 503; DELETE of the Location hangs up (/state: no peers), DELETE again 404;
-- bad offers are 400 naming what is wrong (not SDP; no video; no H.264), a wrong Content-Type is 415.
+- bad offers are 400 naming what is wrong (not SDP; no video; no H.264), a wrong Content-Type is 415;
+- /stream's credential rules: with a viewer token configured, no credential is 401, the viewer's token passes.
 
     whep_test.py --overlayd build/daemon/overlayd --workdir /tmp/whep-test
 Exit 0 when every check passed, 1 when any failed, 77 (skipped) without python3-gi's GStreamer WebRTC bindings."""
@@ -45,10 +46,12 @@ max_peers = 1
 """
 
 
-def request(method, url, body=None, content_type="application/sdp"):
+def request(method, url, body=None, content_type="application/sdp", token=None):
     """(status, headers, body text) of one request, errors included."""
     data = body.encode() if body is not None else None
     req = urllib.request.Request(url, data=data, method=method)
+    if token:
+        req.add_header("Authorization", f"Bearer {token}")
     if data is not None:
         req.add_header("Content-Type", content_type)
     try:
@@ -56,6 +59,8 @@ def request(method, url, body=None, content_type="application/sdp"):
             return answer.status, answer.headers, answer.read().decode()
     except urllib.error.HTTPError as error:
         return error.code, error.headers, error.read().decode()
+    except urllib.error.URLError as error:  # not listening yet
+        return 0, None, str(error)
 
 
 class Receiver:
@@ -132,6 +137,28 @@ def peers(daemon):
     return None
 
 
+def credentials(overlayd, workdir):
+    """The rules of /stream: with a viewer token configured, no credential is 401 and the viewer's reaches WHEP."""
+    token = "whep-viewer-token-0123456789"
+    with open(os.path.join(workdir, "viewer.token"), "w", encoding="utf-8") as file:
+        file.write(token + "\n")
+    port = daemon_fixture.free_port()
+    config = os.path.join(workdir, "whep-viewer.toml")
+    with open(config, "w", encoding="utf-8") as file:
+        file.write(CONFIG + daemon_fixture.http_section(port, control="off", viewer_token_file="viewer.token"))
+    daemon = daemon_fixture.Daemon(overlayd, config, workdir, port)
+    try:
+        deadline = time.monotonic() + 20
+        while request("GET", daemon.base + "/state", token=token)[0] != 200 and time.monotonic() < deadline:
+            time.sleep(0.2)
+        status, _, _ = request("POST", daemon.base + "/whep", "hello")
+        check(status == 401, f"with a viewer token configured, POST /whep without a credential: 401 ({status})")
+        status, _, body = request("POST", daemon.base + "/whep", "hello", token=token)
+        check(status == 400, f"the viewer's token reaches WHEP (400 for the bad offer: {status} {body.strip()[:80]})")
+    finally:
+        daemon.stop()
+
+
 def main():
     parser = argparse.ArgumentParser()
     for option in ("--overlayd", "--workdir"):
@@ -191,6 +218,7 @@ def main():
                   f"{body.strip()[:200]})")
         status, _, body = request("POST", whep, offer, content_type="application/json")
         check(status == 415, f"an offer sent as application/json is 415 ({status}: {body.strip()[:120]})")
+        credentials(args.overlayd, args.workdir)
     finally:
         if receiver:
             receiver.stop()
