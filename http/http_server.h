@@ -32,8 +32,8 @@ struct HttpRequest {
     std::string path; // without the query
     std::map<std::string, std::string> query;
     std::string body;
-    std::string contentType; // of the body, as sent
     std::string peer;
+    std::string contentType; // of the body, as sent
 };
 
 struct HttpResponse {
