@@ -99,6 +99,10 @@ WebrtcPeer::~WebrtcPeer()
     feed_.detach();
     if (webrtc_ != nullptr)
         g_signal_handlers_disconnect_by_data(webrtc_, this);
+    if (rtpbin_ != nullptr) {
+        g_signal_handlers_disconnect_by_data(rtpbin_, this);
+        gst_object_unref(rtpbin_);
+    }
     branch_.drop();
 }
 
@@ -191,6 +195,13 @@ Result<std::string> WebrtcPeer::negotiate(GMainContext *context, const WebrtcOpt
     }
     g_signal_connect(webrtc_, "notify::ice-gathering-state", G_CALLBACK(&WebrtcPeer::onGatheringState), this);
     g_signal_connect(webrtc_, "notify::connection-state", G_CALLBACK(&WebrtcPeer::onConnectionState), this);
+    // A viewer that vanishes without DELETE (a closed tab, a pulled cable) stops sending RTCP: its source in
+    // webrtcbin's rtpbin times out (RTCP's five report intervals), and so does the peer.
+    if (GstElement *rtpbin = gst_bin_get_by_name(GST_BIN(webrtc_), "rtpbin")) {
+        rtpbin_ = rtpbin;
+        g_signal_connect(rtpbin, "on-timeout", G_CALLBACK(&WebrtcPeer::onViewerGone), this);
+        g_signal_connect(rtpbin, "on-bye-ssrc", G_CALLBACK(&WebrtcPeer::onViewerGone), this);
+    }
     GstElement *appsrc = gst_bin_get_by_name(GST_BIN(branch_.pipeline), "src");
     gst_object_unref(appsrc); // the pipeline holds it
     GstPad *pad = gst_element_get_static_pad(appsrc, "src");
@@ -279,6 +290,11 @@ void WebrtcPeer::onConnectionState(GstElement *webrtc, GParamSpec *, gpointer da
         self->requestKeyframe_(); // what went before DTLS was up never reached the viewer
     if (state == GST_WEBRTC_PEER_CONNECTION_STATE_FAILED || state == GST_WEBRTC_PEER_CONNECTION_STATE_CLOSED)
         self->failed_ = true;
+}
+
+void WebrtcPeer::onViewerGone(GstElement *, guint, guint, gpointer data)
+{
+    static_cast<WebrtcPeer *>(data)->failed_ = true;
 }
 
 GstPadProbeReturn WebrtcPeer::onUpstreamEvent(GstPad *, GstPadProbeInfo *info, gpointer data)

@@ -52,6 +52,7 @@ private:
     Status step(const char *signal, gpointer argument, std::chrono::steady_clock::time_point deadline);
     static void onGatheringState(GstElement *, GParamSpec *, gpointer self);
     static void onConnectionState(GstElement *, GParamSpec *, gpointer self);
+    static void onViewerGone(GstElement *, guint session, guint ssrc, gpointer self);
     static GstPadProbeReturn onUpstreamEvent(GstPad *, GstPadProbeInfo *info, gpointer self);
 
     std::string id_, address_;
@@ -60,6 +61,7 @@ private:
     BranchFeed feed_;
     BranchPipeline branch_;
     GstElement *webrtc_ = nullptr; // in branch_'s pipeline
+    GstElement *rtpbin_ = nullptr; // webrtcbin's own (a reference)
     std::atomic<bool> failed_{false};
 
     std::mutex mutex_; // guards the two below, signalled by webrtcbin's threads

@@ -6,6 +6,7 @@ the defaults) watched by an independent receiver built here with GStreamer's web
   candidates are host candidates only (no ice_servers);
 - the receiver decodes at least 60 frames of the stream's size, while /state lists one peer;
 - a second offer past max_peers = 1 is 503; DELETE of the Location hangs up (/state: no peers), DELETE again 404;
+- a receiver that stops without DELETE is reaped within 30 s (its RTCP source times out);
 - bad offers are 400 naming what is wrong (not SDP; no video; no H.264), a wrong Content-Type is 415;
 - /stream's credential rules: with a viewer token configured, no credential is 401, the viewer's token passes.
 
@@ -137,6 +138,23 @@ def peers(daemon):
     return None
 
 
+def vanished(daemon, whep):
+    """A receiver that goes without DELETE (its pipeline stopped: no more RTCP) is reaped within 30 s."""
+    receiver = Receiver()
+    status, _, answer = request("POST", whep, receiver.offer())
+    if status != 201:
+        check(False, f"a second receiver after DELETE: 201 ({status})")
+        return
+    receiver.answer(answer)
+    decoded, _ = receiver.frames(10, 10)
+    receiver.stop()  # no DELETE; its RTCP stops
+    started = time.monotonic()
+    while peers(daemon) != 0 and time.monotonic() - started < 30:
+        time.sleep(0.5)
+    check(decoded >= 10 and peers(daemon) == 0,
+          f"a receiver gone without DELETE is reaped: {peers(daemon)} peers {time.monotonic() - started:.1f} s later")
+
+
 def credentials(overlayd, workdir):
     """The rules of /stream: with a viewer token configured, no credential is 401 and the viewer's reaches WHEP."""
     token = "whep-viewer-token-0123456789"
@@ -218,6 +236,7 @@ def main():
                   f"{body.strip()[:200]})")
         status, _, body = request("POST", whep, offer, content_type="application/json")
         check(status == 415, f"an offer sent as application/json is 415 ({status}: {body.strip()[:120]})")
+        vanished(daemon, whep)
         credentials(args.overlayd, args.workdir)
     finally:
         if receiver:
