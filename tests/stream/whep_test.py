@@ -22,7 +22,7 @@ import urllib.request
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "http"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import daemon_fixture  # noqa: E402
-from rtsp_test import FPS, HEIGHT, SCENE, WIDTH, check, failures  # noqa: E402,F401
+from rtsp_test import HEIGHT, SCENE, WIDTH, check, failures  # noqa: E402
 
 try:
     import gi
@@ -160,11 +160,7 @@ def credentials(overlayd, workdir):
     token = "whep-viewer-token-0123456789"
     with open(os.path.join(workdir, "viewer.token"), "w", encoding="utf-8") as file:
         file.write(token + "\n")
-    port = daemon_fixture.free_port()
-    config = os.path.join(workdir, "whep-viewer.toml")
-    with open(config, "w", encoding="utf-8") as file:
-        file.write(CONFIG + daemon_fixture.http_section(port, control="off", viewer_token_file="viewer.token"))
-    daemon = daemon_fixture.Daemon(overlayd, config, workdir, port)
+    daemon = start(overlayd, workdir, "whep-viewer", CONFIG, viewer_token_file="viewer.token")
     try:
         deadline = time.monotonic() + 20
         while request("GET", daemon.base + "/state", token=token)[0] != 200 and time.monotonic() < deadline:
@@ -177,18 +173,29 @@ def credentials(overlayd, workdir):
         daemon.stop()
 
 
-def main():
-    parser = argparse.ArgumentParser()
+def arguments(parser=None):
+    """--overlayd and --workdir (made), GStreamer started."""
+    parser = parser or argparse.ArgumentParser()
     for option in ("--overlayd", "--workdir"):
         parser.add_argument(option, required=True)
     args = parser.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     Gst.init(None)
+    return args
+
+
+def start(overlayd, workdir, name, text, **http):
+    """overlayd run on `text` (NAME.toml in workdir) with [http] on a free port, control off, and `http`'s keys."""
     port = daemon_fixture.free_port()
-    config = os.path.join(args.workdir, "whep.toml")
+    config = os.path.join(workdir, name + ".toml")
     with open(config, "w", encoding="utf-8") as file:
-        file.write(CONFIG + daemon_fixture.http_section(port, control="off"))
-    daemon = daemon_fixture.Daemon(args.overlayd, config, args.workdir, port)
+        file.write(text + daemon_fixture.http_section(port, control="off", **http))
+    return daemon_fixture.Daemon(overlayd, config, workdir, port)
+
+
+def main():
+    args = arguments()
+    daemon = start(args.overlayd, args.workdir, "whep", CONFIG)
     receiver = None
     try:
         daemon.wait_ready()
