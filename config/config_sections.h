@@ -41,6 +41,8 @@ void readEncodedSink(TableReader &sink, stream::StreamOptions &out);
 // kind = "record" and kind = "push" (record_push_config.cpp); `sofar` holds the encoded sinks read before.
 void readRecord(TableReader &sink, const stream::StreamOptions &sofar, stream::RecordSinkOptions &out);
 void readPush(TableReader &sink, stream::PushSinkOptions &out);
+// [webrtc] (webrtc_config.cpp), after [http], which serves it.
+void readWebrtc(TableReader &root, bool httpEnabled, stream::WebrtcOptions &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
 void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
 // [[input.text]] (after the annotations: their text slots are what inputs may feed).

@@ -4,12 +4,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "config/daemon_config.h"
 #include "control/run_state.h"
 #include "control/status_reporter.h"
 #include "media/stream.h"
+#include "stream/encoded_stream.h"
 
 namespace overlayd {
 
@@ -26,6 +28,8 @@ public:
     // Every part that reports itself in /state and /metrics (the sinks, GPIO, each kind of input), in the order
     // their entries appear.
     virtual std::vector<const StatusReporter *> reporters() const = 0;
+    // The encoded stream running now (null: none), which WHEP's peers join.
+    virtual std::shared_ptr<stream::EncodedStream> encodedStream() const { return nullptr; }
 
 protected:
     ~DaemonStatus() = default;

@@ -17,6 +17,7 @@
 #include "config/json_body.h"
 #include "config/live_drop_in.h"
 #include "control/status_report.h"
+#include "control/whep_api.h"
 #include "drivers/source_kind_names.h"
 #include "overlay/shapes/scene_checks.h"
 #include "projection/pose.h"
@@ -172,6 +173,8 @@ HttpResponse HttpApi::handle(const http::HttpRequest &request)
         return request.method == "POST" ? unproject(request) : HttpResponse::error(405, "POST /api/unproject");
     if (path == "/api/save")
         return request.method == "POST" ? save() : HttpResponse::error(405, "POST /api/save");
+    if (isWhepPath(path))
+        return handleWhep(status_, request);
     return HttpResponse::error(404, "no such path: " + path);
 }
 

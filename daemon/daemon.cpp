@@ -162,7 +162,8 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
                         message);
         });
         if (!engine) {
-            status = makeError(engine.error().code, config.stream.sinks.front().key + ": " + engine.error().message);
+            const std::string key = config.stream.sinks.empty() ? "webrtc" : config.stream.sinks.front().key;
+            status = makeError(engine.error().code, key + ": " + engine.error().message);
             return {};
         }
         builtStream_ = std::make_shared<stream::EncodedStream>(config.stream, std::move(*engine));

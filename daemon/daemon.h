@@ -69,6 +69,7 @@ public:
     const StreamFormat &streamFormat() const override { return pipeline_.format(); }
     uint64_t framesIn() const override { return pipeline_.framesIn(); }
     std::vector<const StatusReporter *> reporters() const override;
+    std::shared_ptr<stream::EncodedStream> encodedStream() const override { return stream_; }
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
     const GpioControl &gpio() const { return gpio_; }

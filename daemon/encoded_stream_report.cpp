@@ -45,6 +45,8 @@ void EncodedStreamReport::report(StatusReport &report) const
         nlohmann::json entry = {{"kind", sink.kind}, {"sink", sink.key}, {"url", sink.describe}};
         if (sink.kind == "rtsp")
             entry["clients"] = clients;
+        if (sink.kind == "webrtc") // its peers
+            entry["peers"] = clients;
         if (sink.kind == "record")
             entry.update({{"current_file", sink.currentFile},
                           {"segments", sink.segments},

@@ -60,6 +60,9 @@ Role requiredRole(std::string_view method, std::string_view path)
         return Role::Viewer;
     if (method == "POST" && (path == "/api/project" || path == "/api/unproject"))
         return Role::Viewer;
+    // WHEP: watching over WebRTC, as /stream does over MJPEG (the offer, then the hang-up)
+    if ((method == "POST" && path == "/whep") || (method == "DELETE" && path.starts_with("/whep/")))
+        return Role::Viewer;
     return Role::Control;
 }
 

@@ -519,7 +519,8 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
     }
     const std::string &url = request.path;
     const bool reading = method == "GET" || method == "HEAD";
-    if (!reading && method != "PUT" && method != "POST")
+    const bool hangUp = method == "DELETE" && url.starts_with("/whep/"); // WHEP's one DELETE
+    if (!reading && method != "PUT" && method != "POST" && !hangUp)
         return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));
     if (!reading && (url == "/stream" || url == "/snapshot")) // before the credential check: none makes it right
         return answer(connection, HttpResponse::error(405, "GET " + url));
@@ -543,6 +544,8 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
         }
     }
     request.body = std::move(exchange.body);
+    if (const char *type = MHD_lookup_connection_value(connection, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE))
+        request.contentType = type;
     return answer(connection, api_(request));
 }
 

@@ -33,6 +33,7 @@ struct HttpRequest {
     std::map<std::string, std::string> query;
     std::string body;
     std::string peer;
+    std::string contentType; // of the body, as sent
 };
 
 struct HttpResponse {

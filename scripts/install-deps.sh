@@ -38,6 +38,7 @@ packages=(
     libgpiod-dev # GPIO lines (libgpiod 1.6, the v1 API)
     # the encoded outputs' module (overlayd-stream.so, loaded only when an encoded sink is configured)
     libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev libgstrtspserver-1.0-dev
+    libgstreamer-plugins-bad1.0-dev # webrtcbin's library and headers (gstreamer-webrtc-1.0): WebRTC
     systemd # on every booted Debian already; its systemd.pc says where the units install (systemd/CMakeLists.txt)
 )
 # The test suite: the test frameworks, and independent clients the tests check our output with.
@@ -53,6 +54,8 @@ test_packages=(
     # pushes with ffprobe and ffmpeg
     gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly
     gstreamer1.0-rtsp
+    gstreamer1.0-nice # webrtcbin's ICE (libnice)
+    python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 gir1.2-gst-plugins-bad-1.0 # tests/stream's WHEP receiver
     libopenh264-7
     python3-gi gir1.2-gst-rtsp-server-1.0 # tests/stream's RTSP RECORD server, which the push is proven against
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser

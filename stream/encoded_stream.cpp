@@ -104,6 +104,8 @@ std::string EncodedStream::describe() const
     for (const EncodedSinkOptions &sink : options_.sinks)
         if (sink.kind == EncodedSinkKind::Rtsp)
             text += " -> rtsp://" + sink.rtsp.listen + sink.rtsp.path;
+    if (options_.webrtc.enabled)
+        text += " -> WHEP /whep";
     return text;
 }
 

@@ -35,6 +35,12 @@ public:
     const StreamOptions &options() const { return options_; }
     // "openh264 → rtsp://127.0.0.1:8554/cam"
     std::string describe() const;
+    // WebRTC peers (WHEP), the engine's own (encoded_stream_engine.h): callable from any thread.
+    Result<WebrtcAnswer> addPeer(const std::string &offer, const std::string &address)
+    {
+        return engine_->addPeer(offer, address);
+    }
+    Status removePeer(const std::string &id) { return engine_->removePeer(id); }
 
     Status open(const StreamFormat &format);
     Status write(const FrameView &frame, const FrameMetadata &metadata);

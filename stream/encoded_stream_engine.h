@@ -49,10 +49,10 @@ struct RtspClientState {
 };
 
 struct EncodedSinkState {
-    std::string kind;     // "rtsp", "record" or "push": which of the fields below it fills
-    std::string key;      // "sink[2]"
-    std::string describe; // "rtsp://127.0.0.1:8554/cam"
-    std::vector<RtspClientState> clients;
+    std::string kind;                     // "rtsp", "record", "push" or "webrtc": which of the fields below it fills
+    std::string key;                      // "sink[2]"
+    std::string describe;                 // "rtsp://127.0.0.1:8554/cam"
+    std::vector<RtspClientState> clients; // kind = "rtsp"; "webrtc": its peers
     // kind = "record": the segment being written, the finished ones in the directory, their bytes, the oldest,
     // how many retention deleted; stopped for a full disk (and how often it was).
     std::string currentFile;
@@ -86,6 +86,12 @@ struct EngineState {
     std::vector<std::pair<std::string, LatencyHistogram>> latency;
 };
 
+// A WebRTC peer's answer: the id DELETE /whep/ID hangs up, and the SDP (with the engine's ICE candidates).
+struct WebrtcAnswer {
+    std::string id;
+    std::string sdp;
+};
+
 // How the engine reports (from its own thread): a line for the daemon's log, at a syslog priority (3 error,
 // 4 warning, 5 notice, 6 info, 7 debug).
 using EngineLog = std::function<void(int level, const std::string &message)>;
@@ -104,6 +110,17 @@ public:
     virtual void close() = 0;
 
     virtual EngineState state() const = 0;
+
+    // WebRTC ([webrtc] enabled): a peer for an SDP offer, answered once the engine's ICE candidates are gathered
+    // (waiting at most kWhepAnswerTimeout). Errors: Malformed (the offer; the message says what is wrong), TryAgain
+    // (max_peers reached, or no stream yet), DeviceLost (no answer in time), Unsupported (WebRTC is off).
+    virtual Result<WebrtcAnswer> addPeer(const std::string &offer, const std::string &address)
+    {
+        (void)offer, (void)address;
+        return makeError(ErrorCode::Unsupported, "WebRTC is off ([webrtc] enabled = true turns it on)");
+    }
+    // Hangs the peer up; NotFound when there is none of that id.
+    virtual Status removePeer(const std::string &id) { return makeError(ErrorCode::NotFound, "no WebRTC peer " + id); }
 };
 
 // The module's one entry point (extern "C", looked up by name): a new engine for the options, or null with the

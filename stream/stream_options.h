@@ -9,6 +9,7 @@
 
 #include "stream/push_options.h"
 #include "stream/record_options.h"
+#include "stream/webrtc_options.h"
 
 namespace overlayd::stream {
 
@@ -84,9 +85,10 @@ struct EncodedSinkOptions {
 
 struct StreamOptions {
     EncoderOptions encoder;
-    std::vector<EncodedSinkOptions> sinks; // none: no encoder runs and GStreamer is never loaded
+    std::vector<EncodedSinkOptions> sinks; // none (and no WebRTC): no encoder runs and GStreamer is never loaded
+    WebrtcOptions webrtc;                  // [webrtc] enabled = true runs the encoder alone, with no sink
 
-    bool enabled() const { return !sinks.empty(); }
+    bool enabled() const { return !sinks.empty() || webrtc.enabled; }
     bool operator==(const StreamOptions &) const = default;
 };
 

@@ -28,7 +28,11 @@ GstClockTime nowNs()
 
 } // namespace
 
-GstStreamEngine::GstStreamEngine(const StreamOptions &options, const EngineLog &log) : options_(options), log_(log) {}
+GstStreamEngine::GstStreamEngine(const StreamOptions &options, const EngineLog &log) : options_(options), log_(log)
+{
+    if (options_.webrtc.enabled)
+        webrtc_ = std::make_unique<WebrtcPeers>(options_.webrtc, log_, [this] { requestKeyframe(); });
+}
 
 GstStreamEngine::~GstStreamEngine()
 {
@@ -53,6 +57,8 @@ Status GstStreamEngine::open(const EngineFormat &format)
         close();
         return makeError(ErrorCode::Unsupported, "the encoder pipeline does not start");
     }
+    if (webrtc_)
+        webrtc_->start(context_);
     std::lock_guard lock(mutex_);
     state_.running = true;
     return Ok{};
@@ -237,8 +243,10 @@ GstFlowReturn GstStreamEngine::onEncoded(GstAppSink *sink, gpointer data)
     bool sent = false;
     for (const auto &output : self->rtsp_)
         sent = output->push(sample) || sent;
-    for (const auto &output : self->outputs_) // record and push: "sent" times the RTSP hand-off only
+    for (const auto &output : self->outputs_) // record, push and WebRTC: "sent" times the RTSP hand-off only
         output->push(sample);
+    if (self->webrtc_)
+        self->webrtc_->push(sample);
     if (sent && captured > 0) {
         const GstClockTime now = nowNs();
         std::lock_guard lock(self->mutex_);
@@ -276,6 +284,8 @@ void GstStreamEngine::close()
         thread_.join();
     rtsp_.clear(); // with the loop stopped: no server signal runs while the outputs go
     outputs_.clear();
+    if (webrtc_)
+        webrtc_->stop();
     if (busWatch_ != nullptr) {
         g_source_destroy(busWatch_);
         g_source_unref(busWatch_);
@@ -312,7 +322,23 @@ EngineState GstStreamEngine::state() const
         out.sinks.push_back(output->state());
     for (const auto &output : outputs_)
         out.sinks.push_back(output->state());
+    if (webrtc_)
+        out.sinks.push_back(webrtc_->state());
     return out;
+}
+
+Result<WebrtcAnswer> GstStreamEngine::addPeer(const std::string &offer, const std::string &address)
+{
+    if (!webrtc_)
+        return EncodedStreamEngine::addPeer(offer, address);
+    return webrtc_->add(offer, address);
+}
+
+Status GstStreamEngine::removePeer(const std::string &id)
+{
+    if (!webrtc_)
+        return EncodedStreamEngine::removePeer(id);
+    return webrtc_->remove(id);
 }
 
 } // namespace overlayd::stream::gst

@@ -3,7 +3,7 @@
 //
 //   appsrc "feed" (I420, the feed's slots wrapped, not copied) ! <encoder> [! capsfilter profile] ! h264parse
 //     ! tee "encoded" ─┬─ queue ! appsink "rtsp"  ─► RtspOutput::push ─► the shared media's appsrc ─► clients
-//                      └─ (one branch per further encoded sink: record, push)
+//                      └─ (one branch per further encoded sink: record, push; one per WebRTC peer)
 //
 // GStreamer's main loop (the RTSP servers, the bus) runs on the engine's own thread, on its own GMainContext.
 #pragma once
@@ -22,6 +22,7 @@
 #include "stream/encoded_stream_engine.h"
 #include "stream/gst/encoded_output.h"
 #include "stream/gst/rtsp_output.h"
+#include "stream/gst/webrtc_peers.h"
 
 namespace overlayd::stream::gst {
 
@@ -35,6 +36,8 @@ public:
     void push(EncoderInput frame) override;
     void close() override;
     EngineState state() const override;
+    Result<WebrtcAnswer> addPeer(const std::string &offer, const std::string &address) override;
+    Status removePeer(const std::string &id) override;
 
 private:
     Status build(const EngineFormat &format);
@@ -56,6 +59,7 @@ private:
     GSource *busWatch_ = nullptr;
     std::vector<std::unique_ptr<RtspOutput>> rtsp_;
     std::vector<std::unique_ptr<EncodedOutput>> outputs_; // recordings and pushes
+    std::unique_ptr<WebrtcPeers> webrtc_;                 // [webrtc] enabled: for as long as the engine
     std::optional<std::chrono::nanoseconds> firstCapture_;
     GstClockTime nextKeyframe_ = 0; // PTS: the first frame at or past it is forced to be a keyframe
 

@@ -60,7 +60,7 @@ struct StatusReportTest : ::testing::Test {
         status.reporters_ = {&first, &second};
         scene.load(OverlayScene{}, CameraSpec{});
     }
-    http::HttpResponse get(const std::string &path) { return api.handle({"GET", path, {}, "", "127.0.0.1"}); }
+    http::HttpResponse get(const std::string &path) { return api.handle({"GET", path, {}, "", "127.0.0.1", ""}); }
 };
 
 TEST_F(StatusReportTest, StateCarriesWhatEachPartReports)

@@ -48,6 +48,9 @@ TEST(Credentials, WhatARequestNeeds)
     EXPECT_EQ(requiredRole("HEAD", "/"), Role::Viewer);
     EXPECT_EQ(requiredRole("POST", "/api/unproject"), Role::Viewer);
     EXPECT_EQ(requiredRole("POST", "/api/save"), Role::Control);
+    EXPECT_EQ(requiredRole("POST", "/whep"), Role::Viewer); // WHEP is watching, as /stream is
+    EXPECT_EQ(requiredRole("DELETE", "/whep/3"), Role::Viewer);
+    EXPECT_EQ(requiredRole("DELETE", "/api/camera"), Role::Control);
     EXPECT_EQ(requiredRole("PUT", "/api/camera"), Role::Control);
 }
 

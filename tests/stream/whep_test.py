@@ -1,0 +1,260 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""WebRTC over WHEP through the real path: `overlayd run` (synthetic source, [webrtc] enabled, no [encoder] table:
+the defaults) watched by an independent receiver built here with GStreamer's webrtcbin (through python3-gi):
+- POST /whep with the receiver's offer answers 201, application/sdp, a Location /whep/ID, and an answer whose ICE
+  candidates are host candidates only (no ice_servers);
+- the receiver decodes at least 60 frames of the stream's size, while /state lists one peer;
+- a second offer past max_peers = 1 is 503; DELETE of the Location hangs up (/state: no peers), DELETE again 404;
+- a receiver that stops without DELETE is reaped within 30 s (its RTCP source times out);
+- bad offers are 400 naming what is wrong (not SDP; no video; no H.264), a wrong Content-Type is 415;
+- /stream's credential rules: with a viewer token configured, no credential is 401, the viewer's token passes.
+
+    whep_test.py --overlayd build/daemon/overlayd --workdir /tmp/whep-test
+Exit 0 when every check passed, 1 when any failed, 77 (skipped) without python3-gi's GStreamer WebRTC bindings."""
+import argparse
+import os
+import sys
+import time
+import urllib.error
+import urllib.request
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "http"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import daemon_fixture  # noqa: E402
+from rtsp_test import HEIGHT, SCENE, WIDTH, check, failures  # noqa: E402
+
+try:
+    import gi
+    gi.require_version("Gst", "1.0")
+    gi.require_version("GstWebRTC", "1.0")
+    gi.require_version("GstSdp", "1.0")
+    from gi.repository import Gst, GstSdp, GstWebRTC  # noqa: E402
+except (ImportError, ValueError) as error:
+    # python3-gi is Debian's: only the system interpreter has it (CMake may have found another, a pyenv one).
+    if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and os.path.exists("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
+    print(f"SKIP: no GStreamer WebRTC bindings ({error}; Debian: python3-gi gir1.2-gst-plugins-bad-1.0)")
+    sys.exit(77)
+
+FRAMES = 60
+# rtsp_test's scene (640x360 at 30 fps, a magenta rail) and checks, with WebRTC instead of an RTSP sink; no
+# [encoder] table: [webrtc] enabled alone runs the encoder with its defaults.
+CONFIG = SCENE + """
+[webrtc]
+enabled = true
+max_peers = 1
+"""
+
+
+def request(method, url, body=None, content_type="application/sdp", token=None):
+    """(status, headers, body text) of one request, errors included."""
+    data = body.encode() if body is not None else None
+    req = urllib.request.Request(url, data=data, method=method)
+    if token:
+        req.add_header("Authorization", f"Bearer {token}")
+    if data is not None:
+        req.add_header("Content-Type", content_type)
+    try:
+        with urllib.request.urlopen(req, timeout=15) as answer:
+            return answer.status, answer.headers, answer.read().decode()
+    except urllib.error.HTTPError as error:
+        return error.code, error.headers, error.read().decode()
+    except urllib.error.URLError as error:  # not listening yet
+        return 0, None, str(error)
+
+
+class Receiver:
+    """webrtcbin receiving H.264 only (recvonly), decoding with openh264dec into an appsink."""
+
+    def __init__(self):
+        self.pipeline = Gst.Pipeline.new("receiver")
+        self.webrtc = Gst.ElementFactory.make("webrtcbin", "receiver")
+        self.webrtc.set_property("bundle-policy", GstWebRTC.WebRTCBundlePolicy.MAX_BUNDLE)
+        self.pipeline.add(self.webrtc)
+        self.sink = None
+        caps = Gst.Caps.from_string("application/x-rtp,media=video,encoding-name=H264,payload=102,clock-rate=90000,"
+                                    "packetization-mode=(string)1,profile-level-id=(string)42e01f")
+        self.webrtc.emit("add-transceiver", GstWebRTC.WebRTCRTPTransceiverDirection.RECVONLY, caps)
+        self.webrtc.connect("pad-added", self.on_pad)
+        self.pipeline.set_state(Gst.State.PLAYING)
+
+    def on_pad(self, _, pad):
+        if pad.direction != Gst.PadDirection.SRC:
+            return
+        decode = Gst.parse_bin_from_description(
+            "rtph264depay ! h264parse ! openh264dec ! videoconvert ! video/x-raw,format=I420 "
+            "! appsink name=frames sync=false max-buffers=1000", True)
+        self.pipeline.add(decode)
+        decode.sync_state_with_parent()
+        pad.link(decode.get_static_pad("sink"))
+        self.sink = decode.get_by_name("frames")
+
+    def offer(self):
+        promise = Gst.Promise.new()
+        self.webrtc.emit("create-offer", None, promise)
+        promise.wait()
+        reply = promise.get_reply()
+        offer = reply.get_value("offer")  # owned by the reply, which the promise owns: both kept until it is set
+        done = Gst.Promise.new()
+        self.webrtc.emit("set-local-description", offer, done)
+        done.wait()
+        deadline = time.monotonic() + 10
+        while (self.webrtc.get_property("ice-gathering-state") != GstWebRTC.WebRTCICEGatheringState.COMPLETE
+               and time.monotonic() < deadline):
+            time.sleep(0.05)
+        return self.webrtc.get_property("local-description").sdp.as_text()
+
+    def answer(self, text):
+        result, message = GstSdp.SDPMessage.new_from_text(text)
+        assert result == GstSdp.SDPResult.OK
+        answer = GstWebRTC.WebRTCSessionDescription.new(GstWebRTC.WebRTCSDPType.ANSWER, message)
+        promise = Gst.Promise.new()
+        self.webrtc.emit("set-remote-description", answer, promise)
+        promise.wait()
+
+    def frames(self, count, timeout):
+        """(frames decoded, (width, height) of the last) within timeout seconds."""
+        decoded, size = 0, None
+        deadline = time.monotonic() + timeout
+        while decoded < count and time.monotonic() < deadline:
+            sample = self.sink.emit("try-pull-sample", Gst.SECOND // 10) if self.sink else None
+            if sample is None:
+                time.sleep(0.01 if self.sink is None else 0)
+                continue
+            decoded += 1
+            structure = sample.get_caps().get_structure(0)
+            size = (structure.get_value("width"), structure.get_value("height"))
+        return decoded, size
+
+    def stop(self):
+        self.pipeline.set_state(Gst.State.NULL)
+
+
+def peers(daemon):
+    for sink in daemon.state().get("encoder", {}).get("sinks", []):
+        if sink.get("kind") == "webrtc":
+            return len(sink.get("peers", []))
+    return None
+
+
+def vanished(daemon, whep):
+    """A receiver that goes without DELETE (its pipeline stopped: no more RTCP) is reaped within 30 s."""
+    receiver = Receiver()
+    status, _, answer = request("POST", whep, receiver.offer())
+    if status != 201:
+        check(False, f"a second receiver after DELETE: 201 ({status})")
+        return
+    receiver.answer(answer)
+    decoded, _ = receiver.frames(10, 10)
+    receiver.stop()  # no DELETE; its RTCP stops
+    started = time.monotonic()
+    while peers(daemon) != 0 and time.monotonic() - started < 30:
+        time.sleep(0.5)
+    check(decoded >= 10 and peers(daemon) == 0,
+          f"a receiver gone without DELETE is reaped: {peers(daemon)} peers {time.monotonic() - started:.1f} s later")
+
+
+def credentials(overlayd, workdir):
+    """The rules of /stream: with a viewer token configured, no credential is 401 and the viewer's reaches WHEP."""
+    token = "whep-viewer-token-0123456789"
+    with open(os.path.join(workdir, "viewer.token"), "w", encoding="utf-8") as file:
+        file.write(token + "\n")
+    daemon = start(overlayd, workdir, "whep-viewer", CONFIG, viewer_token_file="viewer.token")
+    try:
+        deadline = time.monotonic() + 20
+        while request("GET", daemon.base + "/state", token=token)[0] != 200 and time.monotonic() < deadline:
+            time.sleep(0.2)
+        status, _, _ = request("POST", daemon.base + "/whep", "hello")
+        check(status == 401, f"with a viewer token configured, POST /whep without a credential: 401 ({status})")
+        status, _, body = request("POST", daemon.base + "/whep", "hello", token=token)
+        check(status == 400, f"the viewer's token reaches WHEP (400 for the bad offer: {status} {body.strip()[:80]})")
+    finally:
+        daemon.stop()
+
+
+def arguments(parser=None):
+    """--overlayd and --workdir (made), GStreamer started."""
+    parser = parser or argparse.ArgumentParser()
+    for option in ("--overlayd", "--workdir"):
+        parser.add_argument(option, required=True)
+    args = parser.parse_args()
+    os.makedirs(args.workdir, exist_ok=True)
+    Gst.init(None)
+    return args
+
+
+def start(overlayd, workdir, name, text, **http):
+    """overlayd run on `text` (NAME.toml in workdir) with [http] on a free port, control off, and `http`'s keys."""
+    port = daemon_fixture.free_port()
+    config = os.path.join(workdir, name + ".toml")
+    with open(config, "w", encoding="utf-8") as file:
+        file.write(text + daemon_fixture.http_section(port, control="off", **http))
+    return daemon_fixture.Daemon(overlayd, config, workdir, port)
+
+
+def main():
+    args = arguments()
+    daemon = start(args.overlayd, args.workdir, "whep", CONFIG)
+    receiver = None
+    try:
+        daemon.wait_ready()
+        whep = daemon.base + "/whep"
+        receiver = Receiver()
+        offer = receiver.offer()
+        started = time.monotonic()
+        status, headers, answer = request("POST", whep, offer)
+        took = time.monotonic() - started
+        location = headers.get("Location", "") if headers else ""
+        check(status == 201 and headers.get("Content-Type", "").startswith("application/sdp")
+              and location.startswith("/whep/"),
+              f"POST /whep: 201 application/sdp with a Location (got {status}, {location!r}, {took * 1000:.0f} ms)"
+              + ("" if status == 201 else f": {answer[:300]}"))
+        candidates = [line for line in answer.splitlines() if line.startswith("a=candidate:")]
+        check(candidates and all(" typ host" in line for line in candidates),
+              f"the answer carries its candidates, host only ({len(candidates)} candidates)")
+        if status != 201:
+            return
+        receiver.answer(answer)
+        decoded, size = receiver.frames(FRAMES, 20)
+        check(decoded >= FRAMES and size == (WIDTH, HEIGHT),
+              f"the receiver decoded {decoded} frames (>= {FRAMES}) of {size} ({WIDTH}x{HEIGHT})")
+        check(peers(daemon) == 1, f"/state lists one WebRTC peer ({peers(daemon)})")
+
+        status, _, body = request("POST", whep, offer)
+        check(status == 503 and "max_peers" in body, f"an offer past max_peers = 1 is 503 ({status}: {body.strip()})")
+
+        status, _, _ = request("DELETE", daemon.base + location)
+        check(status == 200, f"DELETE {location}: 200 ({status})")
+        deadline = time.monotonic() + 5
+        while peers(daemon) != 0 and time.monotonic() < deadline:
+            time.sleep(0.1)
+        check(peers(daemon) == 0, f"after DELETE /state lists no peer ({peers(daemon)})")
+        status, _, body = request("DELETE", daemon.base + location)
+        check(status == 404, f"DELETE {location} again: 404 ({status}: {body.strip()})")
+
+        for bad, named, what in [("hello", "not SDP", "not SDP"),
+                                 ("v=0\r\no=- 1 1 IN IP4 0.0.0.0\r\ns=-\r\nt=0 0\r\n"
+                                  "m=audio 9 UDP/TLS/RTP/SAVPF 111\r\na=rtpmap:111 opus/48000/2\r\n",
+                                  "m=video", "audio only"),
+                                 (offer.replace("H264", "VP8"), "H.264", "VP8 only")]:
+            status, _, body = request("POST", whep, bad)
+            check(status == 400 and named in body, f"a bad offer ({what}) is 400 naming '{named}' ({status}: "
+                  f"{body.strip()[:200]})")
+        status, _, body = request("POST", whep, offer, content_type="application/json")
+        check(status == 415, f"an offer sent as application/json is 415 ({status}: {body.strip()[:120]})")
+        vanished(daemon, whep)
+        credentials(args.overlayd, args.workdir)
+    finally:
+        if receiver:
+            receiver.stop()
+        code = daemon.stop()
+        check(code == 0, f"overlayd stopped cleanly (exit {code})")
+        if failures:
+            print(daemon.log_tail(30))
+    print(f"{len(failures)} failure(s)")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
