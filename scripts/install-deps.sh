@@ -56,6 +56,7 @@ test_packages=(
     gstreamer1.0-rtsp
     gstreamer1.0-nice # webrtcbin's ICE (libnice)
     python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 gir1.2-gst-plugins-bad-1.0 # tests/stream's WHEP receiver
+    python3-gi-cairo # scripts/compare-peers.sh's GStreamer + cairo peer (the peers.smoke test)
     libopenh264-7
     python3-gi gir1.2-gst-rtsp-server-1.0 # tests/stream's RTSP RECORD server, which the push is proven against
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
