@@ -31,6 +31,14 @@ rm -rf "$stage" && mkdir -p "$stage/DEBIAN"
 # The program and what it reads.
 install -D -m 755 "$binary" "$stage/usr/bin/overlayd"
 "$strip" --remove-section=.comment --remove-section=.note --strip-unneeded "$stage/usr/bin/overlayd"
+# The encoded outputs' GStreamer module, where the binary looks for it (kPackagedModuleDir), when the build has one
+# (the arm64 sysroot has no GStreamer). Its libraries and GStreamer's plugins are Recommends: a camera-only
+# install needs none of them, and the daemon names what is missing when an encoded sink is configured.
+module=$build/daemon/overlayd-stream.so
+if [ -f "$module" ]; then
+    install -D -m 644 "$module" "$stage/usr/lib/overlayd/overlayd-stream.so"
+    "$strip" --remove-section=.comment --remove-section=.note --strip-unneeded "$stage/usr/lib/overlayd/overlayd-stream.so"
+fi
 mkdir -p "$stage/lib/systemd/system"
 for unit in systemd/overlayd.service systemd/overlayd@.service "$build/systemd/overlayd-http@.service.in"; do
     sed -e 's|@OVERLAYD_BINDIR@|/usr/bin|g' -e 's|@OVERLAYD_CONFDIR@|/etc/overlayd|g' \
@@ -65,6 +73,7 @@ scratch=$out/shlibdeps-$arch
 rm -rf "$scratch" && mkdir -p "$scratch/debian"
 printf 'Source: overlayd\n\nPackage: overlayd\nArchitecture: any\n' > "$scratch/debian/control"
 shlibdeps=(dpkg-shlibdeps -O "-e$stage/usr/bin/overlayd")
+[ -f "$module" ] && shlibdeps+=(-dRecommends "-e$stage/usr/lib/overlayd/overlayd-stream.so")
 if [ "$arch" = arm64 ]; then
     cache=$(realpath "${OVERLAYD_ARM64_CACHE:-.cache/arm64}")
     admindir=$(scripts/arm64/deb_admindir.sh "$cache" "${OVERLAYD_ARM64_ADMINDIR:-$cache/admindir}")
@@ -72,13 +81,16 @@ if [ "$arch" = arm64 ]; then
         "-l$cache/sysroot/lib/aarch64-linux-gnu")
     export DEB_HOST_ARCH=arm64 DEB_HOST_MULTIARCH=aarch64-linux-gnu DEB_HOST_GNU_TYPE=aarch64-linux-gnu
 fi
-depends=$(cd "$scratch" && "${shlibdeps[@]}" 2>"$scratch/warnings" | sed -n 's/^shlibs:Depends=//p')
+fields=$(cd "$scratch" && "${shlibdeps[@]}" 2>"$scratch/warnings")
+depends=$(echo "$fields" | sed -n 's/^shlibs:Depends=//p')
+recommends=$(echo "$fields" | sed -n 's/^shlibs:Recommends=//p')
+[ -z "$recommends" ] || recommends="Recommends: $recommends, gstreamer1.0-plugins-base, gstreamer1.0-plugins-good, gstreamer1.0-plugins-bad, gstreamer1.0-nice"
 [ -n "$depends" ] || { cat "$scratch/warnings" >&2 && echo "package: dpkg-shlibdeps found no Depends" >&2 && exit 1; }
 
 install -m 755 debian/postinst debian/prerm debian/postrm "$stage/DEBIAN/"
 echo /etc/overlayd/overlayd.toml > "$stage/DEBIAN/conffiles"
 size=$(du -sk --exclude=DEBIAN "$stage" | cut -f1)
-sed -e "s/@VERSION@/$version/" -e "s|@MAINTAINER@|$maintainer|" -e "s/@ARCH@/$arch/" -e "s/@SIZE@/$size/" -e "s/@SHLIBS@/$depends/" \
+sed -e "s/@VERSION@/$version/" -e "s|@MAINTAINER@|$maintainer|" -e "s/@ARCH@/$arch/" -e "s/@SIZE@/$size/" -e "s/@SHLIBS@/$depends/" -e "s/@RECOMMENDS@/$recommends/" -e '/^$/d' \
     debian/control.in > "$stage/DEBIAN/control"
 (cd "$stage" && find . -path ./DEBIAN -prune -o -type f -printf '%P\0' | LC_ALL=C sort -z | xargs -0 md5sum) \
     > "$stage/DEBIAN/md5sums"

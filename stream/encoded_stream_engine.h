@@ -134,5 +134,8 @@ using CheckEncoderFunction = bool (*)(const EncoderOptions *options, std::string
 inline constexpr const char *kCheckEncoderSymbol = "overlayd_stream_check_encoder";
 // The module's file name, next to the binary in the build tree or in the library folder when installed.
 inline constexpr const char *kModuleFileName = "overlayd-stream.so";
+// Where the Debian package puts the module, relative to the binary's folder (/usr/bin -> /usr/lib/overlayd), looked
+// in after the binary's own folder (the build tree) and before OVERLAYD_STREAM_MODULE_DIR (cmake --install).
+inline constexpr const char *kPackagedModuleDir = "../lib/overlayd";
 
 } // namespace overlayd::stream

@@ -3,6 +3,8 @@
 #include "stream/engine_loader.h"
 
 #include <dlfcn.h>
+
+#include <cstdlib>
 #include <unistd.h>
 
 #include <mutex>
@@ -33,8 +35,13 @@ Module openModule()
 {
     Module module;
     std::vector<std::string> places;
-    if (const std::string folder = executableFolder(); !folder.empty())
+    // The environment first: a module built or installed elsewhere.
+    if (const char *folder = std::getenv("OVERLAYD_STREAM_MODULE_DIR"); folder && *folder)
+        places.push_back(std::string(folder) + "/" + kModuleFileName);
+    if (const std::string folder = executableFolder(); !folder.empty()) {
         places.push_back(folder + "/" + kModuleFileName);
+        places.push_back(folder + "/" + kPackagedModuleDir + "/" + kModuleFileName);
+    }
     places.push_back(std::string(OVERLAYD_STREAM_MODULE_DIR) + "/" + kModuleFileName);
     std::string tried;
     for (const std::string &place : places) {
