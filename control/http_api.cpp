@@ -223,21 +223,22 @@ HttpResponse HttpApi::state()
     const http::HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
-    json out = {{"version", overlaydVersion()},
-                {"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
-                                       kShownSecondsDecimals)},
-                {"source", source},
-                {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
-                {"layers", layers},
-                {"masks", masks},
-                {"text_slots", slots},
-                {"sinks", json::array()},
-                {"http",
-                 {{"connections", http.connections},
-                  {"stream_clients", http.streamClients},
-                  {"stream_fps", http.streamFps},
-                  {"parts_sent", http.partsSent},
-                  {"requests", http.requests}}}};
+    json out = {
+        {"version", overlaydVersion()},
+        {"uptime_s", roundedTo(std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
+                               kShownSecondsDecimals)},
+        {"source", source},
+        {"camera", cameraJson(scene.camera(), scene.cameraFor(width, height))},
+        {"layers", layers},
+        {"masks", masks},
+        {"text_slots", slots},
+        {"sinks", json::array()},
+        {"http",
+         {{"connections", http.connections},
+          {"stream_clients", http.streamClients},
+          {"stream_fps", http.streamFps},
+          {"parts_sent", http.partsSent},
+          {"requests", http.requests}}}};
     // The config's pose (with its saved drop-in), for the page's "revert to the config".
     const YawPitchRoll configured = yawPitchRollOf(config.camera.pose);
     out["camera"]["configured"] = {{"position", vec3(configured.position)},

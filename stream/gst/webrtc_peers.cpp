@@ -104,7 +104,8 @@ gboolean WebrtcPeers::onReap(gpointer data)
         self->peers_.erase(failed, self->peers_.end());
     }
     for (const auto &peer : gone)
-        self->log_(kLogInfo, "webrtc: peer " + peer->id() + " (" + peer->address() + ") lost: its connection failed or its reports stopped");
+        self->log_(kLogInfo, "webrtc: peer " + peer->id() + " (" + peer->address() +
+                                 ") lost: its connection failed or its reports stopped");
     return G_SOURCE_CONTINUE;
 }
 
