@@ -92,9 +92,9 @@ struct WebrtcAnswer {
     std::string sdp;
 };
 
-// How the engine reports (from its own thread): a line for the daemon's log, at a syslog priority (3 error,
-// 4 warning, 5 notice, 6 info, 7 debug).
+// How the engine reports (from its own thread): a line for the daemon's log, at a syslog priority.
 using EngineLog = std::function<void(int level, const std::string &message)>;
+inline constexpr int kLogError = 3, kLogWarning = 4, kLogNotice = 5, kLogInfo = 6;
 
 class EncodedStreamEngine
 {

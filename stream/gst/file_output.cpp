@@ -4,12 +4,6 @@
 #include "stream/gst/file_output.h"
 
 namespace overlayd::stream::gst {
-namespace {
-
-constexpr int kLogError = 3;
-
-} // namespace
-
 FileOutput::FileOutput(const EncodedSinkOptions &options, Codec codec, const EngineLog &log,
                        std::function<void()> requestKeyframe)
     : options_(options), log_(log), feed_(std::move(requestKeyframe), codec == Codec::Fwht)

@@ -18,8 +18,6 @@ namespace {
 
 // Frames whose blend time is kept for the encoded and sent stages: more than the encoder ever holds.
 constexpr size_t kMaxTracked = 64;
-// Log levels as base/logger.h numbers them (the engine shares no code with the binary).
-constexpr int kLogError = 3, kLogNotice = 5, kLogInfo = 6;
 
 GstClockTime nowNs()
 {

@@ -6,8 +6,6 @@
 namespace overlayd::stream::gst {
 namespace {
 
-constexpr int kLogWarning = 4, kLogNotice = 5;
-
 // The elements after h264parse for each protocol, the last one taking the URL in `property`.
 struct Route {
     const char *muxer; // null: the sink takes H.264 itself

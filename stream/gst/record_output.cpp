@@ -12,8 +12,6 @@
 namespace overlayd::stream::gst {
 namespace {
 
-constexpr int kLogError = 3, kLogWarning = 4, kLogNotice = 5, kLogInfo = 6;
-
 RetentionLimits limitsOf(const RecordSinkOptions &options)
 {
     return {options.keepBytes, std::chrono::seconds(int64_t(options.keepDays * 86400))};

@@ -8,11 +8,6 @@
 #include "stream/gst/branch_pipeline.h"
 
 namespace overlayd::stream::gst {
-namespace {
-
-constexpr int kLogInfo = 6; // base/logger.h's numbering
-
-} // namespace
 
 WebrtcPeers::WebrtcPeers(const WebrtcOptions &options, const EngineLog &log, std::function<void()> requestKeyframe)
     : options_(options), log_(log), requestKeyframe_(std::move(requestKeyframe))
