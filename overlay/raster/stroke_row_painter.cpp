@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// StrokeRasterizer's pixel work for one row: merging the runs, coverage across a stroke for a run of pixels (vector
-// kernels for short and long runs, the exact per-pixel formula beside the ends) and trimming before the sink. The
-// semantics are in stroke_raster.cpp's header comment.
-#include "overlay/raster/stroke_raster.h"
+// StrokeRowPainter: merging a row's runs, coverage across a stroke for a run of pixels (vector kernels for short and
+// long runs, the exact per-pixel formula beside the ends) and trimming before the sink. The semantics are in
+// stroke_raster.cpp's header comment.
+#include "overlay/raster/stroke_row_painter.h"
 
 #include <algorithm>
 #include <bit>
@@ -16,6 +16,7 @@ namespace overlayd {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxWidth = 1e6;
 
 // The indices k in [0, n) with lo <= t0 + k * dt <= hi, as [first, last).
 std::pair<int, int> indexRange(double t0, double dt, double lo, double hi, int n)
@@ -179,7 +180,30 @@ int endNonZero(const uint8_t *p, int n)
 
 } // namespace
 
-uint8_t StrokeRasterizer::coverage(const Segment &g, double t, double s) const
+void StrokeRowPainter::setStroke(double width, bool antialias, const LayerRect &clip)
+{
+    // Wider than any frame is as wide as one: 255 * reach must stay far from the int range of the kernels.
+    const double hw = 0.5 * std::min(width, kMaxWidth);
+    if (!antialias)
+        profile_ = {255.0f, 255.0f, std::max(hw, 0.5), 0.0, true};
+    else if (width < 1.0)
+        profile_ = {float(255.0 * width), float(255.0 * width), 1.0, 0.5, false};
+    else
+        profile_ = {255.0f, 255.0f, hw + 0.5, 0.5, false};
+    profile_.negGainLanes = -profile_.gain + Floats4{};
+    profile_.halfLanes = 0.5f + Floats4{};
+    profile_.reachLanes = float(profile_.reach) + Floats4{};
+    profile_.peakLanes = float(int(profile_.peak + 0.5f)) + Floats4{};
+    clip_ = clip;
+}
+
+void StrokeRowPainter::reserve(size_t segments)
+{
+    row_.resize(std::max(row_.size(), size_t(int64_t(clip_.x1) - clip_.x0 + kStrokeRowSlack)));
+    rowRuns_.resize(std::max(rowRuns_.size(), segments));
+}
+
+uint8_t StrokeRowPainter::coverage(const Segment &g, double t, double s) const
 {
     const double past = t - std::clamp(t, g.roundStart ? 0.0 : -kInf, g.roundEnd ? g.length : kInf);
     const double d = past == 0.0 ? std::fabs(s) : std::sqrt(past * past + s * s);
@@ -195,7 +219,7 @@ uint8_t StrokeRasterizer::coverage(const Segment &g, double t, double s) const
     return uint8_t(c + 0.5);
 }
 
-void StrokeRasterizer::paint(const Segment &g, int y, int x0, int count, uint8_t *out, bool overwrite) const
+void StrokeRowPainter::paint(const Segment &g, int y, int x0, int count, uint8_t *out, bool overwrite) const
 {
     const double dy = y - g.a.y, dx = x0 - g.a.x, dt = g.u.x, ds = -g.u.y;
     const double t = dy * g.u.y + dx * g.u.x, s = dy * g.u.x - dx * g.u.y;
@@ -226,7 +250,7 @@ void StrokeRasterizer::paint(const Segment &g, int y, int x0, int count, uint8_t
             overwrite ? coverage(g, t + k * dt, s + k * ds) : std::max(out[k], coverage(g, t + k * dt, s + k * ds));
 }
 
-void StrokeRasterizer::emitRow(int y, const Span *spans, size_t count, CoverageSink &sink)
+void StrokeRowPainter::emitRow(int y, const Span *spans, size_t count, CoverageSink &sink)
 {
     // Runs are painted in x order and a paint writes only from its own x0 on, so a run's bytes stay as painted
     // until the row is handed over (the short kernel's extra lanes land where later runs paint). The row scratch
@@ -278,7 +302,7 @@ void StrokeRasterizer::emitRow(int y, const Span *spans, size_t count, CoverageS
         sink.rowRuns(y, runs, size_t(out - runs));
 }
 
-CoverageRun *StrokeRasterizer::addMerged(int y, const Span *spans, size_t count, int x0, int x1, CoverageRun *out)
+CoverageRun *StrokeRowPainter::addMerged(int y, const Span *spans, size_t count, int x0, int x1, CoverageRun *out)
 {
     uint8_t *const row = row_.data() + (x0 - clip_.x0);
     const int n = x1 - x0 + 1;
@@ -292,7 +316,7 @@ CoverageRun *StrokeRasterizer::addMerged(int y, const Span *spans, size_t count,
     return out;
 }
 
-CoverageRun *StrokeRasterizer::addTrimmed(int x0, const uint8_t *row, int n, CoverageRun *out)
+CoverageRun *StrokeRowPainter::addTrimmed(int x0, const uint8_t *row, int n, CoverageRun *out)
 {
     const int first = firstNonZero(row, n);
     if (first < n)
