@@ -21,6 +21,9 @@ $caps captured, $outs output; $(grep -m1 'failed' /tmp/zc-base.log)"
 cp /tmp/zc-base.log "$ART/zerocopy-v4l2ctl.log"
 
 loop_overlay_run zerocopy zerocopy.toml ", zero_copy = on"
+summary=''
+mask_check /tmp/zerocopy.yuv /tmp/zerocopy.toml
+verdict zerocopy-mask $? "privacy masks in the frame looped back from $OUT, filled before the sink saw it:$summary"
 
 stop_overlayd $pid
 rc=$?
