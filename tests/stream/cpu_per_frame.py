@@ -7,8 +7,9 @@ interleaved. A figure for docs/streaming.md, not a timed test.
 
     cpu_per_frame.py build/daemon/overlayd   (run in a scratch folder: it writes its configs and logs there)"""
 import os, subprocess, sys, time
-overlayd = sys.argv[1]
-base = """
+# 720p30 NV12 from the synthetic scene into openh264 (4 Mbit/s, a keyframe every 2 s: the defaults); latency_run.py
+# measures the same.
+CONFIG_720P30 = """
 [daemon]
 stats_interval = 0
 [source]
@@ -28,9 +29,9 @@ encoder = "openh264"
 # The demo-like overlay the encoded row of scripts/compare-peers.sh draws too.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "peers"))
 from encoded import ANNOTATIONS as overlay  # noqa: E402
-def run(name, extra, port, seconds=20):
+def run(overlayd, name, extra, port, seconds=20):
     path = f"{name}.toml"
-    open(path, "w").write(base + extra + f'[[sink]]\nkind = "rtsp"\nlisten = "127.0.0.1:{port}"\npath = "/c"\n')
+    open(path, "w").write(CONFIG_720P30 + extra + f'[[sink]]\nkind = "rtsp"\nlisten = "127.0.0.1:{port}"\npath = "/c"\n')
     p = subprocess.Popen([overlayd, "run", "--config", path], stderr=open(f"{name}.log", "w"))
     time.sleep(3)
     def cpu():
@@ -42,7 +43,8 @@ def run(name, extra, port, seconds=20):
     p.terminate(); p.wait()
     frames = 30 * (t1 - t0)
     return (c1 - c0) / frames * 1000
-for i in range(2):
-    a = run("encode-only", "", 19554 + i)
-    b = run("overlay-encode", overlay, 19564 + i)
-    print(f"round {i}: encode alone {a:.2f} ms CPU/frame, overlay+encode {b:.2f} ms CPU/frame, +{(b/a-1)*100:.1f}%")
+if __name__ == "__main__":
+    for i in range(2):
+        a = run(sys.argv[1], "encode-only", "", 19554 + i)
+        b = run(sys.argv[1], "overlay-encode", overlay, 19564 + i)
+        print(f"round {i}: encode alone {a:.2f} ms CPU/frame, overlay+encode {b:.2f} ms CPU/frame, +{(b/a-1)*100:.1f}%")
