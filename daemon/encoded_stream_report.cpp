@@ -44,7 +44,9 @@ void EncodedStreamReport::report(StatusReport &report) const
                 {{"address", client.address}, {"transport", client.transport}, {"since", utcText(client.since)}});
         nlohmann::json entry = {{"kind", sink.kind}, {"sink", sink.key}, {"url", sink.describe}};
         if (sink.kind == "rtsp")
-            entry["clients"] = clients;
+            entry.update({{"clients", clients},
+                          {"pending_shed", sink.pendingShed},
+                          {"pending_timed_out", sink.pendingTimedOut}});
         if (sink.kind == "webrtc") // its peers
             entry["peers"] = clients;
         if (sink.kind == "record")
@@ -101,9 +103,16 @@ void EncodedStreamReport::report(StatusReport &report) const
     for (const stream::EncodedSinkState &sink : engine.sinks) {
         const std::string sinkLabel =
             StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe);
-        if (sink.kind == "rtsp")
+        if (sink.kind == "rtsp") {
             report.metric("overlayd_rtsp_clients", "gauge", "Clients connected to an RTSP sink.",
                           double(sink.clients.size()), sinkLabel);
+            const char *limitHelp = "RTSP connections closed before they asked to play, by the limit that closed them.";
+            report.sample("overlayd_rtsp_limit_total", "counter", limitHelp, "overlayd_rtsp_limit_total",
+                          double(sink.pendingShed), sinkLabel + "," + StatusReport::label("limit", "pending"));
+            report.sample("overlayd_rtsp_limit_total", "counter", limitHelp, "overlayd_rtsp_limit_total",
+                          double(sink.pendingTimedOut),
+                          sinkLabel + "," + StatusReport::label("limit", "play_deadline"));
+        }
         if (sink.kind == "record") {
             report.metric("overlayd_record_segments", "gauge", "Finished segments in a recording's folder.",
                           double(sink.segments), sinkLabel);

@@ -53,6 +53,10 @@ struct EncodedSinkState {
     std::string key;                      // "sink[2]"
     std::string describe;                 // "rtsp://127.0.0.1:8554/cam"
     std::vector<RtspClientState> clients; // kind = "rtsp"; "webrtc": its peers
+    // kind = "rtsp": connections closed before they asked to play, to make room under PendingClients' caps and at
+    // its deadline.
+    uint64_t pendingShed = 0;
+    uint64_t pendingTimedOut = 0;
     // kind = "record": the segment being written, the finished ones in the directory, their bytes, the oldest,
     // how many retention deleted; stopped for a full disk (and how often it was).
     std::string currentFile;
@@ -94,7 +98,7 @@ struct WebrtcAnswer {
 
 // How the engine reports (from its own thread): a line for the daemon's log, at a syslog priority.
 using EngineLog = std::function<void(int level, const std::string &message)>;
-inline constexpr int kLogError = 3, kLogWarning = 4, kLogNotice = 5, kLogInfo = 6;
+inline constexpr int kLogError = 3, kLogWarning = 4, kLogNotice = 5, kLogInfo = 6, kLogDebug = 7;
 
 class EncodedStreamEngine
 {

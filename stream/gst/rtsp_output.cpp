@@ -11,6 +11,9 @@ namespace {
 // At most this many access units wait in a media's appsrc: a media that cannot keep up drops the oldest, never
 // stalls the encoder (and the other sinks).
 constexpr guint64 kMediaQueueBuffers = 30;
+// Connections the kernel queues before the server accepts them. gst-rtsp-server's default, 5, makes every sixth
+// connection of a quick succession wait for a SYN retransmit (1 s): a burst of clients (or a storm) would crawl.
+constexpr gint kListenBacklog = 128;
 
 std::string peerAddress(GstRTSPClient *client)
 {
@@ -39,6 +42,10 @@ RtspOutput::RtspOutput(const EncodedSinkOptions &options, const EngineLog &log, 
 
 RtspOutput::~RtspOutput()
 {
+    if (pendingTick_ != nullptr) {
+        g_source_destroy(pendingTick_);
+        g_source_unref(pendingTick_);
+    }
     if (source_ != nullptr) {
         g_source_destroy(source_);
         g_source_unref(source_);
@@ -70,6 +77,7 @@ Status RtspOutput::start(GMainContext *context)
     server_ = gst_rtsp_server_new();
     gst_rtsp_server_set_address(server_, options_.rtsp.host.c_str());
     gst_rtsp_server_set_service(server_, std::to_string(options_.rtsp.port).c_str());
+    gst_rtsp_server_set_backlog(server_, kListenBacklog);
     GstRTSPMediaFactory *factory = gst_rtsp_media_factory_new();
     // h264parse puts SPS/PPS before every keyframe, rtph264pay sends them with every IDR: a client may start at any.
     gst_rtsp_media_factory_set_launch(factory, "( appsrc name=encoded is-live=true format=time ! h264parse "
@@ -82,6 +90,11 @@ Status RtspOutput::start(GMainContext *context)
     gst_rtsp_mount_points_add_factory(mounts, options_.rtsp.path.c_str(), factory);
     g_object_unref(mounts);
     g_signal_connect(server_, "client-connected", G_CALLBACK(onClientConnected), this);
+    // Clients are served on the engine's loop (no client thread of the pool's): RTSP requests are few and light, and
+    // a client may then be closed from this loop (the pending limits) without racing its own thread.
+    GstRTSPThreadPool *pool = gst_rtsp_server_get_thread_pool(server_);
+    gst_rtsp_thread_pool_set_max_threads(pool, 0);
+    g_object_unref(pool);
 
     GError *error = nullptr;
     source_ = gst_rtsp_server_create_source(server_, nullptr, &error);
@@ -92,7 +105,36 @@ Status RtspOutput::start(GMainContext *context)
         return makeError(ErrorCode::Io, message);
     }
     g_source_attach(source_, context);
+    pendingTick_ = g_timeout_source_new_seconds(1);
+    g_source_set_callback(pendingTick_, onPendingTick, this, nullptr);
+    g_source_attach(pendingTick_, context);
     return Ok{};
+}
+
+gboolean RtspOutput::onPendingTick(gpointer data)
+{
+    auto *self = static_cast<RtspOutput *>(data);
+    std::vector<PendingClients::Handle> late;
+    {
+        std::lock_guard lock(self->mutex_);
+        late = self->pending_.expired(PendingClients::Clock::now());
+    }
+    self->closeClients(late, "did not ask to play within the deadline");
+    return G_SOURCE_CONTINUE;
+}
+
+void RtspOutput::closeClients(const std::vector<PendingClients::Handle> &handles, const char *why)
+{
+    for (PendingClients::Handle handle : handles) {
+        auto *client = static_cast<GstRTSPClient *>(const_cast<void *>(handle));
+        // Debug level: a storm of hostile connections must not flood the journal (the metric counts them).
+        log_(kLogDebug, options_.key + ": RTSP client " + peerAddress(client) + " closed: " + why);
+        // Our own reference through the close: it drops the server's, and the client must not be finalized while
+        // gst_rtsp_client_close still holds its lock (GLib aborts on clearing a locked mutex).
+        g_object_ref(client);
+        gst_rtsp_client_close(client);
+        g_object_unref(client);
+    }
 }
 
 void RtspOutput::onClientConnected(GstRTSPServer *, GstRTSPClient *client, RtspOutput *self)
@@ -102,15 +144,23 @@ void RtspOutput::onClientConnected(GstRTSPServer *, GstRTSPClient *client, RtspO
     g_signal_connect(client, "setup-request", G_CALLBACK(onSetup), self);
     g_signal_connect(client, "play-request", G_CALLBACK(onPlay), self);
     const std::string address = peerAddress(client);
-    std::lock_guard lock(self->mutex_);
-    self->clients_[client] = RtspClientState{address, "", std::chrono::system_clock::now()};
+    GstRTSPConnection *connection = gst_rtsp_client_get_connection(client);
+    const std::string host = connection != nullptr ? gst_rtsp_connection_get_ip(connection) : "?";
+    std::vector<PendingClients::Handle> shed;
+    {
+        std::lock_guard lock(self->mutex_);
+        self->clients_[client] = RtspClientState{address, "", std::chrono::system_clock::now()};
+        shed = self->pending_.admit(client, host, PendingClients::Clock::now());
+    }
+    self->closeClients(shed, "shed for a new connection (too many have not asked to play)");
 }
 
 void RtspOutput::onClientClosed(GstRTSPClient *client, RtspOutput *self)
 {
     std::lock_guard lock(self->mutex_);
+    self->pending_.closed(client);
     if (auto found = self->clients_.find(client); found != self->clients_.end()) {
-        self->log_(6, self->options_.key + ": RTSP client " + found->second.address + " left");
+        self->log_(kLogInfo, self->options_.key + ": RTSP client " + found->second.address + " left");
         self->clients_.erase(found);
     }
 }
@@ -145,9 +195,10 @@ void RtspOutput::onPlay(GstRTSPClient *client, GstRTSPContext *, RtspOutput *sel
 {
     {
         std::lock_guard lock(self->mutex_);
+        self->pending_.started(client);
         if (auto found = self->clients_.find(client); found != self->clients_.end())
-            self->log_(6, self->options_.key + ": RTSP client " + found->second.address + " plays over " +
-                              found->second.transport);
+            self->log_(kLogInfo, self->options_.key + ": RTSP client " + found->second.address + " plays over " +
+                                     found->second.transport);
     }
     self->requestKeyframe_(); // a late joiner decodes from the next frame instead of the next interval
 }
@@ -217,6 +268,8 @@ EncodedSinkState RtspOutput::state() const
     std::lock_guard lock(mutex_);
     for (const auto &[client, state] : clients_)
         out.clients.push_back(state);
+    out.pendingShed = pending_.shed();
+    out.pendingTimedOut = pending_.timedOut();
     return out;
 }
 

@@ -3,6 +3,7 @@
 // media's pipeline is an appsrc fed the encoder's access units (push()), so every client of the mount shares the
 // one encode; RTP goes over UDP or TCP interleaved as the client asks. A new media starts at a keyframe, and every
 // client that starts playing asks the encoder for one (requestKeyframe), so a late joiner sees a picture at once.
+// Connections that have not reached PLAY are held to PendingClients' caps and deadline.
 #pragma once
 
 #include <gst/gst.h>
@@ -14,6 +15,7 @@
 
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
+#include "stream/pending_clients.h"
 
 namespace overlayd::stream::gst {
 
@@ -39,12 +41,18 @@ private:
     static void onPlay(GstRTSPClient *client, GstRTSPContext *context, RtspOutput *self);
     static void onMediaConfigure(GstRTSPMediaFactory *, GstRTSPMedia *media, RtspOutput *self);
     static void onMediaUnprepared(GstRTSPMedia *media, RtspOutput *self);
+    // Once a second on the engine's loop: closes the connections that have not reached PLAY by the deadline.
+    static gboolean onPendingTick(gpointer self);
+    // Closes the clients `handles` names (from PendingClients), on the engine's loop, without the mutex held: a close
+    // emits "closed" at once.
+    void closeClients(const std::vector<PendingClients::Handle> &handles, const char *why);
 
     EncodedSinkOptions options_;
     EngineLog log_;
     std::function<void()> requestKeyframe_;
     GstRTSPServer *server_ = nullptr;
     GSource *source_ = nullptr;
+    GSource *pendingTick_ = nullptr;
 
     mutable std::mutex mutex_;
     GstElement *appsrc_ = nullptr;  // the shared media's, while one is prepared (a reference)
@@ -52,6 +60,7 @@ private:
     bool waitingForKeyframe_ = true;
     GstClockTime offset_ = GST_CLOCK_TIME_NONE; // the encoder's time of the media's first access unit
     std::map<GstRTSPClient *, RtspClientState> clients_;
+    PendingClients pending_; // the clients_ that have not asked to play yet
 };
 
 } // namespace overlayd::stream::gst
