@@ -38,14 +38,50 @@ MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry,
                                    format.hSubSampling, format.vSubSampling, kCr});
         }
     }
-    sums_.assign(width + 1, 0); // a block column per sample at most
-    counts_.assign(sums_.size(), 0);
+    // Every byte lane of every plane, classed by the component it holds; a lane that holds none (X) is a class of
+    // its own, so a whole group can be written at once.
+    pixelsPerGroup_ = format.pixelsPerGroup;
+    const unsigned groups = (width + pixelsPerGroup_ - 1) / pixelsPerGroup_;
+    size_t widest = 0;
+    for (uint8_t p = 0; p < format.numPlanes; ++p) {
+        PlanePlan plan{
+            .plane = p, .bytesPerGroup = format.planes[p].bytesPerGroup, .vSub = format.planes[p].verticalSubSampling};
+        std::array<uint8_t, 4> kind{kNoComponent, kNoComponent, kNoComponent, kNoComponent};
+        const auto name = [&](uint8_t plane, uint8_t offset, uint8_t k) {
+            if (plane == p && offset < plan.bytesPerGroup)
+                kind[offset] = k;
+        };
+        if (rgb_) {
+            name(0, format.rOffset, 0), name(0, format.gOffset, 1), name(0, format.bOffset, 2);
+            name(0, format.aOffset, 3);
+        } else {
+            name(0, format.yOffset[0], 0), name(0, format.yOffset[1], 0);
+            name(format.cbPlane, format.cbOffset, 1), name(format.crPlane, format.crOffset, 2);
+        }
+        for (uint8_t lane = 0; lane < plan.bytesPerGroup; ++lane) {
+            uint8_t c = 0;
+            while (c < lane && (kind[lane] == kNoComponent || kind[c] != kind[lane]))
+                ++c;
+            plan.laneClass[lane] = c < lane ? plan.laneClass[c] : plan.classes++;
+            ++plan.classLanes[plan.laneClass[lane]];
+        }
+        if (p == 0 && !rgb_ && width % pixelsPerGroup_ != 0)
+            plan.outsideLane = format.yOffset[1];
+        plan.groups = groups;
+        plan.rows = format.planeHeight(p, height);
+        widest = std::max(widest, size_t(groups) * plan.bytesPerGroup);
+        planes_.push_back(plan);
+    }
+    columnSums_.assign(widest, 0);
+    means_.assign(widest, 0);
+    counts_.assign(groups + 1, 0); // a block column per group at most
 }
 
 unsigned MaskPainter::blockFor(unsigned blockPx) const
 {
+    // At most 256 rows (kMaxMaskBlockPx, a multiple of every group) of 255 keep a column's sum in 16 bits.
     const unsigned group = std::max(hSub_, vSub_);
-    return std::max(2u, (blockPx + group - 1) / group * group);
+    return std::max(2u, (std::min(blockPx, 256u) + group - 1) / group * group);
 }
 
 std::array<uint8_t, 4> MaskPainter::samplesOf(Rgba colour) const
@@ -104,41 +140,77 @@ void MaskPainter::fillPacked(const FrameView &frame, const SpanRows &mask, const
 void MaskPainter::pixelate(const FrameView &frame, const SpanRows &mask, unsigned blockPx)
 {
     const unsigned block = blockFor(blockPx);
-    for (const Component &c : components_) {
-        const unsigned rows = (height_ + c.vSub - 1) / c.vSub;
-        const unsigned bw = block / c.hSub, bh = block / c.vSub; // the block in this component's samples
-        // Each run cut at block columns: f(block column, first sample's byte, count).
-        const auto eachPiece = [&](unsigned row, unsigned first, unsigned end, auto &&f) {
-            uint8_t *p = rowStart(frame, c, row) + size_t(first) * c.step;
-            for (unsigned i = first; i < end;) {
-                const unsigned stop = std::min(end, (i / bw + 1) * bw);
-                f(i / bw, p, stop - i);
-                p += size_t(stop - i) * c.step, i = stop;
+    for (const PlanePlan &plan : planes_)
+        pixelatePlane(frame, mask, plan, block);
+}
+
+// A band of block rows at a time, in two passes over its masked bytes: each row's bytes added to a row of column
+// sums (a widening add the compiler vectorizes), then the block means, one row of them, copied over each span. In
+// between, each block's columns are folded into its classes' sums once per band, not once per row.
+void MaskPainter::pixelatePlane(const FrameView &frame, const SpanRows &mask, const PlanePlan &plan, unsigned block)
+{
+    const PlaneView &view = frame.planes[plan.plane];
+    const unsigned bpg = plan.bytesPerGroup;
+    const unsigned blockGroups = block / pixelsPerGroup_, blockRows = block / plan.vSub;
+    const unsigned blockBytes = blockGroups * bpg;
+    uint16_t *const sums = columnSums_.data();
+    uint8_t *const means = means_.data();
+    for (unsigned band = 0; band < plan.rows; band += blockRows) {
+        const unsigned bandEnd = std::min(plan.rows, band + blockRows);
+        unsigned first = plan.groups, end = 0, outsideRows = 0; // the band's masked groups, rows reaching the last
+        for (unsigned row = band; row < bandEnd; ++row) {
+            const uint8_t *in = view.data + size_t(row) * view.stride;
+            for (const RowSpan &s : mask.row(row * plan.vSub)) {
+                const unsigned g0 = unsigned(s.x0) / pixelsPerGroup_;
+                const unsigned g1 = (unsigned(s.x1) + pixelsPerGroup_ - 1) / pixelsPerGroup_;
+                const uint8_t *__restrict src = in + size_t(g0) * bpg;
+                uint16_t *__restrict dst = sums + size_t(g0) * bpg;
+                for (size_t k = 0, n = size_t(g1 - g0) * bpg; k < n; ++k)
+                    dst[k] = uint16_t(dst[k] + src[k]);
+                for (unsigned b = g0 / blockGroups; b * blockGroups < g1; ++b)
+                    counts_[b] += std::min(g1, (b + 1) * blockGroups) - std::max(g0, b * blockGroups);
+                first = std::min(first, g0), end = std::max(end, g1);
+                outsideRows += g1 == plan.groups;
             }
-        };
-        for (unsigned band = 0; band < rows; band += bh) {
-            const unsigned bandEnd = std::min(rows, band + bh);
-            // The average of the masked samples of each block, then written over them: a block comes out uniform
-            // and holds nothing of the samples outside the mask.
-            forEachRun(c, mask, band, bandEnd, [&](unsigned row, unsigned first, unsigned end) {
-                eachPiece(row, first, end, [&](unsigned b, const uint8_t *p, unsigned count) {
-                    unsigned sum = 0;
-                    for (unsigned k = 0; k < count; ++k, p += c.step)
-                        sum += *p;
-                    sums_[b] += sum, counts_[b] += count;
-                });
-            });
-            forEachRun(c, mask, band, bandEnd, [&](unsigned row, unsigned first, unsigned end) {
-                eachPiece(row, first, end, [&](unsigned b, uint8_t *p, unsigned count) {
-                    const uint8_t mean = uint8_t((sums_[b] + counts_[b] / 2) / counts_[b]);
-                    for (unsigned k = 0; k < count; ++k, p += c.step)
-                        *p = mean;
-                });
-            });
-            forEachRun(c, mask, band, bandEnd, [&](unsigned, unsigned first, unsigned end) {
-                for (unsigned b = first / bw; b <= (end - 1) / bw; ++b)
-                    sums_[b] = counts_[b] = 0;
-            });
+        }
+        if (first >= end)
+            continue;
+        // Each block's mean per class, spread over its bytes: a row of means to copy from.
+        for (unsigned b = first / blockGroups; b * blockGroups < end; ++b) {
+            const unsigned count = counts_[b];
+            if (count == 0)
+                continue;
+            counts_[b] = 0;
+            const size_t from = size_t(b) * blockBytes, to = std::min(size_t(end) * bpg, from + blockBytes);
+            uint32_t laneSums[4] = {};
+            for (size_t k = from; k < to; k += bpg)
+                for (unsigned lane = 0; lane < bpg; ++lane)
+                    laneSums[lane] += sums[k + lane];
+            uint32_t classSums[4] = {}, classCounts[4] = {};
+            for (unsigned lane = 0; lane < bpg; ++lane)
+                classSums[plan.laneClass[lane]] += laneSums[lane];
+            for (unsigned c = 0; c < plan.classes; ++c)
+                classCounts[c] = count * plan.classLanes[c];
+            if (plan.outsideLane != kNoComponent && to == size_t(plan.groups) * bpg) {
+                // The last group's lane beyond the frame: taken out of its class's sum and count.
+                classSums[plan.laneClass[plan.outsideLane]] -= sums[to - bpg + plan.outsideLane];
+                classCounts[plan.laneClass[plan.outsideLane]] -= outsideRows;
+            }
+            uint8_t classMeans[4] = {};
+            for (unsigned c = 0; c < plan.classes; ++c)
+                classMeans[c] = uint8_t((classSums[c] + classCounts[c] / 2) / classCounts[c]);
+            for (size_t k = from; k < to; k += bpg)
+                for (unsigned lane = 0; lane < bpg; ++lane)
+                    means[k + lane] = classMeans[plan.laneClass[lane]];
+        }
+        std::fill(sums + size_t(first) * bpg, sums + size_t(end) * bpg, uint16_t(0));
+        for (unsigned row = band; row < bandEnd; ++row) {
+            uint8_t *out = view.data + size_t(row) * view.stride;
+            for (const RowSpan &s : mask.row(row * plan.vSub)) {
+                const size_t b0 = size_t(unsigned(s.x0) / pixelsPerGroup_) * bpg;
+                const size_t b1 = size_t((unsigned(s.x1) + pixelsPerGroup_ - 1) / pixelsPerGroup_) * bpg;
+                std::memcpy(out + b0, means + b0, b1 - b0);
+            }
         }
     }
 }

@@ -52,15 +52,34 @@ private:
     template<typename F>
     void forEachRun(const Component &c, const SpanRows &mask, unsigned row0, unsigned row1, F &&f) const;
 
+    // A plane as pixelate sees it: groups of bytesPerGroup bytes covering pixelsPerGroup pixels of vSub rows, each
+    // byte lane averaged with the other lanes of its class (a packed 4:2:2 group's two Y, or a lane alone).
+    struct PlanePlan {
+        uint8_t plane = 0, bytesPerGroup = 1, vSub = 1;
+        uint8_t laneClass[4]{};
+        uint8_t classLanes[4]{}; // lanes per class
+        uint8_t classes = 0;
+        // A frame of odd width leaves its last group's second luma pixel outside the frame: that lane is neither
+        // counted nor averaged (kNoComponent when every lane is a pixel of the frame).
+        uint8_t outsideLane = kNoComponent;
+        unsigned groups = 0, rows = 0; // per row; rows of the plane
+    };
+    void pixelatePlane(const FrameView &frame, const SpanRows &mask, const PlanePlan &plan, unsigned block);
+
     std::vector<Component> components_;
+    std::vector<PlanePlan> planes_;
     Colorimetry colorimetry_;
     bool rgb_ = false;
     // Packed 4:2:2 (YUYV and kin): a fill writes whole macropixels, one 4-byte pattern each, in one pass.
     std::array<uint8_t, 4> packedOffsets_{}; // Y0, Y1, Cb, Cr within a group
     bool packed_ = false;
     unsigned height_;
-    unsigned hSub_ = 1, vSub_ = 1;
-    std::vector<uint32_t> sums_, counts_; // per block column; scratch sized once
+    unsigned hSub_ = 1, vSub_ = 1, pixelsPerGroup_ = 1;
+    // Scratch sized once: a band's column sums (one per byte of a plane row), the row of block means written back,
+    // masked groups per block column.
+    std::vector<uint16_t> columnSums_;
+    std::vector<uint8_t> means_;
+    std::vector<uint32_t> counts_;
 };
 
 } // namespace overlayd
