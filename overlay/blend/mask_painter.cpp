@@ -77,7 +77,7 @@ MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry,
     }
     columnSums_.assign(widest, 0);
     means_.assign(widest, 0);
-    counts_.assign(groups + 1, 0); // a block column per group at most
+    spanEdges_.assign(groups + 1, 0);
 }
 
 unsigned MaskPainter::blockFor(unsigned blockPx) const
@@ -143,83 +143,100 @@ void MaskPainter::fillPacked(const FrameView &frame, const SpanRows &mask, const
 void MaskPainter::pixelate(const FrameView &frame, const SpanRows &mask, unsigned blockPx)
 {
     const unsigned block = blockFor(blockPx);
-    for (const PlanePlan &plan : planes_)
-        pixelatePlane(frame, mask, plan, block);
+    for (const PlanePlan &plan : planes_) {
+        switch (plan.bytesPerGroup) { // the group's size known at compile time: the lane loops unroll
+        case 1:
+            pixelatePlane<1>(frame, mask, plan, block);
+            break;
+        case 2:
+            pixelatePlane<2>(frame, mask, plan, block);
+            break;
+        case 3:
+            pixelatePlane<3>(frame, mask, plan, block);
+            break;
+        default:
+            pixelatePlane<4>(frame, mask, plan, block);
+            break;
+        }
+    }
 }
 
 // A band of block rows at a time, in two passes over its masked bytes: each row's bytes added to a row of column
 // sums (a widening add the compiler vectorizes), then the block means, one row of them, copied over each span. In
-// between, each block's columns are folded into its classes' sums once per band, not once per row.
+// between, once per band and not once per row, each block's columns are folded into its classes' sums, and its
+// masked groups counted from the spans' ends (+1 where a span starts, -1 where it ends, summed along the row).
+template<unsigned Bpg>
 void MaskPainter::pixelatePlane(const FrameView &frame, const SpanRows &mask, const PlanePlan &plan, unsigned block)
 {
     const PlaneView &view = frame.planes[plan.plane];
-    const unsigned bpg = plan.bytesPerGroup;
     const unsigned blockGroups = block / pixelsPerGroup_, blockRows = block / plan.vSub;
-    const unsigned blockBytes = blockGroups * bpg;
     uint16_t *const sums = columnSums_.data();
     uint8_t *const means = means_.data();
+    int32_t *const edges = spanEdges_.data();
     for (unsigned band = 0; band < plan.rows; band += blockRows) {
         const unsigned bandEnd = std::min(plan.rows, band + blockRows);
         unsigned first = plan.groups, end = 0, outsideRows = 0; // the band's masked groups, rows reaching the last
         for (unsigned row = band; row < bandEnd; ++row) {
             const uint8_t *in = view.data + size_t(row) * view.stride;
+            // The same columns kPrefetchRows further down are asked for a cache line at a time: the rows are short
+            // streams, and the hardware's prefetcher only catches up with each one after a few misses.
+            const bool ahead = row + kPrefetchRows < plan.rows;
             for (const RowSpan &s : mask.row(row * plan.vSub)) {
                 const unsigned g0 = unsigned(s.x0) / pixelsPerGroup_;
                 const unsigned g1 = (unsigned(s.x1) + pixelsPerGroup_ - 1) / pixelsPerGroup_;
-                const uint8_t *__restrict src = in + size_t(g0) * bpg;
-                uint16_t *__restrict dst = sums + size_t(g0) * bpg;
-                // The same columns kPrefetchRows further down are asked for a cache line at a time: the rows are
-                // short streams, and the hardware's prefetcher only catches up with each one after a few misses.
-                const bool ahead = row + kPrefetchRows < plan.rows;
-                const size_t n = size_t(g1 - g0) * bpg;
+                const uint8_t *__restrict src = in + size_t(g0) * Bpg;
+                uint16_t *__restrict dst = sums + size_t(g0) * Bpg;
+                const size_t n = size_t(g1 - g0) * Bpg;
                 for (size_t k = 0; k < n; k += kLine) {
                     if (ahead)
                         __builtin_prefetch(src + k + size_t(kPrefetchRows) * view.stride);
                     for (size_t j = k, stop = std::min(n, k + kLine); j < stop; ++j)
                         dst[j] = uint16_t(dst[j] + src[j]);
                 }
-                for (unsigned b = g0 / blockGroups; b * blockGroups < g1; ++b)
-                    counts_[b] += std::min(g1, (b + 1) * blockGroups) - std::max(g0, b * blockGroups);
+                ++edges[g0], --edges[g1];
                 first = std::min(first, g0), end = std::max(end, g1);
                 outsideRows += g1 == plan.groups;
             }
         }
         if (first >= end)
             continue;
-        // Each block's mean per class, spread over its bytes: a row of means to copy from.
-        for (unsigned b = first / blockGroups; b * blockGroups < end; ++b) {
-            const unsigned count = counts_[b];
-            if (count == 0)
-                continue;
-            counts_[b] = 0;
-            const size_t from = size_t(b) * blockBytes, to = std::min(size_t(end) * bpg, from + blockBytes);
-            uint32_t laneSums[4] = {};
-            for (size_t k = from; k < to; k += bpg)
-                for (unsigned lane = 0; lane < bpg; ++lane)
-                    laneSums[lane] += sums[k + lane];
-            uint32_t classSums[4] = {}, classCounts[4] = {};
-            for (unsigned lane = 0; lane < bpg; ++lane)
-                classSums[plan.laneClass[lane]] += laneSums[lane];
-            for (unsigned c = 0; c < plan.classes; ++c)
-                classCounts[c] = count * plan.classLanes[c];
-            if (plan.outsideLane != kNoComponent && to == size_t(plan.groups) * bpg) {
-                // The last group's lane beyond the frame: taken out of its class's sum and count.
-                classSums[plan.laneClass[plan.outsideLane]] -= sums[to - bpg + plan.outsideLane];
-                classCounts[plan.laneClass[plan.outsideLane]] -= outsideRows;
+        // Each block's mean per class, spread over its masked bytes: the row of means the spans copy from.
+        int32_t rows = 0; // masked rows of the current group column
+        for (unsigned g = first; g < end;) {
+            const unsigned stop = std::min(end, (g / blockGroups + 1) * blockGroups);
+            uint32_t laneSums[Bpg] = {}, groups = 0;
+            for (unsigned k = g; k < stop; ++k) {
+                rows += edges[k];
+                groups += uint32_t(rows);
+                for (unsigned lane = 0; lane < Bpg; ++lane)
+                    laneSums[lane] += sums[size_t(k) * Bpg + lane];
             }
-            uint8_t classMeans[4] = {};
-            for (unsigned c = 0; c < plan.classes; ++c)
-                classMeans[c] = uint8_t((classSums[c] + classCounts[c] / 2) / classCounts[c]);
-            for (size_t k = from; k < to; k += bpg)
-                for (unsigned lane = 0; lane < bpg; ++lane)
-                    means[k + lane] = classMeans[plan.laneClass[lane]];
+            if (groups != 0) {
+                uint32_t classSums[4] = {}, classCounts[4] = {};
+                for (unsigned lane = 0; lane < Bpg; ++lane)
+                    classSums[plan.laneClass[lane]] += laneSums[lane], classCounts[plan.laneClass[lane]] += groups;
+                if (plan.outsideLane != kNoComponent && stop == plan.groups) {
+                    // The last group's lane beyond the frame: taken out of its class's sum and count.
+                    classSums[plan.laneClass[plan.outsideLane]] -= sums[size_t(stop - 1) * Bpg + plan.outsideLane];
+                    classCounts[plan.laneClass[plan.outsideLane]] -= outsideRows;
+                }
+                uint8_t pattern[Bpg];
+                for (unsigned lane = 0; lane < Bpg; ++lane) {
+                    const unsigned c = plan.laneClass[lane];
+                    pattern[lane] = uint8_t((classSums[c] + classCounts[c] / 2) / classCounts[c]);
+                }
+                for (unsigned k = g; k < stop; ++k)
+                    std::memcpy(means + size_t(k) * Bpg, pattern, Bpg);
+            }
+            g = stop;
         }
-        std::fill(sums + size_t(first) * bpg, sums + size_t(end) * bpg, uint16_t(0));
+        std::fill(sums + size_t(first) * Bpg, sums + size_t(end) * Bpg, uint16_t(0));
+        std::fill(edges + first, edges + end + 1, 0);
         for (unsigned row = band; row < bandEnd; ++row) {
             uint8_t *out = view.data + size_t(row) * view.stride;
             for (const RowSpan &s : mask.row(row * plan.vSub)) {
-                const size_t b0 = size_t(unsigned(s.x0) / pixelsPerGroup_) * bpg;
-                const size_t b1 = size_t((unsigned(s.x1) + pixelsPerGroup_ - 1) / pixelsPerGroup_) * bpg;
+                const size_t b0 = size_t(unsigned(s.x0) / pixelsPerGroup_) * Bpg;
+                const size_t b1 = size_t((unsigned(s.x1) + pixelsPerGroup_ - 1) / pixelsPerGroup_) * Bpg;
                 std::memcpy(out + b0, means + b0, b1 - b0);
             }
         }

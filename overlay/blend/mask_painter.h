@@ -64,6 +64,7 @@ private:
         uint8_t outsideLane = kNoComponent;
         unsigned groups = 0, rows = 0; // per row; rows of the plane
     };
+    template<unsigned BytesPerGroup>
     void pixelatePlane(const FrameView &frame, const SpanRows &mask, const PlanePlan &plan, unsigned block);
 
     std::vector<Component> components_;
@@ -76,10 +77,10 @@ private:
     unsigned height_;
     unsigned hSub_ = 1, vSub_ = 1, pixelsPerGroup_ = 1;
     // Scratch sized once: a band's column sums (one per byte of a plane row), the row of block means written back,
-    // masked groups per block column.
+    // spans starting minus spans ending at each group column.
     std::vector<uint16_t> columnSums_;
     std::vector<uint8_t> means_;
-    std::vector<uint32_t> counts_;
+    std::vector<int32_t> spanEdges_;
 };
 
 } // namespace overlayd
