@@ -167,19 +167,30 @@ TEST_P(PrivacyMaskFormat, FillTakesTheColourAndLeavesEveryOtherByte)
     EXPECT_TRUE(frame.guardIntact());
 }
 
-TEST_P(PrivacyMaskFormat, PixelationIsEachBlocksAverageOfItsMaskedSamples)
+// A concave outline reaching past the right and bottom edges (blocks cut by the frame, the last macropixel of an
+// odd width and height) with a notch towards the middle.
+std::vector<glm::dvec2> edgeOutline()
 {
-    constexpr unsigned kBlock = 8;
-    const StreamFormat format = test::streamFormat(GetParam(), kWidth, kHeight);
-    TestFrame frame = noiseFrame(GetParam());
+    return {{25.3, -4.0}, {70.0, -4.0}, {70.0, 60.0}, {-5.0, 60.0}, {-5.0, 38.6}, {31.7, 27.2}};
+}
+
+// Pixelates the noise frame and checks every byte, per pixel, against the block averages summed here from the bytes
+// test_frames says belong to each block: the blocks are block x block pixels from the frame's origin (block rounded
+// up to even where chroma is subsampled), and a block's mean is over its masked samples of that kind only.
+void expectPixelated(const std::string &formatName, const std::vector<glm::dvec2> &outline, unsigned block)
+{
+    const StreamFormat format = test::streamFormat(formatName, kWidth, kHeight);
+    const bool subsampled = format.format->encoding == ColourEncoding::Yuv && format.format->cbOffset != kNoComponent;
+    const int side = int(std::max(2u, subsampled ? (block + 1) / 2 * 2 : block));
+    TestFrame frame = noiseFrame(formatName);
     const TestFrame original = frame;
-    PrivacyMasks masks = screenMask(starOutline(), std::nullopt, kBlock, format);
+    PrivacyMasks masks = screenMask(outline, std::nullopt, block, format);
     masks.apply(frame.view());
-    const std::vector<bool> masked = expectedMask(starOutline(), *format.format);
+    const std::vector<bool> masked = expectedMask(outline, *format.format);
     // Sums and counts per (kind, block), from the original bytes.
     std::map<std::tuple<char, int, int>, std::pair<unsigned, unsigned>> blocks;
     const auto blockOf = [&](char kind, cv::Point pixel) {
-        return std::tuple(kind, pixel.x / 8, pixel.y / 8);
+        return std::tuple(kind, pixel.x / side, pixel.y / side);
     };
     forEachByte(original, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
         if (masked[pixel.y * kWidth + pixel.x]) {
@@ -187,17 +198,34 @@ TEST_P(PrivacyMaskFormat, PixelationIsEachBlocksAverageOfItsMaskedSamples)
             sum += original.plane(p)[offset], ++count;
         }
     });
+    unsigned wrong = 0;
     forEachByte(frame, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
         const uint8_t got = frame.plane(p)[offset];
         if (!masked[pixel.y * kWidth + pixel.x]) {
-            EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel;
+            wrong += got != original.plane(p)[offset];
+            EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel << ", block " << block;
             return;
         }
         const auto [sum, count] = blocks[blockOf(kind, pixel)];
-        EXPECT_EQ(got, (sum + count / 2) / count) << kind << " at " << pixel;
+        wrong += got != (sum + count / 2) / count;
+        EXPECT_EQ(got, (sum + count / 2) / count) << kind << " at " << pixel << ", block " << block;
     });
-    EXPECT_GT(blocks.size(), 20u);
+    EXPECT_EQ(wrong, 0u) << "block " << block;
+    EXPECT_GE(blocks.size(), 4u); // a 32 px block: 4 of them at least, of one kind
     EXPECT_TRUE(frame.guardIntact());
+}
+
+TEST_P(PrivacyMaskFormat, PixelationIsEachBlocksAverageOfItsMaskedSamples)
+{
+    expectPixelated(GetParam(), starOutline(), 8);
+}
+
+// Blocks of every size the benchmarks time and odd ones, over a mask that the frame's edges cut.
+TEST_P(PrivacyMaskFormat, PixelationOfBlocksTheFrameEdgeCuts)
+{
+    for (unsigned block : {2u, 5u, 8u, 16u, 32u})
+        for (const std::vector<glm::dvec2> &outline : {edgeOutline(), starOutline()})
+            expectPixelated(GetParam(), outline, block);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFormats, PrivacyMaskFormat, testing::ValuesIn(test::formatNames()), test::formatName);
