@@ -28,7 +28,7 @@ public:
     unsigned blockFor(unsigned blockPx) const;
 
     // The frame was checked against the format and size (the renderer's blend does); no allocation.
-    void fill(const FrameView &frame, const SpanRows &mask, Rgba colour) const;
+    void fill(const FrameView &frame, const SpanRows &mask, Rgba colour);
     void pixelate(const FrameView &frame, const SpanRows &mask, unsigned blockPx);
 
 private:
@@ -42,6 +42,7 @@ private:
     };
 
     void fillPacked(const FrameView &frame, const SpanRows &mask, const std::array<uint8_t, 4> &values) const;
+    void fillRgb(const FrameView &frame, const SpanRows &mask, const std::array<uint8_t, 4> &values);
     // The fill colour's code value per fillIndex.
     std::array<uint8_t, 4> samplesOf(Rgba colour) const;
     uint8_t *rowStart(const FrameView &frame, const Component &c, unsigned row) const
@@ -76,8 +77,8 @@ private:
     bool packed_ = false;
     unsigned height_;
     unsigned hSub_ = 1, vSub_ = 1, pixelsPerGroup_ = 1;
-    // Scratch sized once: a band's column sums (one per byte of a plane row), the row of block means written back,
-    // spans starting minus spans ending at each group column.
+    // Scratch sized once: a band's column sums (one per byte of a plane row), the row of block means written back
+    // (or of an RGB fill's pixels), spans starting minus spans ending at each group column.
     std::vector<uint16_t> columnSums_;
     std::vector<uint8_t> means_;
     std::vector<int32_t> spanEdges_;
