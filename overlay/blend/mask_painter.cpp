@@ -220,9 +220,10 @@ void MaskPainter::pixelatePlane(const FrameView &frame, const SpanRows &mask, co
         if (first >= end)
             continue;
         // Each block's mean per class, spread over its masked bytes: the row of means the spans copy from.
-        int32_t rows = 0; // masked rows of the current group column
-        for (unsigned g = first; g < end;) {
-            const unsigned stop = std::min(end, (g / blockGroups + 1) * blockGroups);
+        int32_t rows = 0;                                            // masked rows of the current group column
+        unsigned boundary = (first / blockGroups + 1) * blockGroups; // where the current block ends
+        for (unsigned g = first; g < end; boundary += blockGroups) {
+            const unsigned stop = std::min(end, boundary);
             uint32_t laneSums[Bpg] = {}, groups = 0;
             for (unsigned k = g; k < stop; ++k) {
                 rows += edges[k];
