@@ -240,11 +240,11 @@ void MaskPainter::pixelatePlane(const FrameView &frame, const SpanRows &mask, co
                     classSums[plan.laneClass[plan.outsideLane]] -= sums[size_t(stop - 1) * Bpg + plan.outsideLane];
                     classCounts[plan.laneClass[plan.outsideLane]] -= outsideRows;
                 }
-                uint8_t pattern[Bpg];
-                for (unsigned lane = 0; lane < Bpg; ++lane) {
-                    const unsigned c = plan.laneClass[lane];
-                    pattern[lane] = uint8_t((classSums[c] + classCounts[c] / 2) / classCounts[c]);
-                }
+                uint8_t classMeans[4] = {}, pattern[Bpg]; // a division per component, not per lane
+                for (unsigned c = 0; c < plan.classes; ++c)
+                    classMeans[c] = uint8_t((classSums[c] + classCounts[c] / 2) / classCounts[c]);
+                for (unsigned lane = 0; lane < Bpg; ++lane)
+                    pattern[lane] = classMeans[plan.laneClass[lane]];
                 for (unsigned k = g; k < stop; ++k)
                     std::memcpy(means + size_t(k) * Bpg, pattern, Bpg);
             }
