@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "overlay/blend/ycbcr.h"
+#include "overlay/shapes/annotation.h"
 
 namespace overlayd {
 
@@ -82,9 +83,11 @@ MaskPainter::MaskPainter(const PixelFormatInfo &format, Colorimetry colorimetry,
 
 unsigned MaskPainter::blockFor(unsigned blockPx) const
 {
-    // At most 256 rows (kMaxMaskBlockPx, a multiple of every group) of 255 keep a column's sum in 16 bits.
+    // At most 256 rows (kMaxMaskBlockPx, a multiple of every group) of 255 keep a column's sum in 16 bits; the config
+    // refuses more.
+    static_assert(kMaxMaskBlockPx * 255 <= UINT16_MAX);
     const unsigned group = std::max(hSub_, vSub_);
-    return std::max(2u, (std::min(blockPx, 256u) + group - 1) / group * group);
+    return std::max(2u, (std::min(blockPx, kMaxMaskBlockPx) + group - 1) / group * group);
 }
 
 std::array<uint8_t, 4> MaskPainter::samplesOf(Rgba colour) const
