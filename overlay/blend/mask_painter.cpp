@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// MaskPainter: fills and pixelates masked spans, one sample kind at a time.
+// MaskPainter: fills masked spans a sample kind at a time (a packed group or an RGB pixel whole), pixelates them a
+// plane and a band of block rows at a time.
 #include "overlay/blend/mask_painter.h"
 
 #include <algorithm>

@@ -24,7 +24,7 @@ public:
     // The horizontal and vertical subsampling masks are widened to (SpanRows' hSub and vSub).
     unsigned hSub() const { return hSub_; }
     unsigned vSub() const { return vSub_; }
-    // The block a pixelation uses for block_px: rounded up to whole macropixels.
+    // The block a pixelation uses for block_px: rounded up to whole macropixels (at most kMaxMaskBlockPx).
     unsigned blockFor(unsigned blockPx) const;
 
     // The frame was checked against the format and size (the renderer's blend does); no allocation.

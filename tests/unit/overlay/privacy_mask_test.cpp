@@ -79,16 +79,16 @@ TestFrame noiseFrame(const std::string &name)
     return frame;
 }
 
-// Calls f(plane, offset, kind, first pixel) for every visible byte that carries a component.
+// Calls f(plane, offset, kind, first pixel) for every visible byte that carries a component (or padding: 'X').
 template<typename F>
-void forEachByte(const TestFrame &frame, F &&f)
+void forEachByte(const TestFrame &frame, F &&f, bool padding = false)
 {
     for (unsigned p = 0; p < frame.layout.format->numPlanes; ++p)
         for (unsigned row = 0; row < frame.layout.format->planeHeight(p, kHeight); ++row)
             for (unsigned c = 0; c < frame.stride(p); ++c) {
                 const char kind = test::byteKind(frame, p, c);
                 const auto pixels = test::pixelsOfByte(frame, p, row, c);
-                if (kind && kind != 'X' && !pixels.empty())
+                if (kind && (padding || kind != 'X') && !pixels.empty())
                     f(p, size_t(row) * frame.stride(p) + c, kind, pixels.front());
             }
 }
@@ -153,16 +153,19 @@ TEST_P(PrivacyMaskFormat, FillTakesTheColourAndLeavesEveryOtherByte)
     masks.apply(frame.view());
     const std::vector<bool> masked = expectedMask(starOutline(), *format.format);
     unsigned touched = 0;
-    forEachByte(frame, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
-        const uint8_t got = frame.plane(p)[offset];
-        if (!masked[pixel.y * kWidth + pixel.x]) {
-            EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel;
-            return;
-        }
-        ++touched;
-        const uint8_t want = kind == 'A' ? 255 : painted.plane(p)[offset];
-        EXPECT_NEAR(got, want, 1) << kind << " at " << pixel;
-    });
+    forEachByte(
+        frame,
+        [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
+            const uint8_t got = frame.plane(p)[offset];
+            if (!masked[pixel.y * kWidth + pixel.x]) {
+                EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel;
+                return;
+            }
+            ++touched;
+            const uint8_t want = kind == 'A' || kind == 'X' ? 255 : painted.plane(p)[offset];
+            EXPECT_NEAR(got, want, 1) << kind << " at " << pixel;
+        },
+        true);
     EXPECT_GT(touched, 300u);
     EXPECT_TRUE(frame.guardIntact());
 }
@@ -192,24 +195,30 @@ void expectPixelated(const std::string &formatName, const std::vector<glm::dvec2
     const auto blockOf = [&](char kind, cv::Point pixel) {
         return std::tuple(kind, pixel.x / side, pixel.y / side);
     };
-    forEachByte(original, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
-        if (masked[pixel.y * kWidth + pixel.x]) {
-            auto &[sum, count] = blocks[blockOf(kind, pixel)];
-            sum += original.plane(p)[offset], ++count;
-        }
-    });
+    forEachByte(
+        original,
+        [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
+            if (masked[pixel.y * kWidth + pixel.x]) {
+                auto &[sum, count] = blocks[blockOf(kind, pixel)];
+                sum += original.plane(p)[offset], ++count;
+            }
+        },
+        true);
     unsigned wrong = 0;
-    forEachByte(frame, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
-        const uint8_t got = frame.plane(p)[offset];
-        if (!masked[pixel.y * kWidth + pixel.x]) {
-            wrong += got != original.plane(p)[offset];
-            EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel << ", block " << block;
-            return;
-        }
-        const auto [sum, count] = blocks[blockOf(kind, pixel)];
-        wrong += got != (sum + count / 2) / count;
-        EXPECT_EQ(got, (sum + count / 2) / count) << kind << " at " << pixel << ", block " << block;
-    });
+    forEachByte(
+        frame,
+        [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
+            const uint8_t got = frame.plane(p)[offset];
+            if (!masked[pixel.y * kWidth + pixel.x]) {
+                wrong += got != original.plane(p)[offset];
+                EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel << ", block " << block;
+                return;
+            }
+            const auto [sum, count] = blocks[blockOf(kind, pixel)];
+            wrong += got != (sum + count / 2) / count;
+            EXPECT_EQ(got, (sum + count / 2) / count) << kind << " at " << pixel << ", block " << block;
+        },
+        true);
     EXPECT_EQ(wrong, 0u) << "block " << block;
     EXPECT_GE(blocks.size(), 4u); // a 32 px block: 4 of them at least, of one kind
     EXPECT_TRUE(frame.guardIntact());
