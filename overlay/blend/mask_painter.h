@@ -24,11 +24,11 @@ public:
     // The horizontal and vertical subsampling masks are widened to (SpanRows' hSub and vSub).
     unsigned hSub() const { return hSub_; }
     unsigned vSub() const { return vSub_; }
-    // The block a pixelation uses for block_px: rounded up to whole macropixels.
+    // The block a pixelation uses for block_px: rounded up to whole macropixels (at most kMaxMaskBlockPx).
     unsigned blockFor(unsigned blockPx) const;
 
     // The frame was checked against the format and size (the renderer's blend does); no allocation.
-    void fill(const FrameView &frame, const SpanRows &mask, Rgba colour) const;
+    void fill(const FrameView &frame, const SpanRows &mask, Rgba colour);
     void pixelate(const FrameView &frame, const SpanRows &mask, unsigned blockPx);
 
 private:
@@ -42,6 +42,7 @@ private:
     };
 
     void fillPacked(const FrameView &frame, const SpanRows &mask, const std::array<uint8_t, 4> &values) const;
+    void fillRgb(const FrameView &frame, const SpanRows &mask, const std::array<uint8_t, 4> &values);
     // The fill colour's code value per fillIndex.
     std::array<uint8_t, 4> samplesOf(Rgba colour) const;
     uint8_t *rowStart(const FrameView &frame, const Component &c, unsigned row) const
@@ -52,15 +53,35 @@ private:
     template<typename F>
     void forEachRun(const Component &c, const SpanRows &mask, unsigned row0, unsigned row1, F &&f) const;
 
+    // A plane as pixelate sees it: groups of bytesPerGroup bytes covering pixelsPerGroup pixels of vSub rows, each
+    // byte lane averaged with the other lanes of its class (a packed 4:2:2 group's two Y, or a lane alone).
+    struct PlanePlan {
+        uint8_t plane = 0, bytesPerGroup = 1, vSub = 1;
+        uint8_t laneClass[4]{};
+        uint8_t classLanes[4]{}; // lanes per class
+        uint8_t classes = 0;
+        // A frame of odd width leaves its last group's second luma pixel outside the frame: that lane is neither
+        // counted nor averaged (kNoComponent when every lane is a pixel of the frame).
+        uint8_t outsideLane = kNoComponent;
+        unsigned groups = 0, rows = 0; // per row; rows of the plane
+    };
+    template<unsigned BytesPerGroup>
+    void pixelatePlane(const FrameView &frame, const SpanRows &mask, const PlanePlan &plan, unsigned block);
+
     std::vector<Component> components_;
+    std::vector<PlanePlan> planes_;
     Colorimetry colorimetry_;
     bool rgb_ = false;
     // Packed 4:2:2 (YUYV and kin): a fill writes whole macropixels, one 4-byte pattern each, in one pass.
     std::array<uint8_t, 4> packedOffsets_{}; // Y0, Y1, Cb, Cr within a group
     bool packed_ = false;
     unsigned height_;
-    unsigned hSub_ = 1, vSub_ = 1;
-    std::vector<uint32_t> sums_, counts_; // per block column; scratch sized once
+    unsigned hSub_ = 1, vSub_ = 1, pixelsPerGroup_ = 1;
+    // Scratch sized once: a band's column sums (one per byte of a plane row), the row of block means written back
+    // (or of an RGB fill's pixels), spans starting minus spans ending at each group column.
+    std::vector<uint16_t> columnSums_;
+    std::vector<uint8_t> means_;
+    std::vector<int32_t> spanEdges_;
 };
 
 } // namespace overlayd

@@ -79,16 +79,16 @@ TestFrame noiseFrame(const std::string &name)
     return frame;
 }
 
-// Calls f(plane, offset, kind, first pixel) for every visible byte that carries a component.
+// Calls f(plane, offset, kind, first pixel) for every visible byte that carries a component (or padding: 'X').
 template<typename F>
-void forEachByte(const TestFrame &frame, F &&f)
+void forEachByte(const TestFrame &frame, F &&f, bool padding = false)
 {
     for (unsigned p = 0; p < frame.layout.format->numPlanes; ++p)
         for (unsigned row = 0; row < frame.layout.format->planeHeight(p, kHeight); ++row)
             for (unsigned c = 0; c < frame.stride(p); ++c) {
                 const char kind = test::byteKind(frame, p, c);
                 const auto pixels = test::pixelsOfByte(frame, p, row, c);
-                if (kind && kind != 'X' && !pixels.empty())
+                if (kind && (padding || kind != 'X') && !pixels.empty())
                     f(p, size_t(row) * frame.stride(p) + c, kind, pixels.front());
             }
 }
@@ -153,51 +153,88 @@ TEST_P(PrivacyMaskFormat, FillTakesTheColourAndLeavesEveryOtherByte)
     masks.apply(frame.view());
     const std::vector<bool> masked = expectedMask(starOutline(), *format.format);
     unsigned touched = 0;
-    forEachByte(frame, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
-        const uint8_t got = frame.plane(p)[offset];
-        if (!masked[pixel.y * kWidth + pixel.x]) {
-            EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel;
-            return;
-        }
-        ++touched;
-        const uint8_t want = kind == 'A' ? 255 : painted.plane(p)[offset];
-        EXPECT_NEAR(got, want, 1) << kind << " at " << pixel;
-    });
+    forEachByte(
+        frame,
+        [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
+            const uint8_t got = frame.plane(p)[offset];
+            if (!masked[pixel.y * kWidth + pixel.x]) {
+                EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel;
+                return;
+            }
+            ++touched;
+            const uint8_t want = kind == 'A' || kind == 'X' ? 255 : painted.plane(p)[offset];
+            EXPECT_NEAR(got, want, 1) << kind << " at " << pixel;
+        },
+        true);
     EXPECT_GT(touched, 300u);
+    EXPECT_TRUE(frame.guardIntact());
+}
+
+// A concave outline reaching past the right and bottom edges (blocks cut by the frame, the last macropixel of an
+// odd width and height) with a notch towards the middle.
+std::vector<glm::dvec2> edgeOutline()
+{
+    return {{25.3, -4.0}, {70.0, -4.0}, {70.0, 60.0}, {-5.0, 60.0}, {-5.0, 38.6}, {31.7, 27.2}};
+}
+
+// Pixelates the noise frame and checks every byte, per pixel, against the block averages summed here from the bytes
+// test_frames says belong to each block: the blocks are block x block pixels from the frame's origin (block rounded
+// up to even where chroma is subsampled), and a block's mean is over its masked samples of that kind only.
+void expectPixelated(const std::string &formatName, const std::vector<glm::dvec2> &outline, unsigned block)
+{
+    const StreamFormat format = test::streamFormat(formatName, kWidth, kHeight);
+    const bool subsampled = format.format->encoding == ColourEncoding::Yuv && format.format->cbOffset != kNoComponent;
+    const int side = int(std::max(2u, subsampled ? (block + 1) / 2 * 2 : block));
+    TestFrame frame = noiseFrame(formatName);
+    const TestFrame original = frame;
+    PrivacyMasks masks = screenMask(outline, std::nullopt, block, format);
+    masks.apply(frame.view());
+    const std::vector<bool> masked = expectedMask(outline, *format.format);
+    // Sums and counts per (kind, block), from the original bytes.
+    std::map<std::tuple<char, int, int>, std::pair<unsigned, unsigned>> blocks;
+    const auto blockOf = [&](char kind, cv::Point pixel) {
+        return std::tuple(kind, pixel.x / side, pixel.y / side);
+    };
+    forEachByte(
+        original,
+        [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
+            if (masked[pixel.y * kWidth + pixel.x]) {
+                auto &[sum, count] = blocks[blockOf(kind, pixel)];
+                sum += original.plane(p)[offset], ++count;
+            }
+        },
+        true);
+    unsigned wrong = 0;
+    forEachByte(
+        frame,
+        [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
+            const uint8_t got = frame.plane(p)[offset];
+            if (!masked[pixel.y * kWidth + pixel.x]) {
+                wrong += got != original.plane(p)[offset];
+                EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel << ", block " << block;
+                return;
+            }
+            const auto [sum, count] = blocks[blockOf(kind, pixel)];
+            wrong += got != (sum + count / 2) / count;
+            EXPECT_EQ(got, (sum + count / 2) / count) << kind << " at " << pixel << ", block " << block;
+        },
+        true);
+    EXPECT_EQ(wrong, 0u) << "block " << block;
+    EXPECT_GE(blocks.size(), 4u); // a 32 px block: 4 of them at least, of one kind
     EXPECT_TRUE(frame.guardIntact());
 }
 
 TEST_P(PrivacyMaskFormat, PixelationIsEachBlocksAverageOfItsMaskedSamples)
 {
-    constexpr unsigned kBlock = 8;
-    const StreamFormat format = test::streamFormat(GetParam(), kWidth, kHeight);
-    TestFrame frame = noiseFrame(GetParam());
-    const TestFrame original = frame;
-    PrivacyMasks masks = screenMask(starOutline(), std::nullopt, kBlock, format);
-    masks.apply(frame.view());
-    const std::vector<bool> masked = expectedMask(starOutline(), *format.format);
-    // Sums and counts per (kind, block), from the original bytes.
-    std::map<std::tuple<char, int, int>, std::pair<unsigned, unsigned>> blocks;
-    const auto blockOf = [&](char kind, cv::Point pixel) {
-        return std::tuple(kind, pixel.x / 8, pixel.y / 8);
-    };
-    forEachByte(original, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
-        if (masked[pixel.y * kWidth + pixel.x]) {
-            auto &[sum, count] = blocks[blockOf(kind, pixel)];
-            sum += original.plane(p)[offset], ++count;
-        }
-    });
-    forEachByte(frame, [&](unsigned p, size_t offset, char kind, cv::Point pixel) {
-        const uint8_t got = frame.plane(p)[offset];
-        if (!masked[pixel.y * kWidth + pixel.x]) {
-            EXPECT_EQ(got, original.plane(p)[offset]) << kind << " at " << pixel;
-            return;
-        }
-        const auto [sum, count] = blocks[blockOf(kind, pixel)];
-        EXPECT_EQ(got, (sum + count / 2) / count) << kind << " at " << pixel;
-    });
-    EXPECT_GT(blocks.size(), 20u);
-    EXPECT_TRUE(frame.guardIntact());
+    expectPixelated(GetParam(), starOutline(), 8);
+}
+
+// Blocks of every size the benchmarks time and odd ones, over a mask that the frame's edges cut.
+TEST_P(PrivacyMaskFormat, PixelationOfBlocksTheFrameEdgeCuts)
+{
+    for (unsigned block : {2u, 5u, 8u, 16u, 32u})
+        for (const std::vector<glm::dvec2> &outline : {edgeOutline(), starOutline()})
+            expectPixelated(GetParam(), outline, block);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFormats, PrivacyMaskFormat, testing::ValuesIn(test::formatNames()), test::formatName);
