@@ -50,7 +50,7 @@ struct EncoderInput {
     uint64_t sequence = 0;
     std::chrono::nanoseconds captureTime{0}; // CLOCK_MONOTONIC, when the frame was captured or made
     std::chrono::nanoseconds blendedTime{0}; // CLOCK_MONOTONIC, when the overlay was in it
-    DmabufPlanes dmabuf;                     // fd set: `data` is null, the encoder imports the buffer
+    DmabufPlanes dmabuf{};                   // fd set: `data` is null, the encoder imports the buffer
 };
 
 // One client of an RTSP sink.
