@@ -185,6 +185,15 @@ void readEncoder(TableReader &root, StreamOptions &out)
         encoder.lowLatency = *lowLatency;
     if (auto queued = table->integer("queue", 1, kMaxQueuedFrames))
         encoder.queuedFrames = unsigned(*queued);
+    if (auto zeroCopy = table->choice<EncoderZeroCopy>(
+            "zero_copy",
+            {{"auto", EncoderZeroCopy::Auto}, {"on", EncoderZeroCopy::On}, {"off", EncoderZeroCopy::Off}})) {
+        encoder.zeroCopy = *zeroCopy;
+        if (encoder.zeroCopy == EncoderZeroCopy::On && encoder.kind != EncoderKind::V4l2)
+            table->problem("zero_copy", std::string("\"on\" needs encoder = \"v4l2\": only a V4L2 M2M encoder imports "
+                                                    "the capture buffers (DMABUF), not encoder = \"") +
+                                            encoderKindName(encoder.kind) + "\"");
+    }
     if (encoder.codec == Codec::Fwht)
         checkFwht(*table, out);
     table->finish();

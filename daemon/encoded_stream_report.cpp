@@ -79,6 +79,8 @@ void EncodedStreamReport::report(StatusReport &report) const
                            {"bytes", engine.bytesEncoded},
                            {"bitrate_kbps", engine.bitrateKbps},
                            {"frames_copied", state.feed.copied},
+                           {"frames_zero_copy", state.feed.zeroCopy},
+                           {"dmabuf_import", engine.dmabufImport},
                            {"frames_converted", state.feed.converted},
                            {"frames_dropped", state.feed.dropped},
                            {"sinks", sinks}});
@@ -100,6 +102,11 @@ void EncodedStreamReport::report(StatusReport &report) const
                   "Frames dropped before the encoder (every slot still with it).", double(state.feed.dropped), label);
     report.metric("overlayd_encoder_converted_total", "counter",
                   "Frames converted to I420 on their one copy for the encoder.", double(state.feed.converted), label);
+    report.metric("overlayd_encoder_copied_total", "counter", "Frames copied for the encoder.",
+                  double(state.feed.copied), label);
+    report.metric("overlayd_encoder_zero_copy_total", "counter",
+                  "Frames the encoder took as the capture buffer's DMABUF, not copied.", double(state.feed.zeroCopy),
+                  label);
     for (const stream::EncodedSinkState &sink : engine.sinks) {
         const std::string sinkLabel =
             StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe);

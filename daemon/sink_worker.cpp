@@ -69,7 +69,7 @@ void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
     if (!isOpen())
         return;
     if (inline_) {
-        writeInline(frame, metadata);
+        writeInline([&] { return sink_->write(frame, metadata); }, false);
         return;
     }
     std::unique_lock lock(mutex_);
@@ -102,6 +102,10 @@ void SinkWorker::push(const std::shared_ptr<const FrameLease> &lease)
         return;
     if (!sink_->takesLease(lease->view())) {
         push(lease->view(), lease->metadata());
+        return;
+    }
+    if (inline_) { // the encoded stream: it hands the reference to the encoder at once, so no queue of ours
+        writeInline([&] { return sink_->writeLease(lease); }, true);
         return;
     }
     std::unique_lock lock(mutex_);
@@ -140,15 +144,15 @@ void SinkWorker::threadMain()
     }
 }
 
-void SinkWorker::writeInline(const FrameView &frame, const FrameMetadata &metadata)
+void SinkWorker::writeInline(const std::function<Status()> &write, bool leased)
 {
     const auto start = std::chrono::steady_clock::now();
-    const Status written = sink_->write(frame, metadata);
+    const Status written = write();
     const auto elapsed = std::chrono::steady_clock::now() - start;
     if (!written)
         logger_.error(cat(describe(), ": ", written.error().message));
     std::lock_guard lock(mutex_);
-    count(written, elapsed, false);
+    count(written, elapsed, leased);
 }
 
 void SinkWorker::count(const Status &written, std::chrono::steady_clock::duration elapsed, bool leased)

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -70,7 +71,8 @@ private:
     };
 
     void threadMain();
-    void writeInline(const FrameView &frame, const FrameMetadata &metadata);
+    // The sink's write() or writeLease() on the caller's thread, timed and counted.
+    void writeInline(const std::function<Status()> &write, bool leased);
     // Counts one write of the sink's (the lock held).
     void count(const Status &written, std::chrono::steady_clock::duration elapsed, bool leased);
     std::optional<size_t> takeFreeSlot(std::unique_lock<std::mutex> &lock);

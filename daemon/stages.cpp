@@ -2,6 +2,7 @@
 // StageFactories: the production wiring, and what a reload must re-open.
 #include "daemon/stages.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "drivers/sink_options.h"
@@ -33,7 +34,10 @@ bool wantsZeroCopy(const DaemonConfig &config)
     for (const SinkOptions &sink : config.sinks)
         if (sink.kind == SinkKind::V4l2Output && sink.zeroCopy != ZeroCopy::Off)
             return true;
-    return false;
+    // A V4L2 encoder may import them as well ([encoder] zero_copy); a software encoder only ever gets copies.
+    const stream::EncoderOptions &encoder = config.stream.encoder;
+    return config.stream.enabled() && encoder.zeroCopy != stream::EncoderZeroCopy::Off &&
+           (encoder.kind == stream::EncoderKind::V4l2 || encoder.kind == stream::EncoderKind::Auto);
 }
 
 Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices)
@@ -61,6 +65,23 @@ Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &
         notices.push_back("sink " + sink.path + ": copying (zero_copy \"auto\"): " + keeper->path +
                           " already takes the camera's buffers");
     }
+    return Ok{};
+}
+
+Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, stream::EncoderOptions &encoder,
+                            std::vector<std::string> &notices)
+{
+    const auto keeper = std::find_if(sinks.begin(), sinks.end(), [](const SinkOptions &s) {
+        return s.kind == SinkKind::V4l2Output && s.zeroCopy != ZeroCopy::Off;
+    });
+    if (keeper == sinks.end() || encoder.zeroCopy == stream::EncoderZeroCopy::Off)
+        return Ok{};
+    if (encoder.zeroCopy == stream::EncoderZeroCopy::On)
+        return makeError(ErrorCode::ConfigError,
+                         "[encoder] zero_copy = \"on\" and sink " + keeper->path +
+                             " (zero_copy not \"off\"): only one can hold the camera's buffers");
+    encoder.zeroCopy = stream::EncoderZeroCopy::Off;
+    notices.push_back("encoder: copying (zero_copy \"auto\"): " + keeper->path + " already takes the camera's buffers");
     return Ok{};
 }
 

@@ -41,13 +41,17 @@ StageFactories defaultStageFactories();
 
 // Whether the source renders its frames through the stream's camera (the synthetic checkerboard scene).
 bool drawsThroughCamera(const SourceOptions &options);
-// Whether a V4L2 output sink may take the capture buffers themselves (zero_copy not "off"): then the V4L2 source
-// exports its buffers (VIDIOC_EXPBUF), and a reload that changes this re-opens the source.
+// Whether a V4L2 output sink or a V4L2 encoder may take the capture buffers themselves (zero_copy not "off"): then the
+// V4L2 source exports its buffers (VIDIOC_EXPBUF), and a reload that changes this re-opens the source.
 bool wantsZeroCopy(const DaemonConfig &config);
 // Only one sink may hold the camera's buffers (it may hold all but the 2 the capture keeps): the first v4l2 sink
 // with zero_copy = "on", else the first with "auto", keeps zero copy; the other "auto" ones are turned "off" (one
 // notice each). Two "on" sinks are a ConfigError.
 Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices);
+// The encoder does not hold the camera's buffers beside a V4L2 output sink that does (limitZeroCopy's outcome): its
+// "auto" turns "off" (a notice), "on" with such a sink is a ConfigError.
+Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, stream::EncoderOptions &encoder,
+                            std::vector<std::string> &notices);
 // Whether the source draws through [camera] (the synthetic checkerboard scene) and that camera changed, so that a
 // reload must re-open the source although its own options are the same (whole CameraSpecs compared).
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b);

@@ -42,15 +42,26 @@ public:
     }
     Status removePeer(const std::string &id) { return engine_->removePeer(id); }
 
+    // Where close() reports the frames' account ("encoder X: N frames in: Z zero-copy, C copied, D dropped").
+    void setLog(EngineLog log) { log_ = std::move(log); }
+
     Status open(const StreamFormat &format);
     Status write(const FrameView &frame, const FrameMetadata &metadata);
+    // Zero copy: whether the frame goes to the encoder by its DMABUF (writeLease) rather than copied (write).
+    bool takesLease(const FrameView &frame) const;
+    Status writeLease(std::shared_ptr<const FrameLease> lease);
     void close();
 
 private:
+    // The stream's frame time, and the blend latency counted.
+    std::chrono::nanoseconds arrived(const FrameMetadata &metadata);
+
     StreamOptions options_;
     std::unique_ptr<EncodedStreamEngine> engine_;
     EncoderFeed feed_;
+    EngineLog log_;
     bool open_ = false;
+    bool leases_ = false;             // decided by open(): the encoder imports the capture buffers' DMABUF
     mutable std::mutex latencyMutex_; // write() on the pipeline's thread, state() on the loop's
     LatencyHistogram blended_;
     // Whether the source stamps frames on CLOCK_MONOTONIC (V4L2, libcamera), judged at its first frame; a source

@@ -26,12 +26,23 @@ namespace overlayd::stream {
 struct EngineFormat {
     unsigned width = 0, height = 0;
     double fps = 0.0; // 0: as frames come (the encoder assumes 30)
+    // Frames come as the capture buffers' DMABUF (EncoderInput::dmabuf) rather than copied: a V4L2 encoder imports
+    // them (EngineState::dmabufImport says whether it does); another encoder is fed copies as without it.
+    bool dmabuf = false;
 
     bool operator==(const EngineFormat &) const = default;
 };
 
-// One frame for the encoder. `owner` keeps the bytes alive; the engine drops it when the encoder is done with the
-// frame (a GStreamer buffer's destroy notify), which gives the slot back to the feed.
+// A frame handed by DMABUF: the capture buffer's fd (the source's, kept open by the frame's owner) and where each
+// I420 plane starts in it, and its stride. fd -1: the frame is in `data`.
+struct DmabufPlanes {
+    int fd = -1;
+    size_t offsets[3]{};
+    unsigned strides[3]{};
+};
+
+// One frame for the encoder. `owner` keeps the bytes (or the capture buffer) alive; the engine drops it when the
+// encoder is done with the frame (a GStreamer buffer's destroy notify), which gives the slot back to the feed.
 struct EncoderInput {
     std::shared_ptr<void> owner;
     const uint8_t *data = nullptr;
@@ -39,6 +50,7 @@ struct EncoderInput {
     uint64_t sequence = 0;
     std::chrono::nanoseconds captureTime{0}; // CLOCK_MONOTONIC, when the frame was captured or made
     std::chrono::nanoseconds blendedTime{0}; // CLOCK_MONOTONIC, when the overlay was in it
+    DmabufPlanes dmabuf{};                   // fd set: `data` is null, the encoder imports the buffer
 };
 
 // One client of an RTSP sink.
@@ -79,6 +91,7 @@ struct EngineState {
     bool running = false;
     std::string encoder;        // the element that encodes: "openh264enc", "x264enc", "v4l2h264enc"
     std::string device;         // the V4L2 encoder's device, empty for software
+    bool dmabufImport = false;  // the encoder imports the frames' DMABUF (EngineFormat::dmabuf and a V4L2 encoder)
     uint64_t framesIn = 0;      // frames handed to the encoder
     uint64_t framesEncoded = 0; // access units out of the encoder
     uint64_t keyframes = 0;

@@ -47,7 +47,7 @@ Result<EngineFormat> EncoderFeed::open(const StreamFormat &format)
         pool_->slots[i].assign(bytes, 0);
         pool_->free.push_back(i);
     }
-    return EngineFormat{format.width, format.height, format.fps};
+    return EngineFormat{format.width, format.height, format.fps, false};
 }
 
 bool EncoderFeed::copyInto(uint8_t *slot, const FrameView &frame)
@@ -137,8 +137,44 @@ std::optional<EncoderInput> EncoderFeed::fill(const FrameView &frame, const Fram
         ++pool_->counters.copied;
         pool_->counters.converted += converted ? 1 : 0;
     }
-    return EncoderInput{std::move(owner),  bytes.data(),       bytes.size(),
-                        metadata.sequence, metadata.timestamp, blendedTime};
+    return EncoderInput{
+        std::move(owner), bytes.data(), bytes.size(), metadata.sequence, metadata.timestamp, blendedTime, {}};
+}
+
+void EncoderFeed::setLeaseLimit(unsigned limit)
+{
+    leaseLimit_ = limit;
+}
+
+std::optional<EncoderInput> EncoderFeed::lease(std::shared_ptr<const FrameLease> lease,
+                                               std::chrono::nanoseconds blendedTime)
+{
+    {
+        std::lock_guard lock(pool_->mutex);
+        if (pool_->counters.inFlight >= leaseLimit_) {
+            ++pool_->counters.dropped;
+            return std::nullopt;
+        }
+        ++pool_->counters.inFlight;
+        ++pool_->counters.zeroCopy;
+    }
+    const FrameView &frame = lease->view();
+    EncoderInput input;
+    input.sequence = lease->metadata().sequence;
+    input.captureTime = lease->metadata().timestamp;
+    input.blendedTime = blendedTime;
+    input.dmabuf.fd = frame.planes[0].dmabufFd;
+    for (unsigned p = 0; p < 3; ++p) {
+        input.dmabuf.offsets[p] = frame.planes[p].dmabufOffset;
+        input.dmabuf.strides[p] = frame.planes[p].stride;
+    }
+    // The lease goes back to the source (and its buffer to the capture queue) when the encoder lets the frame go.
+    const void *buffer = lease.get();
+    input.owner = std::shared_ptr<void>(const_cast<void *>(buffer), [pool = pool_, lease = std::move(lease)](void *) {
+        std::lock_guard lock(pool->mutex);
+        --pool->counters.inFlight;
+    });
+    return input;
 }
 
 FeedCounters EncoderFeed::counters() const

@@ -19,6 +19,7 @@ namespace overlayd::stream {
 struct FeedCounters {
     uint64_t copied = 0;    // frames copied into a slot (each one copy)
     uint64_t converted = 0; // of those, frames whose format was converted to I420 on the way
+    uint64_t zeroCopy = 0;  // frames handed as the capture buffer's DMABUF (no copy): lease()
     uint64_t dropped = 0;   // frames that found every slot with the encoder
     unsigned inFlight = 0;  // slots with the encoder now
 };
@@ -37,6 +38,11 @@ public:
     // counted) or the frame does not convert (logged by the caller from the error it gets next time).
     std::optional<EncoderInput> fill(const FrameView &frame, const FrameMetadata &metadata,
                                      std::chrono::nanoseconds blendedTime);
+    // Zero copy: from now on up to `limit` leases may be with the encoder at once (0: none, the default).
+    void setLeaseLimit(unsigned limit);
+    // The capture buffer itself, by its DMABUF (an I420 frame whose planes share one exported buffer): the input
+    // holds the lease until the encoder lets it go. nullopt: `limit` leases are with the encoder (a drop, counted).
+    std::optional<EncoderInput> lease(std::shared_ptr<const FrameLease> lease, std::chrono::nanoseconds blendedTime);
     FeedCounters counters() const;
 
 private:
@@ -44,6 +50,7 @@ private:
     bool copyInto(uint8_t *slot, const FrameView &frame);
 
     std::shared_ptr<Pool> pool_;
+    unsigned leaseLimit_ = 0;
     StreamFormat format_{};
     Colorimetry colorimetry_{};
     YcbcrImage scratch_;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <unistd.h>
 
+#include <atomic>
 #include <mutex>
 #include <vector>
 
@@ -66,6 +67,8 @@ Module openModule()
     return module;
 }
 
+std::atomic<bool> moduleRequired{false};
+
 const Module &theModule()
 {
     static std::once_flag once;
@@ -96,12 +99,19 @@ Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOption
 Status checkEncoder(const EncoderOptions &options)
 {
     const Module &module = theModule();
+    if (module.check == nullptr && moduleRequired)
+        return makeError(ErrorCode::NotFound, module.error);
     if (module.check == nullptr)
-        return Ok{}; // no module: run says so when it loads the engine; a unit test's binary has none beside it
+        return Ok{}; // no module, and none required: a unit test's binary has none beside it
     std::string error;
     if (!module.check(&options, &error))
         return makeError(ErrorCode::NotFound, error);
     return Ok{};
+}
+
+void requireStreamModule()
+{
+    moduleRequired = true;
 }
 
 } // namespace overlayd::stream

@@ -18,7 +18,12 @@ Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOption
 
 // Whether the encoder the options ask for is on this machine (its GStreamer element installed; for v4l2 an M2M
 // H.264 encoder, at `device` if one is named), asked of the module: the config loader refuses it at its key. Ok
-// when the module itself is not found (loadStreamEngine says that) or the build has no encoded outputs.
+// when the module itself is not found, unless requireStreamModule() was called, or the build has no encoded outputs.
 Status checkEncoder(const EncoderOptions &options);
+
+// From now on checkEncoder() refuses a module that cannot be loaded, with loadStreamEngine's message: the binary's
+// `check-config` and `run` call it, so that check-config refuses what run would not start. A unit test of the
+// config loader leaves it off: its binary has no module beside it, and what it tests is the parsing.
+void requireStreamModule();
 
 } // namespace overlayd::stream

@@ -20,4 +20,6 @@ Status checkEncoder(const EncoderOptions &)
     return Ok{}; // the config refuses [encoder] itself
 }
 
+void requireStreamModule() {} // the config refuses [encoder] itself
+
 } // namespace overlayd::stream

@@ -34,6 +34,9 @@ inline constexpr double kMinKeyframeIntervalSec = 0.1;
 inline constexpr double kMaxKeyframeIntervalSec = 60; // a late joiner waits at most this long for a picture
 inline constexpr unsigned kMaxQueuedFrames = 8;       // frames in flight towards the encoder ([encoder] queue)
 
+// [encoder] zero_copy: whether a V4L2 encoder is handed the capture buffer by DMABUF instead of a copy.
+enum class EncoderZeroCopy { Auto, On, Off };
+
 struct EncoderOptions {
     EncoderKind kind = EncoderKind::Auto;
     Codec codec = Codec::H264;
@@ -43,6 +46,7 @@ struct EncoderOptions {
     Profile profile = Profile::Baseline;
     bool lowLatency = true;    // no B-frames, no look-ahead
     unsigned queuedFrames = 3; // frames copied for the encoder and not yet released by it; more are dropped
+    EncoderZeroCopy zeroCopy = EncoderZeroCopy::Auto;
 
     bool operator==(const EncoderOptions &) const = default;
 };

@@ -3,8 +3,10 @@
 // whose release gives the slot back; onEncoded() counts and hands each access unit to every encoded sink.
 #include "stream/gst/gst_stream_engine.h"
 
+#include <gst/allocators/gstdmabuf.h>
 #include <gst/app/gstappsrc.h>
 #include <gst/video/video.h>
+#include <unistd.h>
 
 #include <cmath>
 
@@ -24,6 +26,40 @@ GstClockTime nowNs()
     return GstClockTime(g_get_monotonic_time()) * 1000;
 }
 
+void deleteInput(gpointer input)
+{
+    delete static_cast<EncoderInput *>(input);
+}
+
+// The capture buffer's DMABUF as a buffer the V4L2 encoder imports (no copy), its planes placed by a video meta.
+// The memory does not close the fd (the source's); its last unref deletes `held`, which gives the lease back.
+GstBuffer *wrapDmabuf(GstAllocator *allocator, EncoderInput *held, const EngineFormat &format)
+{
+    const off_t size = lseek(held->dmabuf.fd, 0, SEEK_END); // a DMABUF's size (its fd has no other use of offsets)
+    // The frame's bytes end with its last plane. The memory is cut to them: GStreamer queues its size as the
+    // buffer's bytesused, and a driver refuses more than its own image size (vb2 QBUF: EINVAL), while the buffer
+    // itself is rounded up to whole pages.
+    const size_t frameBytes = held->dmabuf.offsets[2] + size_t(held->dmabuf.strides[2]) * ((format.height + 1) / 2);
+    if (size <= 0 || frameBytes > size_t(size)) {
+        delete held;
+        return nullptr;
+    }
+    GstMemory *memory =
+        gst_dmabuf_allocator_alloc_with_flags(allocator, held->dmabuf.fd, gsize(size), GST_FD_MEMORY_FLAG_DONT_CLOSE);
+    gst_memory_resize(memory, 0, frameBytes);
+    static const GQuark quark = g_quark_from_static_string("overlayd-encoder-input");
+    gst_mini_object_set_qdata(GST_MINI_OBJECT(memory), quark, held, &deleteInput);
+    GstBuffer *buffer = gst_buffer_new();
+    gst_buffer_append_memory(buffer, memory);
+    gsize offsets[GST_VIDEO_MAX_PLANES]{};
+    gint strides[GST_VIDEO_MAX_PLANES]{};
+    for (unsigned p = 0; p < 3; ++p)
+        offsets[p] = held->dmabuf.offsets[p], strides[p] = gint(held->dmabuf.strides[p]);
+    gst_buffer_add_video_meta_full(buffer, GST_VIDEO_FRAME_FLAG_NONE, GST_VIDEO_FORMAT_I420, format.width,
+                                   format.height, 3, offsets, strides);
+    return buffer;
+}
+
 } // namespace
 
 GstStreamEngine::GstStreamEngine(const StreamOptions &options, const EngineLog &log) : options_(options), log_(log)
@@ -35,6 +71,8 @@ GstStreamEngine::GstStreamEngine(const StreamOptions &options, const EngineLog &
 GstStreamEngine::~GstStreamEngine()
 {
     close();
+    if (dmabufAllocator_ != nullptr)
+        gst_object_unref(dmabufAllocator_);
 }
 
 Status GstStreamEngine::open(const EngineFormat &format)
@@ -93,11 +131,20 @@ Status GstStreamEngine::build(const EngineFormat &format)
                                               "missing (Debian: gstreamer1.0-plugins-base, -good, -bad)");
     }
     encoder_ = encoder->element;
+    // Zero copy: the V4L2 encoder queues the capture buffers' DMABUF on its OUTPUT queue instead of copying each
+    // frame into buffers of its own (a software encoder is fed copies: the daemon asks state().dmabufImport).
+    const bool import = format.dmabuf && encoder->factory.starts_with("v4l2");
+    if (import) {
+        gst_util_set_object_arg(G_OBJECT(encoder_), "output-io-mode", "dmabuf-import");
+        if (dmabufAllocator_ == nullptr)
+            dmabufAllocator_ = gst_dmabuf_allocator_new();
+    }
     {
         std::lock_guard lock(mutex_);
         state_ = EngineState{};
         state_.encoder = encoder->factory;
         state_.device = encoder->device;
+        state_.dmabufImport = import;
     }
     const int fpsNum = format.fps > 0 ? int(std::lround(format.fps * 1000)) : 30000;
     GstCaps *raw = gst_caps_new_simple("video/x-raw", "format", G_TYPE_STRING, "I420", "width", G_TYPE_INT,
@@ -176,10 +223,18 @@ void GstStreamEngine::push(EncoderInput frame)
     const GstClockTime pts = GstClockTime((frame.captureTime - *firstCapture_).count());
     const auto data = const_cast<uint8_t *>(frame.data);
     const size_t size = frame.size;
-    // The buffer wraps the slot: GStreamer's last unref deletes the EncoderInput, which gives the slot back.
+    // The buffer wraps the slot (or the capture buffer): GStreamer's last unref deletes the EncoderInput, which gives
+    // the slot (the lease) back.
     auto *held = new EncoderInput(std::move(frame));
-    GstBuffer *buffer = gst_buffer_new_wrapped_full(GST_MEMORY_FLAG_READONLY, data, size, 0, size, held,
-                                                    [](gpointer input) { delete static_cast<EncoderInput *>(input); });
+    GstBuffer *buffer = nullptr;
+    if (held->dmabuf.fd < 0)
+        buffer = gst_buffer_new_wrapped_full(GST_MEMORY_FLAG_READONLY, data, size, 0, size, held, &deleteInput);
+    else if (dmabufAllocator_ != nullptr)
+        buffer = wrapDmabuf(dmabufAllocator_, held, format_);
+    else
+        deleteInput(held); // not opened for DMABUF: the lease goes back
+    if (buffer == nullptr)
+        return;
     GST_BUFFER_PTS(buffer) = pts;
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
     GST_BUFFER_OFFSET(buffer) = held->sequence;

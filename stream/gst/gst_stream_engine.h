@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // GstStreamEngine: the GStreamer implementation of EncodedStreamEngine. Its pipeline, for frames of one format:
 //
-//   appsrc "feed" (I420, the feed's slots wrapped, not copied) ! <encoder> [! capsfilter profile] ! h264parse
+//   appsrc "feed" (I420: the feed's slots wrapped, or the capture buffers' DMABUF) ! <encoder>
+//     [! capsfilter profile] ! h264parse
 //     ! tee "encoded" ─┬─ queue ! appsink "rtsp"  ─► RtspOutput::push ─► the shared media's appsrc ─► clients
 //                      └─ (one branch per further encoded sink: record, push; one per WebRTC peer)
 //
@@ -56,6 +57,7 @@ private:
     GstElement *pipeline_ = nullptr;
     GstElement *appsrc_ = nullptr; // in pipeline_ (no reference of its own)
     GstElement *encoder_ = nullptr;
+    GstAllocator *dmabufAllocator_ = nullptr; // zero copy: wraps the capture buffers' DMABUF (EngineFormat::dmabuf)
     GSource *busWatch_ = nullptr;
     std::vector<std::unique_ptr<RtspOutput>> rtsp_;
     std::vector<std::unique_ptr<EncodedOutput>> outputs_; // recordings and pushes

@@ -6,12 +6,15 @@
 - encoder = "x264" where x264enc is not installed (GStreamer given an empty plugin folder: no element at all);
 - encoder = "auto" (no [encoder]) where openh264enc is not installed;
 - an RTSP port another program listens on (named, with its pid);
+- encoded sinks where the module overlayd-stream.so cannot be found (the binary alone in a folder, and
+  OVERLAYD_STREAM_MODULE_DIR naming an empty one): run cannot start them, so check-config refuses them;
 and accepts an RTSP port that an overlayd holds (the running daemon, whose reload takes it over).
 
     check_config_test.py --overlayd build/daemon/overlayd --workdir /tmp/check-config-test
 Exit 0 when every check passed, 1 when any failed."""
 import os
 import re
+import shutil
 import socket
 import subprocess
 import sys
@@ -59,6 +62,21 @@ def main():
     ok, said = refused_alike(overlayd, config, r"auto\.toml:7:8: sink\[0\]\.kind: no \[encoder\], so encoder = \"auto\": "
                              r"the openh264enc element is not installed", without)
     check(ok, f"openh264 not installed, encoder = \"auto\": {said}")
+
+    alone = os.path.join(workdir, "alone")
+    os.makedirs(alone, exist_ok=True)
+    lonely = os.path.join(alone, "overlayd")  # no overlayd-stream.so beside it, nor in ../lib/overlayd
+    if os.path.exists(lonely):
+        os.remove(lonely)
+    try:
+        os.link(overlayd, lonely)  # /proc/self/exe names the link, so the module is looked for beside it
+    except OSError:
+        shutil.copy2(overlayd, lonely)
+    no_module = dict(os.environ, OVERLAYD_STREAM_MODULE_DIR=empty)
+    config = write(workdir, "module.toml", SOURCE + '[encoder]\nencoder = "openh264"\n' + rtsp(port))
+    ok, said = refused_alike(lonely, config, r"module\.toml:7:11: encoder\.encoder: the encoded outputs' module "
+                             r"overlayd-stream\.so is not installed \(looked in " + re.escape(empty), no_module)
+    check(ok, f"the stream module missing: {said}")
 
     with socket.socket() as holder:
         holder.bind(("127.0.0.1", 0))

@@ -17,6 +17,7 @@ public:
         stream::EngineFormat format;
         std::vector<stream::EncoderInput> held; // pushed and not yet released
         uint64_t pushed = 0;
+        bool importsDmabuf = false; // as a V4L2 encoder: takes DMABUF frames when opened for them
     };
     explicit FakeStreamEngine(Calls &calls) : calls_(calls) {}
 
@@ -41,6 +42,7 @@ public:
         stream::EngineState state;
         state.encoder = "fake";
         state.framesIn = calls_.pushed;
+        state.dmabufImport = calls_.importsDmabuf && calls_.format.dmabuf;
         return state;
     }
 

@@ -3,7 +3,9 @@
 # blended frames with vicodec's stateful encoder (codec = "fwht", encoder = "v4l2": GStreamer's v4l2fwhtenc, the
 # element family that drives a Raspberry Pi's bcm2835-codec as v4l2h264enc) into a kind = "file" sink. The file is
 # then decoded by vicodec's stateful decoder driven by v4l2-ctl, an independent client, and the decoded frames must
-# carry the axis colours where `overlayd project` says.
+# carry the axis colours where `overlayd project` says. Zero copy ([encoder] zero_copy = "on"): vivid's I420 buffers
+# are exported (VIDIOC_EXPBUF) and queued on vicodec's OUTPUT queue by DMABUF (output-io-mode dmabuf-import), and
+# overlayd's own account at close must say every frame went so, none copied.
 . /vm/lib.sh
 
 have_overlayd || { fail m2m-encode "no overlayd binary was staged (build the overlayd target)"; exit 0; }
@@ -17,6 +19,8 @@ W=640 H=480 FWHT=/tmp/m2m.fwht YUV=/tmp/m2m-decoded.yuv
 mkdir -p "$ART"
 
 config_for m2m-encode.toml /tmp/m2m.toml "device=\"$SRC\""
+# vb2's reasons for refusing a buffer (a DMABUF it cannot import) into the kernel log, kept as an artifact.
+echo 1 >/sys/module/videobuf2_common/parameters/debug 2>/dev/null
 rm -f "$FWHT"
 # GStreamer's warnings into the log kept as an artifact: a refused negotiation names the caps there.
 GST_DEBUG=2 overlayd run --config /tmp/m2m.toml >/tmp/m2m-run.log 2>&1 &
@@ -32,6 +36,14 @@ verdict m2m-encode $? "overlayd run exit $rc, $size bytes of FWHT from $ENC; \
 $(grep -m1 -o 'fwht to .*' /tmp/m2m-run.log) \
 $(grep -m2 -i 'error\|refus' /tmp/m2m-run.log | tr '\n' ' ')"
 cp /tmp/m2m-run.log "$ART/m2m-run.log"
+dmesg >"$ART/m2m-dmesg.log" 2>/dev/null
+echo 0 >/sys/module/videobuf2_common/parameters/debug 2>/dev/null
+# The encoded stream's account at close: "encoder <element>: N frames in: Z zero-copy, C copied, D dropped".
+set -- $(sed -n 's/.*encoder v4l2fwhtenc: \([0-9]*\) frames in: \([0-9]*\) zero-copy, \([0-9]*\) copied, \([0-9]*\) dropped.*/\1 \2 \3 \4/p' \
+    /tmp/m2m-run.log | tail -1)
+[ "${1:-0}" -ge 10 ] && [ "$2" = "$1" ] && [ "$3" = 0 ] && [ $grown = 0 ]
+verdict m2m-zerocopy $? "$1 frames in: $2 zero-copy (DMABUF import), $3 copied, $4 dropped; \
+$(grep -m2 -i 'zero_copy\|dmabuf' /tmp/m2m-run.log | tr '\n' ' ')"
 
 # vicodec's decoder takes the stream's format from each frame's header; v4l2-ctl splits the file at the FWHT
 # magic and follows the decoder's source change to the capture format (YU12: I420, as the daemon fed it).
