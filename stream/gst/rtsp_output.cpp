@@ -34,7 +34,7 @@ std::string peerAddress(GstRTSPClient *client)
 } // namespace
 
 RtspOutput::RtspOutput(const EncodedSinkOptions &options, const EngineLog &log, std::function<void()> requestKeyframe)
-    : options_(options), log_(log), requestKeyframe_(std::move(requestKeyframe))
+    : options_(options), log_(log), requestKeyframe_(std::move(requestKeyframe)), access_(options, log)
 {}
 
 RtspOutput::~RtspOutput()
@@ -49,7 +49,7 @@ RtspOutput::~RtspOutput()
         clients.swap(clients_);
     }
     for (const auto &[client, state] : clients) // no signal of theirs may reach this object once it is gone
-        g_signal_handlers_disconnect_by_data(client, this);
+        g_signal_handlers_disconnect_by_data(client, this), g_signal_handlers_disconnect_by_data(client, &access_);
     if (server_ != nullptr) {
         // Clients still connected are closed: their sessions hold the media.
         gst_rtsp_server_client_filter(
@@ -78,6 +78,10 @@ Status RtspOutput::start(GMainContext *context)
     gst_rtsp_media_factory_set_protocols(factory,
                                          GstRTSPLowerTrans(GST_RTSP_LOWER_TRANS_UDP | GST_RTSP_LOWER_TRANS_TCP));
     g_signal_connect(factory, "media-configure", G_CALLBACK(onMediaConfigure), this);
+    if (auto applied = access_.apply(server_, factory); !applied) {
+        g_object_unref(factory);
+        return applied;
+    }
     GstRTSPMountPoints *mounts = gst_rtsp_server_get_mount_points(server_);
     gst_rtsp_mount_points_add_factory(mounts, options_.rtsp.path.c_str(), factory);
     g_object_unref(mounts);
@@ -102,6 +106,7 @@ void RtspOutput::onClientConnected(GstRTSPServer *, GstRTSPClient *client, RtspO
     g_signal_connect(client, "setup-request", G_CALLBACK(onSetup), self);
     g_signal_connect(client, "play-request", G_CALLBACK(onPlay), self);
     const std::string address = peerAddress(client);
+    self->access_.admit(client);
     std::lock_guard lock(self->mutex_);
     self->clients_[client] = RtspClientState{address, "", std::chrono::system_clock::now()};
 }
@@ -213,7 +218,7 @@ EncodedSinkState RtspOutput::state() const
     EncodedSinkState out;
     out.kind = "rtsp";
     out.key = options_.key;
-    out.describe = "rtsp://" + options_.rtsp.listen + options_.rtsp.path;
+    out.describe = (access_.tls() ? "rtsps://" : "rtsp://") + options_.rtsp.listen + options_.rtsp.path;
     std::lock_guard lock(mutex_);
     for (const auto &[client, state] : clients_)
         out.clients.push_back(state);

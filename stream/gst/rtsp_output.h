@@ -14,6 +14,7 @@
 
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
+#include "stream/gst/rtsp_access.h"
 
 namespace overlayd::stream::gst {
 
@@ -45,6 +46,7 @@ private:
     std::function<void()> requestKeyframe_;
     GstRTSPServer *server_ = nullptr;
     GSource *source_ = nullptr;
+    RtspAccess access_;
 
     mutable std::mutex mutex_;
     GstElement *appsrc_ = nullptr;  // the shared media's, while one is prepared (a reference)
