@@ -2,8 +2,6 @@
 // RtspAccess: the GstRTSPAuth of an RTSP sink, and the watch on its refusals.
 #include "stream/gst/rtsp_access.h"
 
-#include "http/http_options.h"
-
 namespace overlayd::stream::gst {
 namespace {
 
@@ -24,7 +22,9 @@ std::string hostOf(GstRTSPClient *client)
 
 } // namespace
 
-RtspAccess::RtspAccess(const EncodedSinkOptions &options, const EngineLog &log) : options_(options), log_(log) {}
+RtspAccess::RtspAccess(const EncodedSinkOptions &options, const EngineLog &log)
+    : options_(options), log_(log), failures_(options.key + ": RTSP")
+{}
 
 RtspAccess::~RtspAccess()
 {
@@ -74,7 +74,7 @@ void RtspAccess::admit(GstRTSPClient *client)
         return;
     g_signal_connect(client, "send-message", G_CALLBACK(onSendMessage), this);
     std::lock_guard lock(mutex_);
-    if (failures_.blocked(hostOf(client), http::AuthFailures::Clock::now()))
+    if (failures_.blocked(hostOf(client), AuthFailures::Clock::now()))
         gst_rtsp_client_set_auth(client, refuser_);
 }
 
@@ -88,22 +88,13 @@ void RtspAccess::onSendMessage(GstRTSPClient *client, GstRTSPContext *context, G
         code != GST_RTSP_STS_UNAUTHORIZED || context == nullptr || context->request == nullptr ||
         gst_rtsp_message_get_header(context->request, GST_RTSP_HDR_AUTHORIZATION, &authorization, 0) != GST_RTSP_OK)
         return; // a challenge to a request without a credential is how every client starts
-    const std::string host = hostOf(client);
-    const auto now = http::AuthFailures::Clock::now();
-    bool logged = false, blocked = false;
+    std::string line;
     {
         std::lock_guard lock(self->mutex_);
-        logged = !self->failures_.failed(host, "RTSP", now).empty(); // the first of a window, and the block
-        blocked = logged && self->failures_.blocked(host, now);
+        line = self->failures_.failed(hostOf(client), "RTSP basic", AuthFailures::Clock::now());
     }
-    const std::string window = " within " + std::to_string(http::kAuthWindowSec) + " s";
-    if (blocked)
-        self->log_(kLogWarning, self->options_.key + ": RTSP: " + std::to_string(http::kMaxAuthFailures) +
-                                    " refused credentials from " + host + window +
-                                    ": its credentials are not compared until the window ends");
-    else if (logged)
-        self->log_(kLogWarning, self->options_.key + ": RTSP: refused a credential from " + host +
-                                    " (the next line at " + std::to_string(http::kMaxAuthFailures) + window + ")");
+    if (!line.empty())
+        self->log_(kLogWarning, line); // the address, never what was sent
 }
 
 } // namespace overlayd::stream::gst

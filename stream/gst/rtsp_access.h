@@ -11,7 +11,7 @@
 #include <string>
 
 #include "base/result.h"
-#include "http/auth_failures.h"
+#include "base/auth_failures.h"
 #include "stream/encoded_stream_engine.h"
 
 namespace overlayd::stream::gst {
@@ -40,7 +40,7 @@ private:
     GstRTSPAuth *auth_ = nullptr;    // null: open and plain
     GstRTSPAuth *refuser_ = nullptr; // the same certificate, no user
     std::mutex mutex_;
-    http::AuthFailures failures_;
+    AuthFailures failures_;
 };
 
 } // namespace overlayd::stream::gst
