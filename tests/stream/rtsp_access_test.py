@@ -6,18 +6,24 @@ gst-rtsp-server):
   "token") each read h264; no credential, a wrong password and an unknown user are refused (401: ffprobe fails);
   the refusal is logged with the client's address and never the password; after 10 refusals within a minute the
   address is refused even the right password;
-- auth = "none" on the sink: open beside that [http].
+- auth = "none" on the sink: open beside that [http]; auth = "credential" with no credential in [http] is refused
+  by check-config;
+- [http] with tls_cert/tls_key (a test CA made by openssl): the sink is RTSPS with that certificate (openssl
+  s_client verifies it against the CA), ffmpeg decodes frames from rtsps:// with a viewer user, a wrong password is
+  refused, plain rtsp:// to it fails; tls = "off" keeps it plain.
 
     rtsp_access_test.py --overlayd build/daemon/overlayd --workdir /tmp/rtsp-access-test
 Exit 0 when every check passed, 1 when any failed."""
 import json
 import os
+import ssl
 import subprocess
 import sys
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import rtsp_test  # noqa: E402
+import tls_test  # noqa: E402  (tests/http, on the path through rtsp_test)
 from rtsp_test import check, daemon_fixture, write  # noqa: E402
 
 USERS = "# name:role:password\nwatcher:viewer:see-it:all\nboss:control:c0ntrol\n"
@@ -26,12 +32,19 @@ WRONG = "wrong-secret-xyz"
 
 
 class WatchedDaemon(daemon_fixture.Daemon):
-    """A daemon whose /state needs a viewer credential: the fixture's readiness check asks with one."""
+    """A daemon whose /state needs a viewer credential (and over HTTPS, with tls): the fixture's readiness check
+    asks with one."""
+
+    def __init__(self, *args, tls=False):
+        super().__init__(*args)
+        if tls:
+            self.base = self.base.replace("http:", "https:")
+        self.context = ssl._create_unverified_context() if tls else None
 
     def state(self):
         request = urllib.request.Request(self.base + "/state", headers={
             "Authorization": "Bearer " + VIEWER_TOKEN})
-        with daemon_fixture.loopback_opener.open(request, timeout=5) as response:
+        with urllib.request.urlopen(request, timeout=5, context=self.context) as response:
             return json.load(response)
 
 
@@ -47,7 +60,7 @@ def sink(rtsp_port, extra=""):
     return f'\n[[sink]]\nkind = "rtsp"\nlisten = "127.0.0.1:{rtsp_port}"\npath = "/cam"\n{extra}\n'
 
 
-def serve(overlayd, workdir, name, http_options, sink_extra=""):
+def serve(overlayd, workdir, name, http_options, sink_extra="", tls=False):
     """A daemon with [http] (users, viewer token) and an RTSP sink: (daemon, its RTSP port)."""
     write(workdir, "users", USERS)
     write(workdir, "viewer.token", VIEWER_TOKEN + "\n")
@@ -57,7 +70,7 @@ def serve(overlayd, workdir, name, http_options, sink_extra=""):
         '[encoder]\nencoder = "openh264"\n' + sink(rtsp_port, sink_extra))
     checked = subprocess.run([overlayd, "check-config", config], capture_output=True, text=True, timeout=30)
     check(checked.returncode == 0, f"check-config accepts {name}: {checked.stderr.strip()[-200:]}")
-    daemon = WatchedDaemon(overlayd, config, workdir, http_port)
+    daemon = WatchedDaemon(overlayd, config, workdir, http_port, tls=tls)
     daemon.wait_ready()
     return daemon, rtsp_port
 
@@ -83,7 +96,7 @@ def credentials(overlayd, workdir):
     finally:
         daemon.stop()
     log = open(daemon.log_path, encoding="utf-8", errors="replace").read()
-    check("RTSP: refused a credential from 127.0.0.1" in log, "the refusal is logged with the address")
+    check("RTSP: refused a credential from 127.0.0.1 (RTSP basic)" in log, "the refusal is logged with the address")
     check("RTSP: 10 refused credentials from 127.0.0.1" in log, "and the block, once")
     check(WRONG not in log and "see-it" not in log, "and no password is")
 
@@ -107,9 +120,48 @@ def refused(overlayd, workdir):
           f"auth = \"credential\" without a credential in [http] is refused: {said.strip()[-160:]}")
 
 
+def decode(url, frames):
+    """How many frames ffmpeg decodes over TCP (TLS unverified: the test CA is not ffmpeg's)."""
+    done = subprocess.run(["ffmpeg", "-v", "error", "-rtsp_transport", "tcp", "-i", url, "-frames:v", str(frames),
+                           "-f", "rawvideo", "-pix_fmt", "gray", "-"], capture_output=True, timeout=30)
+    return len(done.stdout) // (rtsp_test.WIDTH * rtsp_test.HEIGHT)
+
+
+def rtsps(overlayd, workdir):
+    """[http] with tls_cert and tls_key: the RTSP sink is RTSPS with the same certificate (tls = "http")."""
+    folder = os.path.join(workdir, "tls")
+    os.makedirs(folder, exist_ok=True)
+    tls_test.make_certificates(folder)
+    files = {"tls_cert": "tls/server.pem", "tls_key": "tls/server.key"}
+    daemon, port = serve(overlayd, workdir, "rtsps.toml", {"viewer": "credential", **files}, tls=True)
+    try:
+        url = f"127.0.0.1:{port}/cam"
+        count = decode(f"rtsps://watcher:see-it:all@{url}", 10)
+        check(count == 10, f"rtsps:// with a viewer user: ffmpeg decodes {count} of 10 frames")
+        got = probe(f"rtsps://watcher:{WRONG}@{url}")
+        check(got.startswith("error") and "401" in got, f"over TLS a wrong password is refused: {got}")
+        got = probe(f"rtsp://watcher:see-it:all@{url}", "-timeout", "3000000")
+        check(got.startswith("error"), f"plain rtsp:// to it fails: {got}")
+        served = subprocess.run(["openssl", "s_client", "-connect", f"127.0.0.1:{port}", "-CAfile",
+                                 os.path.join(folder, "ca.pem"), "-verify_return_error"], input="",
+                                capture_output=True, text=True, timeout=20)
+        check("overlayd server" in served.stdout and "Verify return code: 0" in served.stdout,
+              "the certificate served is [http]'s, verified against the test CA")
+    finally:
+        daemon.stop()
+    daemon, port = serve(overlayd, workdir, "rtsp-off.toml", {"viewer": "credential", **files}, 'tls = "off"',
+                         tls=True)
+    try:
+        got = probe(f"rtsp://watcher:see-it:all@127.0.0.1:{port}/cam")
+        check(got == "h264", f"tls = \"off\": plain rtsp:// beside HTTPS: {got}")
+    finally:
+        daemon.stop()
+
+
 def main():
     overlayd, workdir = rtsp_test.arguments(__doc__)
     refused(overlayd, workdir)
+    rtsps(overlayd, workdir)
     credentials(overlayd, workdir)
     open_sink(overlayd, workdir)
     return 1 if rtsp_test.failures else 0
