@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "media/colorimetry.h"
 #include "stream/latency_histogram.h"
 #include "stream/stream_options.h"
 
@@ -26,6 +27,7 @@ namespace overlayd::stream {
 struct EngineFormat {
     unsigned width = 0, height = 0;
     double fps = 0.0; // 0: as frames come (the encoder assumes 30)
+    Colorimetry colorimetry{}; // of the I420 samples: the stream's, which the feed's conversion keeps
 
     bool operator==(const EngineFormat &) const = default;
 };

@@ -6,11 +6,11 @@ an RTSP sink and a recording (kind = "record", 1 s MP4 segments). A frame decode
 one from a recorded segment are checked against the same scene without the masks (read from the RTSP stream of a
 run without them): inside a filled mask every pixel is the fill colour within the H.264 tolerance, though the
 checkerboard behind has black and white squares; a pixelated block is uniform, though the same block without the
-mask has an edge through it. So nothing of what is behind a mask reaches a viewer or a file.
+mask has an edge through it. So nothing of what is behind a mask reaches a viewer or a file. The recording is
+tagged with the source's colorimetry (ffprobe), so a player decodes the fill as the colour it is.
 
     mask_outputs_test.py --overlayd build/daemon/overlayd --workdir /tmp/mask-outputs-test
 Exit 0 when every check passed (an AssertionError names the first that failed)."""
-import argparse
 import glob
 import os
 import subprocess
@@ -18,12 +18,15 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "http"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import daemon_fixture  # noqa: E402
 import privacy_mask_test as masks  # noqa: E402
+import rtsp_test  # noqa: E402
 
-# One channel of a flat area after 4:2:0 H.264 at 8 Mbit/s and ffmpeg's conversion to RGB (measured: a few units;
-# the pixelated blocks' edges ring more, so their middle is the test, as for JPEG).
-H264_TOLERANCE = 16
+# One channel of a flat area after 4:2:0 H.264 at 8 Mbit/s and ffmpeg's conversion to RGB (measured: 2; the
+# pixelated blocks' edges ring more, so their middle is the test, as for JPEG). A recording tagged with the wrong
+# matrix (BT.709 for this BT.601 source) decodes the fill 14 away: beyond it.
+H264_TOLERANCE = 8
 FRAMES = 10  # the last of the first frames decoded is checked: past the rate control's settling after a start
 
 
@@ -76,14 +79,10 @@ def finished_segment(directory, timeout=15.0):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--overlayd", required=True)
-    parser.add_argument("--workdir", required=True)
-    args = parser.parse_args()
-    os.makedirs(args.workdir, exist_ok=True)
+    overlayd, workdir = rtsp_test.arguments(__doc__)
     rtsp = ("-rtsp_transport", "tcp")
 
-    plain, url, _ = run(args.overlayd, args.workdir, False, "plain")
+    plain, url, _ = run(overlayd, workdir, False, "plain")
     try:
         world_filled = masks.corners_on_screen(plain.base, masks.WORLD_FILLED)
         world_pixelated = masks.corners_on_screen(plain.base, masks.WORLD_PIXELATED)
@@ -94,10 +93,16 @@ def main():
                           "neighbour's window": world_filled, "drive": world_pixelated}.items():
         masks.check_unmasked_differs(unmasked, polygon, f"{name} (RTSP without masks)")
 
-    daemon, url, directory = run(args.overlayd, args.workdir, True, "masked")
+    daemon, url, directory = run(overlayd, workdir, True, "masked")
     try:
         outputs = {"RTSP frame": decoded(url, *rtsp)}
-        outputs["recorded frame"] = decoded(finished_segment(directory))
+        segment = finished_segment(directory)
+        outputs["recorded frame"] = decoded(segment)
+        tags = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0", "-show_entries",
+                               "stream=color_space,color_range", "-of", "csv=p=0", segment],
+                              capture_output=True, text=True, timeout=30).stdout.strip()
+        masks.check(tags in ("smpte170m,tv", "tv,smpte170m", "bt470bg,tv", "tv,bt470bg"),
+                    f"the recording is tagged with the source's BT.601 limited range: {tags}")
     finally:
         status = daemon.stop()
     masks.check(status == 0, f"overlayd stops cleanly: exit {status}")
