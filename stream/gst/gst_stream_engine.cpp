@@ -179,8 +179,9 @@ Status GstStreamEngine::build(const EngineFormat &format)
         auto output = std::make_unique<RtspOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
         if (auto started = output->start(context_); !started)
             return started;
-        log_(kLogInfo, sinkOptions.key + ": RTSP at rtsp://" + sinkOptions.rtsp.listen + sinkOptions.rtsp.path + " (" +
-                           encoder->factory + (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
+        const char *access = sinkOptions.rtsp.access.users.empty() ? "" : ", a credential asked";
+        log_(kLogInfo, sinkOptions.key + ": RTSP at " + output->state().describe + access + " (" + encoder->factory +
+                           (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
         rtsp_.push_back(std::move(output));
     }
     return Ok{};

@@ -147,8 +147,12 @@ def rtsps(overlayd, workdir):
                                 capture_output=True, text=True, timeout=20)
         check("overlayd server" in served.stdout and "Verify return code: 0" in served.stdout,
               "the certificate served is [http]'s, verified against the test CA")
+        sinks = daemon.state()["encoder"]["sinks"]
+        check(sinks[0]["url"] == f"rtsps://{url}", f"/state gives the sink's url as RTSPS: {sinks[0]['url']}")
     finally:
         daemon.stop()
+    log = open(daemon.log_path, encoding="utf-8", errors="replace").read()
+    check(f"RTSP at rtsps://{url}, a credential asked" in log, "the log says RTSPS, and that a credential is asked")
     daemon, port = serve(overlayd, workdir, "rtsp-off.toml", {"viewer": "credential", **files}, 'tls = "off"',
                          tls=True)
     try:
