@@ -43,7 +43,8 @@ std::string AuthFailures::failed(const std::string &address, const std::string &
     window.logged = true;
     if (window.failures == kMaxAuthFailures)
         return subject_ + ": " + std::to_string(kMaxAuthFailures) + " refused credentials from " + address +
-               " within " + std::to_string(kAuthWindowSec) + " s: its credentials are not compared until the window ends";
+               " within " + std::to_string(kAuthWindowSec) +
+               " s: its credentials are not compared until the window ends";
     return subject_ + ": refused a credential from " + address + " (" + what + "); the next line at " +
            std::to_string(kMaxAuthFailures) + " within " + std::to_string(kAuthWindowSec) + " s";
 }

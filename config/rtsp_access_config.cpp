@@ -46,8 +46,8 @@ void resolveRtspAccess(TableReader &root, const http::HttpOptions &http, StreamO
         if (sink.kind != EncodedSinkKind::Rtsp)
             continue;
         RtspAccessOptions &access = sink.rtsp.access;
-        const bool needsCredential = access.auth == RtspAuth::Credential ||
-                                     (access.auth == RtspAuth::Http && http.enabled && !http.viewerOpen);
+        const bool needsCredential =
+            access.auth == RtspAuth::Credential || (access.auth == RtspAuth::Http && http.enabled && !http.viewerOpen);
         access.users = needsCredential ? httpViewers(http) : std::vector<RtspUser>{};
         if (needsCredential && access.users.empty())
             root.problemAtPath(sink.key + ".auth",

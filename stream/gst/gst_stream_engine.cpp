@@ -33,7 +33,6 @@ std::string capsColorimetry(const Colorimetry &colorimetry)
     return out;
 }
 
-
 // Frames whose blend time is kept for the encoded and sent stages: more than the encoder ever holds.
 constexpr size_t kMaxTracked = 64;
 

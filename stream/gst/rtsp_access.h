@@ -10,8 +10,8 @@
 #include <mutex>
 #include <string>
 
-#include "base/result.h"
 #include "base/auth_failures.h"
+#include "base/result.h"
 #include "stream/encoded_stream_engine.h"
 
 namespace overlayd::stream::gst {
