@@ -154,6 +154,7 @@ Result<DaemonConfig> readRoot(const toml::table &root, const std::string &name, 
     readAnnotations(reader, baseDirectory, result.scene.annotations);
     readGpio(reader, result.scene.annotations, result.gpio);
     readHttp(reader, baseDirectory, result.http);
+    resolveRtspAccess(reader, result.http, result.stream);
     readWebrtc(reader, result.http.enabled, result.stream.webrtc);
     readInputs(reader, baseDirectory, result.scene, result.inputs);
     const bool cameraRead = readCamera(reader, baseDirectory, result, keys);

@@ -50,6 +50,10 @@ void readInputs(TableReader &root, const std::string &baseDirectory, const Overl
                 inputs::InputOptions &out);
 // [http]: the server's options (see http/http_options.h).
 void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out);
+// An RTSP sink's `auth` and `tls` keys (rtsp_access_config.cpp); after [http], what they resolve to: its users and
+// tokens, its certificate.
+void readRtspAccess(TableReader &sink, stream::RtspAccessOptions &out);
+void resolveRtspAccess(TableReader &root, const http::HttpOptions &http, stream::StreamOptions &stream);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
 // `used`, when given, learns which form the keys were in.

@@ -47,6 +47,7 @@ void readRtsp(TableReader &sink, RtspSinkOptions &out)
     }
     if (auto clients = sink.integer("max_clients", 1, kMaxRtspClients))
         out.maxClients = unsigned(*clients);
+    readRtspAccess(sink, out.access);
 }
 
 // FWHT is encoded by vicodec only, and the encoded sinks so far carry H.264 only (RTP's H.264 payloader, MP4 and

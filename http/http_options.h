@@ -25,11 +25,8 @@ inline constexpr unsigned kMaxPendingPerAddress = 8; // default of max_pending_p
 inline constexpr unsigned kSpareConnections = 4;     // accepted over max_clients, so a new request always gets in
 inline constexpr unsigned kKeptForRequests = 4;      // max_streams' default leaves this many slots to requests
 inline constexpr int kListenBacklog = 1024;          // connections the kernel queues before the server accepts them
-// Credentials (http/credentials.h, http/auth_failures.h).
-inline constexpr size_t kMaxUsers = 64;           // users in users_file
-inline constexpr unsigned kMaxAuthFailures = 10;  // refused credentials from one address within the window:
-inline constexpr unsigned kAuthWindowSec = 60;    // beyond, its requests with a credential answer 429 until it ends
-inline constexpr size_t kMaxAuthAddresses = 1024; // addresses remembered (the oldest forgotten first)
+// Credentials (http/credentials.h; the refusals' limits are base/auth_failures.h's).
+inline constexpr size_t kMaxUsers = 64; // users in users_file
 
 enum class ControlMode {
     Off,   // the control API answers 403

@@ -15,7 +15,7 @@
 
 #include "base/logger.h"
 #include "base/result.h"
-#include "http/auth_failures.h"
+#include "base/auth_failures.h"
 #include "http/credentials.h"
 #include "http/http_options.h"
 #include "http/jpeg_feed.h"
@@ -120,7 +120,7 @@ private:
     ApiHandler api_;
     Logger &logger_;
     Credentials credentials_;
-    AuthFailures authFailures_;
+    AuthFailures authFailures_{"http"};
     MHD_Daemon *daemon_ = nullptr;
     bool stopping_ = false;
 

@@ -53,6 +53,7 @@ test_packages=(
     # mpegtsmux (bad), rtspclientsink (gstreamer1.0-rtsp); tests/stream reads the RTSP stream, the recordings and the
     # pushes with ffprobe and ffmpeg
     gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly
+    glib-networking # GLib's TLS backend: RTSPS (GTlsCertificate)
     gstreamer1.0-rtsp
     gstreamer1.0-nice # webrtcbin's ICE (libnice)
     python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 gir1.2-gst-plugins-bad-1.0 # tests/stream's WHEP receiver

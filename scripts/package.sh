@@ -84,7 +84,7 @@ fi
 fields=$(cd "$scratch" && "${shlibdeps[@]}" 2>"$scratch/warnings")
 depends=$(echo "$fields" | sed -n 's/^shlibs:Depends=//p')
 recommends=$(echo "$fields" | sed -n 's/^shlibs:Recommends=//p')
-[ -z "$recommends" ] || recommends="Recommends: $recommends, gstreamer1.0-plugins-base, gstreamer1.0-plugins-good, gstreamer1.0-plugins-bad, gstreamer1.0-nice"
+[ -z "$recommends" ] || recommends="Recommends: $recommends, gstreamer1.0-plugins-base, gstreamer1.0-plugins-good, gstreamer1.0-plugins-bad, gstreamer1.0-nice, glib-networking"
 [ -n "$depends" ] || { cat "$scratch/warnings" >&2 && echo "package: dpkg-shlibdeps found no Depends" >&2 && exit 1; }
 
 install -m 755 debian/postinst debian/prerm debian/postrm "$stage/DEBIAN/"

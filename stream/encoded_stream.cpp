@@ -166,7 +166,8 @@ std::string EncodedStream::describe() const
         std::string(codecName(options_.encoder.codec)) + " (" + encoderKindName(options_.encoder.kind) + ")";
     for (const EncodedSinkOptions &sink : options_.sinks)
         if (sink.kind == EncodedSinkKind::Rtsp)
-            text += " -> rtsp://" + sink.rtsp.listen + sink.rtsp.path;
+            text += std::string(sink.rtsp.access.certPem.empty() ? " -> rtsp://" : " -> rtsps://") + sink.rtsp.listen +
+                    sink.rtsp.path;
     if (options_.webrtc.enabled)
         text += " -> WHEP /whep";
     return text;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "media/colorimetry.h"
 #include "stream/latency_histogram.h"
 #include "stream/stream_options.h"
 
@@ -29,6 +30,7 @@ struct EngineFormat {
     // Frames come as the capture buffers' DMABUF (EncoderInput::dmabuf) rather than copied: a V4L2 encoder imports
     // them (EngineState::dmabufImport says whether it does); another encoder is fed copies as without it.
     bool dmabuf = false;
+    Colorimetry colorimetry{}; // of the I420 samples: the stream's, which the feed's conversion keeps
 
     bool operator==(const EngineFormat &) const = default;
 };

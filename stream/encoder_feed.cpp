@@ -47,7 +47,7 @@ Result<EngineFormat> EncoderFeed::open(const StreamFormat &format)
         pool_->slots[i].assign(bytes, 0);
         pool_->free.push_back(i);
     }
-    return EngineFormat{format.width, format.height, format.fps, false};
+    return EngineFormat{format.width, format.height, format.fps, false, colorimetry_};
 }
 
 bool EncoderFeed::copyInto(uint8_t *slot, const FrameView &frame)

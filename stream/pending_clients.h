@@ -16,9 +16,10 @@
 
 namespace overlayd::stream {
 
-// Connections pending in all, from one address, and how long one may take from its connect to PLAY.
-inline constexpr size_t kMaxPendingRtspClients = 32;
-inline constexpr size_t kMaxPendingRtspClientsPerAddress = 8;
+// Connections pending in all (at least a sink's highest max_clients, kMaxRtspClients), from one address (the RTSP
+// sink sets its max_clients), and how long one may take from its connect to PLAY.
+inline constexpr size_t kMaxPendingRtspClients = 64;
+inline constexpr size_t kMaxPendingRtspClientsPerAddress = 16;
 inline constexpr std::chrono::seconds kRtspPlayDeadline{10};
 
 struct PendingClientLimits {

@@ -9,6 +9,7 @@
 
 #include "stream/push_options.h"
 #include "stream/record_options.h"
+#include "stream/rtsp_access_options.h"
 #include "stream/webrtc_options.h"
 
 namespace overlayd::stream {
@@ -72,6 +73,7 @@ struct RtspSinkOptions {
     unsigned port = 8554;
     std::string path = "/stream"; // the mount point: rtsp://host:port/path
     unsigned maxClients = 16;
+    RtspAccessOptions access; // credentials and TLS
 
     bool operator==(const RtspSinkOptions &) const = default;
 };

@@ -18,6 +18,23 @@
 namespace overlayd::stream::gst {
 namespace {
 
+// The caps' colorimetry of the frames' matrix and range, with the transfer and primaries that go with each. Without
+// it GStreamer assumes BT.709 from 720 lines, and the muxers write that into the recordings' colour atoms, so a
+// player would decode a BT.601 camera's colours with the wrong matrix.
+std::string capsColorimetry(const Colorimetry &colorimetry)
+{
+    const bool bt709 = colorimetry.matrix == YcbcrMatrix::Bt709;
+    GstVideoColorimetry caps{};
+    caps.range = colorimetry.range == ColourRange::Full ? GST_VIDEO_COLOR_RANGE_0_255 : GST_VIDEO_COLOR_RANGE_16_235;
+    caps.matrix = bt709 ? GST_VIDEO_COLOR_MATRIX_BT709 : GST_VIDEO_COLOR_MATRIX_BT601;
+    caps.transfer = bt709 ? GST_VIDEO_TRANSFER_BT709 : GST_VIDEO_TRANSFER_BT601;
+    caps.primaries = bt709 ? GST_VIDEO_COLOR_PRIMARIES_BT709 : GST_VIDEO_COLOR_PRIMARIES_SMPTE170M;
+    gchar *text = gst_video_colorimetry_to_string(&caps);
+    std::string out = text ? text : "";
+    g_free(text);
+    return out;
+}
+
 // Frames whose blend time is kept for the encoded and sent stages: more than the encoder ever holds.
 constexpr size_t kMaxTracked = 64;
 
@@ -156,6 +173,8 @@ Status GstStreamEngine::build(const EngineFormat &format)
     if (encoder->factory.starts_with("v4l2"))
         gst_caps_set_simple(raw, "interlace-mode", G_TYPE_STRING, "progressive", "colorimetry", G_TYPE_STRING,
                             format.height >= 720 ? "bt709" : "bt601", nullptr);
+    else // the software encoders take any: the frames' own
+        gst_caps_set_simple(raw, "colorimetry", G_TYPE_STRING, capsColorimetry(format.colorimetry).c_str(), nullptr);
     // Live and unbounded here: the feed's slots bound what waits (every queued buffer holds one).
     g_object_set(appsrc_, "caps", raw, "is-live", TRUE, "format", GST_FORMAT_TIME, "block", FALSE, nullptr);
     gst_caps_unref(raw);
@@ -206,8 +225,9 @@ Status GstStreamEngine::build(const EngineFormat &format)
         auto output = std::make_unique<RtspOutput>(sinkOptions, log_, [this] { requestKeyframe(); });
         if (auto started = output->start(context_); !started)
             return started;
-        log_(kLogInfo, sinkOptions.key + ": RTSP at rtsp://" + sinkOptions.rtsp.listen + sinkOptions.rtsp.path + " (" +
-                           encoder->factory + (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
+        const char *access = sinkOptions.rtsp.access.users.empty() ? "" : ", a credential asked";
+        log_(kLogInfo, sinkOptions.key + ": RTSP at " + output->state().describe + access + " (" + encoder->factory +
+                           (encoder->device.empty() ? "" : " on " + encoder->device) + ")");
         rtsp_.push_back(std::move(output));
     }
     return Ok{};

@@ -14,6 +14,7 @@ constexpr guint64 kMediaQueueBuffers = 30;
 // Connections the kernel queues before the server accepts them. gst-rtsp-server's default, 5, makes every sixth
 // connection of a quick succession wait for a SYN retransmit (1 s): a burst of clients (or a storm) would crawl.
 constexpr gint kListenBacklog = 128;
+static_assert(kMaxPendingRtspClients >= kMaxRtspClients, "a sink's max_clients may all connect at once");
 
 std::string peerAddress(GstRTSPClient *client)
 {
@@ -37,7 +38,9 @@ std::string peerAddress(GstRTSPClient *client)
 } // namespace
 
 RtspOutput::RtspOutput(const EncodedSinkOptions &options, const EngineLog &log, std::function<void()> requestKeyframe)
-    : options_(options), log_(log), requestKeyframe_(std::move(requestKeyframe))
+    : options_(options), log_(log), requestKeyframe_(std::move(requestKeyframe)), access_(options, log),
+      // As many as may play may connect at once from one address (a recorder opening its streams together).
+      pending_(PendingClientLimits{.perAddress = options.rtsp.maxClients})
 {}
 
 RtspOutput::~RtspOutput()
@@ -56,7 +59,7 @@ RtspOutput::~RtspOutput()
         clients.swap(clients_);
     }
     for (const auto &[client, state] : clients) // no signal of theirs may reach this object once it is gone
-        g_signal_handlers_disconnect_by_data(client, this);
+        g_signal_handlers_disconnect_by_data(client, this), g_signal_handlers_disconnect_by_data(client, &access_);
     if (server_ != nullptr) {
         // Clients still connected are closed: their sessions hold the media.
         gst_rtsp_server_client_filter(
@@ -86,6 +89,10 @@ Status RtspOutput::start(GMainContext *context)
     gst_rtsp_media_factory_set_protocols(factory,
                                          GstRTSPLowerTrans(GST_RTSP_LOWER_TRANS_UDP | GST_RTSP_LOWER_TRANS_TCP));
     g_signal_connect(factory, "media-configure", G_CALLBACK(onMediaConfigure), this);
+    if (auto applied = access_.apply(server_, factory); !applied) {
+        g_object_unref(factory);
+        return applied;
+    }
     GstRTSPMountPoints *mounts = gst_rtsp_server_get_mount_points(server_);
     gst_rtsp_mount_points_add_factory(mounts, options_.rtsp.path.c_str(), factory);
     g_object_unref(mounts);
@@ -144,6 +151,7 @@ void RtspOutput::onClientConnected(GstRTSPServer *, GstRTSPClient *client, RtspO
     g_signal_connect(client, "setup-request", G_CALLBACK(onSetup), self);
     g_signal_connect(client, "play-request", G_CALLBACK(onPlay), self);
     const std::string address = peerAddress(client);
+    self->access_.admit(client);
     GstRTSPConnection *connection = gst_rtsp_client_get_connection(client);
     const std::string host = connection != nullptr ? gst_rtsp_connection_get_ip(connection) : "?";
     std::vector<PendingClients::Handle> shed;
@@ -264,7 +272,7 @@ EncodedSinkState RtspOutput::state() const
     EncodedSinkState out;
     out.kind = "rtsp";
     out.key = options_.key;
-    out.describe = "rtsp://" + options_.rtsp.listen + options_.rtsp.path;
+    out.describe = (access_.tls() ? "rtsps://" : "rtsp://") + options_.rtsp.listen + options_.rtsp.path;
     std::lock_guard lock(mutex_);
     for (const auto &[client, state] : clients_)
         out.clients.push_back(state);

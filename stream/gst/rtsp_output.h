@@ -16,6 +16,7 @@
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
 #include "stream/pending_clients.h"
+#include "stream/gst/rtsp_access.h"
 
 namespace overlayd::stream::gst {
 
@@ -53,6 +54,7 @@ private:
     GstRTSPServer *server_ = nullptr;
     GSource *source_ = nullptr;
     GSource *pendingTick_ = nullptr;
+    RtspAccess access_;
 
     mutable std::mutex mutex_;
     GstElement *appsrc_ = nullptr;  // the shared media's, while one is prepared (a reference)

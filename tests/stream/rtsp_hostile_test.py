@@ -21,7 +21,7 @@ import daemon_fixture  # noqa: E402
 TRICKLERS = 200
 STORM = 2000
 PLAY_DEADLINE_S = 10  # kRtspPlayDeadline
-PER_ADDRESS = 8  # kMaxPendingRtspClientsPerAddress
+PER_ADDRESS = 16  # the sink's max_clients (its default)
 STORM_BOUND_S = 60
 
 

@@ -11,17 +11,7 @@ using overlayd::test::loadValid;
 
 namespace {
 
-const std::string kBase = R"(
-[source]
-kind = "synthetic"
-width = 640
-height = 480
-[camera]
-position = [0.0, -6.0, 3.0]
-yaw = 90.0
-pitch = 25.0
-fov = 60.0
-)";
+const std::string kBase = test::kMinimalConfig;
 
 bool hasProblem(const std::vector<ConfigProblem> &problems, const std::string &key, const std::string &words)
 {

@@ -27,7 +27,7 @@ TEST(EncodedStream, TheSinkFeedsTheEngineThroughBoundedSlots)
     format.width = 16, format.height = 8, format.fps = 25;
     ASSERT_TRUE(sink->open(format));
     EXPECT_EQ(calls.opens, 1u);
-    EXPECT_EQ(calls.format, (EngineFormat{16, 8, 25, false}));
+    EXPECT_EQ(calls.format, (EngineFormat{16, 8, 25, false, {}}));
 
     FrameBuffer frame = std::move(*FrameBuffer::allocate(format));
     for (int i = 0; i < 3; ++i)

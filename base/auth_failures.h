@@ -1,19 +1,28 @@
 // SPDX-License-Identifier: Apache-2.0
 // AuthFailures: refused credentials per client address, so that guessing is slow (beyond kMaxAuthFailures within
-// kAuthWindowSec an address gets 429 without its credential being compared) and the log says who tried without
-// being flooded (one line per address per window, with the count).
+// kAuthWindowSec the server refuses an address without comparing its credential: HTTP answers 429, RTSP 401) and
+// the log says who tried without being flooded (one line per address per window, with the count). The HTTP server
+// and each RTSP sink keep their own.
 #pragma once
 
 #include <chrono>
 #include <map>
 #include <string>
 
-namespace overlayd::http {
+namespace overlayd {
+
+// Limits (docs/config.md "Limits").
+inline constexpr unsigned kMaxAuthFailures = 10;  // refused credentials from one address within the window:
+inline constexpr unsigned kAuthWindowSec = 60;    // beyond, its credentials are refused without being compared
+inline constexpr size_t kMaxAuthAddresses = 1024; // addresses remembered (the oldest forgotten first)
 
 class AuthFailures
 {
 public:
     using Clock = std::chrono::steady_clock;
+
+    // `subject` begins each line: "http", "sink[0]: RTSP".
+    explicit AuthFailures(std::string subject) : subject_(std::move(subject)) {}
 
     // Whether the address has used up its attempts for now.
     bool blocked(const std::string &address, Clock::time_point now);
@@ -30,8 +39,9 @@ private:
     };
     Window &windowOf(const std::string &address, Clock::time_point now);
 
+    std::string subject_;
     std::map<std::string, Window> windows_;
     uint64_t refused_ = 0, blocked_ = 0;
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -1,12 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // AuthFailures: per-address windows of refused credentials.
-#include "http/auth_failures.h"
+#include "base/auth_failures.h"
 
 #include <algorithm>
 
-#include "http/http_options.h"
-
-namespace overlayd::http {
+namespace overlayd {
 
 AuthFailures::Window &AuthFailures::windowOf(const std::string &address, Clock::time_point now)
 {
@@ -44,12 +42,11 @@ std::string AuthFailures::failed(const std::string &address, const std::string &
         return {};
     window.logged = true;
     if (window.failures == kMaxAuthFailures)
-        return "http: " + std::to_string(kMaxAuthFailures) + " refused credentials from " + address + " within " +
-               std::to_string(kAuthWindowSec) + " s: its credentials are not checked (429) until the window ends";
-    return "http: refused a credential from " + address + " (" + what +
-           "); further ones from it are counted in "
-           "/metrics, the next line at " +
+        return subject_ + ": " + std::to_string(kMaxAuthFailures) + " refused credentials from " + address +
+               " within " + std::to_string(kAuthWindowSec) +
+               " s: its credentials are not compared until the window ends";
+    return subject_ + ": refused a credential from " + address + " (" + what + "); the next line at " +
            std::to_string(kMaxAuthFailures) + " within " + std::to_string(kAuthWindowSec) + " s";
 }
 
-} // namespace overlayd::http
+} // namespace overlayd
