@@ -18,6 +18,7 @@
 #include "base/result.h"
 #include "stream/latency_histogram.h"
 #include "stream/stream_options.h"
+#include "stream/webrtc_peer_stats.h"
 
 namespace overlayd::stream {
 
@@ -52,7 +53,10 @@ struct EncodedSinkState {
     std::string kind;                     // "rtsp", "record", "push" or "webrtc": which of the fields below it fills
     std::string key;                      // "sink[2]"
     std::string describe;                 // "rtsp://127.0.0.1:8554/cam"
-    std::vector<RtspClientState> clients; // kind = "rtsp"; "webrtc": its peers
+    std::vector<RtspClientState> clients; // kind = "rtsp"
+    // kind = "webrtc": its peers, and the sums of their statistics since open(), the departed peers' included.
+    std::vector<WebrtcPeerState> peers;
+    WebrtcPeerStats peerTotals;
     // kind = "record": the segment being written, the finished ones in the directory, their bytes, the oldest,
     // how many retention deleted; stopped for a full disk (and how often it was).
     std::string currentFile;
