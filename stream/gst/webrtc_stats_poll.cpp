@@ -56,7 +56,7 @@ WebrtcStatsPoll::WebrtcStatsPoll() : shared_(std::make_shared<Shared>()) {}
 
 void WebrtcStatsPoll::request(GstElement *webrtc)
 {
-    GstPromise *promise = gst_promise_new_with_change_func(&WebrtcStatsPoll::onReply, new std::shared_ptr(shared_),
+    GstPromise *promise = gst_promise_new_with_change_func(&WebrtcStatsPoll::onReply, new std::shared_ptr<Shared>(shared_),
                                                            [](gpointer held) {
                                                                delete static_cast<std::shared_ptr<Shared> *>(held);
                                                            });

@@ -12,10 +12,8 @@ against `overlayd run` (rtsp_test's scene: a magenta rail on a checkerboard, [we
 
     whep_page_test.py --overlayd build/daemon/overlayd --workdir /tmp/whep-page [--chromium /usr/bin/chromium]
 Exit 0 when every check passed, 1 when any failed, 77 (skipped) without chromium or python3-websocket."""
-import argparse
 import json
 import os
-import shutil
 import sys
 import time
 import urllib.request
@@ -29,6 +27,7 @@ from rtsp_test import (DECOY, HEIGHT, LINE, RADIUS, SCENE, WIDTH, along, check, 
 
 try:
     from devtools import BrowserError, Chromium, Page  # noqa: E402
+    from whep_browser_test import browser_arguments  # noqa: E402
 except ImportError as error:
     print(f"SKIP: no python3-websocket ({error})")
     sys.exit(77)
@@ -202,17 +201,7 @@ def mjpeg_page(overlayd, workdir, browser):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    for option in ("--overlayd", "--workdir"):
-        parser.add_argument(option, required=True)
-    parser.add_argument("--chromium", default="/usr/bin/chromium")
-    args = parser.parse_args()
-    if not os.access(args.chromium, os.X_OK):
-        print(f"SKIP: no {args.chromium}")
-        sys.exit(77)
-    workdir = os.path.abspath(args.workdir)
-    shutil.rmtree(os.path.join(workdir, "chrome"), ignore_errors=True)
-    os.makedirs(workdir, exist_ok=True)
+    args, workdir = browser_arguments()
     overlayd = os.path.abspath(args.overlayd)
     browser = Chromium(args.chromium, os.path.join(workdir, "chrome"), os.path.join(workdir, "chromium.log"))
     try:
