@@ -8,7 +8,8 @@ against `overlayd run` (rtsp_test's scene: a magenta rail on a checkerboard, [we
 - a click on the <video>'s centre names the stream's centre pixel and the ground point /api/unproject gives for it;
 - 8 tabs at once are all served (8 peers in /state) by one encoder (/metrics overlayd_encoders 1); closing the tabs
   hangs up (the page's DELETE on pagehide) and /state lists no peer within 30 s;
-- with [webrtc] off the page plays MJPEG and the badge says so.
+- with [webrtc] off the page plays MJPEG and the badge says so; so does a tab whose POST /whep is refused (past
+  max_peers = 1).
 
     whep_page_test.py --overlayd build/daemon/overlayd --workdir /tmp/whep-page [--chromium /usr/bin/chromium]
 Exit 0 when every check passed, 1 when any failed, 77 (skipped) without chromium or python3-websocket."""
@@ -96,11 +97,11 @@ def share_magenta(page, pixels):
     return hits / max(1, len(pixels)), (sample["width"], sample["height"])
 
 
-def start(overlayd, workdir, name, webrtc):
+def start(overlayd, workdir, name, webrtc, max_peers=8):
     port = daemon_fixture.free_port()
     config = os.path.join(workdir, name + ".toml")
     with open(config, "w", encoding="utf-8") as file:
-        file.write(SCENE + ("\n[webrtc]\nenabled = true\n" if webrtc else "") +
+        file.write(SCENE + (f"\n[webrtc]\nenabled = true\nmax_peers = {max_peers}\n" if webrtc else "") +
                    daemon_fixture.http_section(port, control="open"))
     daemon = daemon_fixture.Daemon(overlayd, config, workdir, port, log_path=os.path.join(workdir, name + ".log"))
     daemon.wait_ready()
@@ -200,12 +201,31 @@ def mjpeg_page(overlayd, workdir, browser):
         check(code == 0, f"overlayd (no WebRTC) stopped cleanly (exit {code})")
 
 
+def full_page(overlayd, workdir, browser):
+    """max_peers = 1: the second tab's POST /whep is refused (503) and that tab plays MJPEG instead."""
+    daemon, _ = start(overlayd, workdir, "full", True, max_peers=1)
+    tabs = []
+    try:
+        tabs.append(Page(browser.browser_url(20), timeout=20, url=daemon.base + "/"))
+        tabs[0].wait_for(PLAYING, 20, "the first tab playing WebRTC")
+        tabs.append(Page(browser.browser_url(20), timeout=20, url=daemon.base + "/"))
+        shown = tabs[1].wait_for("document.body.dataset.transport === 'mjpeg' && liveView.img.naturalWidth > 0 && "
+                                 "document.getElementById('transport').textContent", 15, "the second tab on MJPEG")
+        check(shown.startswith("MJPEG") and "503" in shown and peers(daemon) == 1,
+              f"past max_peers the page falls back to MJPEG: the badge says {shown!r}; {peers(daemon)} peer")
+    finally:
+        for tab in tabs:
+            tab.close_tab()
+        code = daemon.stop()
+        check(code == 0, f"overlayd (max_peers = 1) stopped cleanly (exit {code})")
+
+
 def main():
     args, workdir = browser_arguments()
     overlayd = os.path.abspath(args.overlayd)
     browser = Chromium(args.chromium, os.path.join(workdir, "chrome"), os.path.join(workdir, "chromium.log"))
     try:
-        for run in (mjpeg_page, webrtc_page):
+        for run in (mjpeg_page, full_page, webrtc_page):
             try:
                 run(overlayd, workdir, browser)
             except BrowserError as error:
