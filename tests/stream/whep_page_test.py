@@ -9,7 +9,7 @@ against `overlayd run` (rtsp_test's scene: a magenta rail on a checkerboard, [we
 - 8 tabs at once are all served (8 peers in /state) by one encoder (/metrics overlayd_encoders 1); closing the tabs
   hangs up (the page's DELETE on pagehide) and /state lists no peer within 30 s;
 - with [webrtc] off the page plays MJPEG and the badge says so; so does a tab whose POST /whep is refused (past
-  max_peers = 1).
+  max_peers = 1), and one whose connection never comes up (within 3 s, hanging its peer up).
 
     whep_page_test.py --overlayd build/daemon/overlayd --workdir /tmp/whep-page [--chromium /usr/bin/chromium]
 Exit 0 when every check passed, 1 when any failed, 77 (skipped) without chromium or python3-websocket."""
@@ -39,6 +39,9 @@ FRAMES = 30
 # without rendering, so only the tab in front is asked for the <video>'s own size.
 PLAYING = "document.body.dataset.transport === 'webrtc' && liveView.timer !== null"
 SHOWN = PLAYING + " && liveView.video.videoWidth > 0"
+# MJPEG playing: the badge's text.
+ON_MJPEG = ("document.body.dataset.transport === 'mjpeg' && liveView.img.naturalWidth > 0 && "
+            "document.getElementById('transport').textContent")
 # The browser's own count of what it decoded, from the page's peer connection.
 DECODED = """(async () => {
   let frames = 0;
@@ -190,8 +193,7 @@ def mjpeg_page(overlayd, workdir, browser):
     page = None
     try:
         page = Page(browser.browser_url(20), timeout=20, url=daemon.base + "/")
-        shown = page.wait_for("document.body.dataset.transport === 'mjpeg' && liveView.img.naturalWidth > 0 && "
-                              "document.getElementById('transport').textContent", 15, "the page playing MJPEG")
+        shown = page.wait_for(ON_MJPEG, 15, "the page playing MJPEG")
         check(shown.startswith("MJPEG") and page.evaluate("liveView.video.hidden && !liveView.pc"),
               f"with [webrtc] off the page plays MJPEG: the badge says {shown!r}")
     finally:
@@ -209,15 +211,42 @@ def full_page(overlayd, workdir, browser):
         tabs.append(Page(browser.browser_url(20), timeout=20, url=daemon.base + "/"))
         tabs[0].wait_for(PLAYING, 20, "the first tab playing WebRTC")
         tabs.append(Page(browser.browser_url(20), timeout=20, url=daemon.base + "/"))
-        shown = tabs[1].wait_for("document.body.dataset.transport === 'mjpeg' && liveView.img.naturalWidth > 0 && "
-                                 "document.getElementById('transport').textContent", 15, "the second tab on MJPEG")
+        shown = tabs[1].wait_for(ON_MJPEG, 15, "the second tab on MJPEG")
         check(shown.startswith("MJPEG") and "503" in shown and peers(daemon) == 1,
               f"past max_peers the page falls back to MJPEG: the badge says {shown!r}; {peers(daemon)} peer")
+        tabs.pop().close_tab()
+        tabs[0].close_tab()  # its DELETE frees the one place
+        tabs.clear()
+        stalled(daemon, browser)
     finally:
         for tab in tabs:
             tab.close_tab()
         code = daemon.stop()
         check(code == 0, f"overlayd (max_peers = 1) stopped cleanly (exit {code})")
+
+
+def stalled(daemon, browser):
+    """A connection that never comes up (the answer is never applied, in this tab only): MJPEG after 3 s, and the
+    peer the daemon made is hung up."""
+    deadline = time.monotonic() + 10
+    while peers(daemon) != 0 and time.monotonic() < deadline:
+        time.sleep(0.1)
+    tab = Page(browser.browser_url(20), timeout=20, url="about:blank")
+    try:
+        tab.call("Page.addScriptToEvaluateOnNewDocument",
+                 source="RTCPeerConnection.prototype.setRemoteDescription = () => new Promise(() => {});")
+        tab.call("Page.navigate", url=daemon.base + "/")
+        tab.wait_for("liveView.location", 10, "the stalled tab's POST /whep answered")
+        asked = time.monotonic()
+        shown = tab.wait_for(ON_MJPEG, 10, "the stalled tab on MJPEG")
+        took = time.monotonic() - asked
+        while peers(daemon) != 0 and time.monotonic() - asked < 10:
+            time.sleep(0.1)
+        check(shown == "MJPEG · no WebRTC picture within 3 s" and took < 3.5 and peers(daemon) == 0,
+              f"a WebRTC connection that never comes up: {shown!r} {took:.1f} s after the answer, then "
+              f"{peers(daemon)} peers (the page hung up)")
+    finally:
+        tab.close_tab()
 
 
 def main():
