@@ -56,10 +56,9 @@ WebrtcStatsPoll::WebrtcStatsPoll() : shared_(std::make_shared<Shared>()) {}
 
 void WebrtcStatsPoll::request(GstElement *webrtc)
 {
-    GstPromise *promise = gst_promise_new_with_change_func(&WebrtcStatsPoll::onReply, new std::shared_ptr<Shared>(shared_),
-                                                           [](gpointer held) {
-                                                               delete static_cast<std::shared_ptr<Shared> *>(held);
-                                                           });
+    GstPromise *promise =
+        gst_promise_new_with_change_func(&WebrtcStatsPoll::onReply, new std::shared_ptr<Shared>(shared_),
+                                         [](gpointer held) { delete static_cast<std::shared_ptr<Shared> *>(held); });
     g_signal_emit_by_name(webrtc, "get-stats", nullptr, promise); // webrtcbin keeps its own reference until done
     gst_promise_unref(promise);
 }
