@@ -28,6 +28,35 @@ std::vector<std::pair<std::string, stream::LatencyHistogram>> stages(const strea
     return all;
 }
 
+// A WebRTC sink's peers with their RTCP figures (rtt_s null before the first receiver report).
+nlohmann::json webrtcPeers(const std::vector<stream::WebrtcPeerState> &peers)
+{
+    nlohmann::json out = nlohmann::json::array();
+    for (const stream::WebrtcPeerState &peer : peers)
+        out.push_back({{"id", peer.id},
+                       {"address", peer.address},
+                       {"transport", "webrtc"},
+                       {"since", utcText(peer.since)},
+                       {"packets_sent", peer.stats.packetsSent},
+                       {"nacks", peer.stats.nacks},
+                       {"plis", peer.stats.plis},
+                       {"rtt_s", peer.stats.rttS >= 0 ? nlohmann::json(peer.stats.rttS) : nlohmann::json()}});
+    return out;
+}
+
+void reportWebrtcTotals(StatusReport &report, const stream::EncodedSinkState &sink)
+{
+    const stream::WebrtcPeerStats &totals = sink.peerTotals;
+    report.metric("overlayd_webrtc_peers", "gauge", "WebRTC (WHEP) viewers connected.", double(sink.peers.size()));
+    report.metric("overlayd_webrtc_packets_sent_total", "counter",
+                  "RTP packets sent to WebRTC viewers (departed ones included), as webrtcbin counts them.",
+                  double(totals.packetsSent));
+    report.metric("overlayd_webrtc_nacks_total", "counter", "NACKs WebRTC viewers sent (RTCP feedback).",
+                  double(totals.nacks));
+    report.metric("overlayd_webrtc_plis_total", "counter", "Picture loss indications WebRTC viewers sent.",
+                  double(totals.plis));
+}
+
 } // namespace
 
 void EncodedStreamReport::report(StatusReport &report) const
@@ -47,8 +76,8 @@ void EncodedStreamReport::report(StatusReport &report) const
             entry.update({{"clients", clients},
                           {"pending_shed", sink.pendingShed},
                           {"pending_timed_out", sink.pendingTimedOut}});
-        if (sink.kind == "webrtc") // its peers
-            entry["peers"] = clients;
+        if (sink.kind == "webrtc")
+            entry["peers"] = webrtcPeers(sink.peers);
         if (sink.kind == "record")
             entry.update({{"current_file", sink.currentFile},
                           {"segments", sink.segments},
@@ -110,6 +139,8 @@ void EncodedStreamReport::report(StatusReport &report) const
     for (const stream::EncodedSinkState &sink : engine.sinks) {
         const std::string sinkLabel =
             StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe);
+        if (sink.kind == "webrtc")
+            reportWebrtcTotals(report, sink);
         if (sink.kind == "rtsp") {
             report.metric("overlayd_rtsp_clients", "gauge", "Clients connected to an RTSP sink.",
                           double(sink.clients.size()), sinkLabel);

@@ -19,6 +19,7 @@
 #include "media/colorimetry.h"
 #include "stream/latency_histogram.h"
 #include "stream/stream_options.h"
+#include "stream/webrtc_peer_stats.h"
 
 namespace overlayd::stream {
 
@@ -66,11 +67,14 @@ struct EncodedSinkState {
     std::string kind;                     // "rtsp", "record", "push" or "webrtc": which of the fields below it fills
     std::string key;                      // "sink[2]"
     std::string describe;                 // "rtsp://127.0.0.1:8554/cam"
-    std::vector<RtspClientState> clients; // kind = "rtsp"; "webrtc": its peers
+    std::vector<RtspClientState> clients; // kind = "rtsp"
     // kind = "rtsp": connections closed before they asked to play, to make room under PendingClients' caps and at
     // its deadline.
     uint64_t pendingShed = 0;
     uint64_t pendingTimedOut = 0;
+    // kind = "webrtc": its peers, and the sums of their statistics since open(), the departed peers' included.
+    std::vector<WebrtcPeerState> peers;
+    WebrtcPeerStats peerTotals;
     // kind = "record": the segment being written, the finished ones in the directory, their bytes, the oldest,
     // how many retention deleted; stopped for a full disk (and how often it was).
     std::string currentFile;

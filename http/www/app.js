@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The alignment page's logic: pose sliders -> PUT /api/camera, layer toggles, click-to-ground, save, and a /state
-// poll that never overwrites what the user is editing. Plain browser JS: the daemon serves only these three files.
+// poll that never overwrites what the user is editing. Plain browser JS: the daemon serves only its four files
+// (live_view.js, loaded first, holds the picture: WebRTC or MJPEG).
 'use strict';
 
 const POSE_KEYS = ['x', 'y', 'z', 'yaw', 'pitch', 'roll'];
@@ -453,8 +454,12 @@ const clicks = []; // {n, cornerX, cornerY}: corner-based image coordinates, so 
 let clickCount = 0;
 let frameSize = {width: 0, height: 0, origin: 'top-left'};
 
-function imageSize(img) {
-    if (img.naturalWidth > 0 && img.naturalHeight > 0) return {width: img.naturalWidth, height: img.naturalHeight};
+const liveView = new LiveView($('stream'), $('video'), $('transport'));
+
+// The stream's own pixels: the <img>'s natural size or the <video>'s videoWidth x videoHeight.
+function imageSize() {
+    const size = liveView.size();
+    if (size.width > 0 && size.height > 0) return size;
     return frameSize; // no frame decoded yet: /state knows the source's size
 }
 
@@ -467,7 +472,7 @@ function pictureRect(img) {
     const top = rect.top + px('borderTopWidth') + px('paddingTop');
     const width = rect.width - px('borderLeftWidth') - px('paddingLeft') - px('borderRightWidth') - px('paddingRight');
     const height = rect.height - px('borderTopWidth') - px('paddingTop') - px('borderBottomWidth') - px('paddingBottom');
-    const size = imageSize(img);
+    const size = imageSize();
     if (!size.width || !size.height || width <= 0 || height <= 0) return null;
     const scale = Math.min(width / size.width, height / size.height);
     return {
@@ -542,7 +547,7 @@ function addClickResult(n, pixel, result, text, isError) {
 }
 
 async function onImageClick(event) {
-    const img = $('stream');
+    const img = liveView.element();
     const picture = pictureRect(img);
     if (!picture) return;
     // Whole mouse coordinates name the CSS pixel under the pointer: its centre is half a pixel on (in the 1:1 view,
@@ -566,7 +571,7 @@ async function onImageClick(event) {
 }
 
 function drawMarks() {
-    const img = $('stream');
+    const img = liveView.element();
     const canvas = $('marks');
     const ratio = window.devicePixelRatio || 1;
     canvas.style.width = `${img.clientWidth}px`; // the image's size in either view
@@ -604,7 +609,11 @@ function toggleZoom() {
 
 function setUpImage() {
     const img = $('stream');
-    img.addEventListener('click', onImageClick);
+    for (const element of [img, $('video')]) {
+        element.addEventListener('click', onImageClick);
+        element.addEventListener('picture', drawMarks); // the picture moved between the two
+        new ResizeObserver(drawMarks).observe(element);
+    }
     $('zoom').addEventListener('click', toggleZoom);
     $('points-clear').addEventListener('click', () => {
         $('click-results').replaceChildren();
@@ -615,10 +624,10 @@ function setUpImage() {
     updatePointsFile();
     // "load" never fires for an MJPEG stream; "error" does when the connection drops, so reconnect.
     img.addEventListener('error', () => setTimeout(() => {
+        if (liveView.kind !== 'mjpeg') return;
         img.removeAttribute('src');
         img.src = '/stream';
     }, STREAM_RETRY_MS));
-    new ResizeObserver(drawMarks).observe(img);
 }
 
 // ---- State poll ----------------------------------------------------------------------------------------------
@@ -659,11 +668,14 @@ function showState(state) {
 
 async function pollState() {
     try {
-        showState(await api('GET', '/state'));
+        const state = await api('GET', '/state');
+        liveView.choose(state);
+        showState(state);
         setStatus('connection', 'Connected.');
         document.body.dataset.ready = 'true'; // what tests wait for: the controls hold the server's values
     } catch (error) {
         setStatus('connection', `No state: ${error.message}`, true);
+        liveView.choose({}); // no word of a WebRTC sink: MJPEG, which retries by itself
     }
     setTimeout(pollState, STATE_PERIOD_MS);
 }

@@ -41,6 +41,9 @@ std::string fmtpOf(const GstSDPMedia *media, int type)
     return {};
 }
 
+// The MediaStream id the answer gives the video (a=msid): the page's <video> plays the stream it names.
+constexpr const char *kWebrtcStreamId = "overlayd";
+
 void markGathered(std::mutex &mutex, std::condition_variable &changed, bool &gathered)
 {
     std::lock_guard lock(mutex);
@@ -167,11 +170,13 @@ Result<std::string> WebrtcPeer::negotiate(GMainContext *context, const WebrtcOpt
     GstWebRTCSessionDescription *remote = gst_webrtc_session_description_new(GST_WEBRTC_SDP_TYPE_OFFER, sdp);
 
     const std::string pt = std::to_string(*payload);
+    // Known before the answer, so that it carries a=ssrc lines with the stream's msid (below).
+    const std::string ssrc = std::to_string(g_random_int());
     const std::string description =
         "appsrc name=src is-live=true format=time block=false ! h264parse ! rtph264pay config-interval=-1 "
         "aggregate-mode=zero-latency pt=" +
-        pt + " ! application/x-rtp,media=video,encoding-name=H264,clock-rate=90000,payload=" + pt +
-        " ! webrtcbin name=webrtc bundle-policy=max-bundle";
+        pt + " ssrc=" + ssrc + " ! application/x-rtp,media=video,encoding-name=H264,clock-rate=90000,payload=" + pt +
+        ",ssrc=(uint)" + ssrc + " ! webrtcbin name=webrtc bundle-policy=max-bundle";
     GError *error = nullptr;
     branch_.pipeline = gst_parse_launch(description.c_str(), &error);
     if (branch_.pipeline == nullptr || error != nullptr) {
@@ -219,8 +224,10 @@ Result<std::string> WebrtcPeer::negotiate(GMainContext *context, const WebrtcOpt
         gst_webrtc_session_description_free(remote);
         return makeError(ErrorCode::NotFound, "the WebRTC pipeline does not start (Debian: gstreamer1.0-nice)");
     }
-    // The viewer only receives: the one transceiver sends.
+    // The viewer only receives: the one transceiver sends. Its stream is named (a=msid, with a=ssrc lines): a
+    // browser delivers the frames of an unnamed one to no track, though it decodes them.
     if (GstPad *sink = gst_element_get_static_pad(webrtc_, "sink_0")) {
+        g_object_set(sink, "msid", kWebrtcStreamId, nullptr);
         GstWebRTCRTPTransceiver *transceiver = nullptr;
         g_object_get(sink, "transceiver", &transceiver, nullptr);
         if (transceiver != nullptr) {

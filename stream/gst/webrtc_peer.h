@@ -21,6 +21,7 @@
 #include "base/result.h"
 #include "stream/gst/branch_feed.h"
 #include "stream/gst/branch_pipeline.h"
+#include "stream/gst/webrtc_stats_poll.h"
 #include "stream/webrtc_options.h"
 
 namespace overlayd::stream::gst {
@@ -40,6 +41,9 @@ public:
     void push(GstSample *sample) { feed_.push(sample); }
     // ICE or DTLS failed, or the viewer closed: the peer is to be reaped.
     bool failed() const { return failed_; }
+    // On the engine's loop, once negotiated: asks webrtcbin for its statistics (stats() has them a moment later).
+    void pollStats() { stats_.request(webrtc_); }
+    WebrtcPeerStats stats() const { return stats_.latest(); }
 
     const std::string &id() const { return id_; }
     const std::string &address() const { return address_; }
@@ -63,6 +67,7 @@ private:
     GstElement *webrtc_ = nullptr; // in branch_'s pipeline
     GstElement *rtpbin_ = nullptr; // webrtcbin's own (a reference)
     std::atomic<bool> failed_{false};
+    WebrtcStatsPoll stats_;
 
     std::mutex mutex_; // guards the two below, signalled by webrtcbin's threads
     std::condition_variable changed_;

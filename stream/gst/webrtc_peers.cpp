@@ -22,6 +22,8 @@ void WebrtcPeers::start(GMainContext *context)
 {
     std::lock_guard lock(mutex_);
     context_ = context;
+    departed_ = {};
+    ticks_ = 0;
     replaceTimer(timer_, context_, kWebrtcReapMs, &WebrtcPeers::onReap, this);
 }
 
@@ -74,6 +76,7 @@ Status WebrtcPeers::remove(const std::string &id)
         if (it == peers_.end())
             return makeError(ErrorCode::NotFound, "no WebRTC peer " + id);
         gone = *it;
+        retire(gone);
         peers_.erase(it);
     }
     log_(kLogInfo, "webrtc: peer " + id + " hung up");
@@ -90,14 +93,21 @@ void WebrtcPeers::push(GstSample *sample)
 gboolean WebrtcPeers::onReap(gpointer data)
 {
     auto *self = static_cast<WebrtcPeers *>(data);
-    std::vector<std::shared_ptr<WebrtcPeer>> gone;
+    std::vector<std::shared_ptr<WebrtcPeer>> gone, polled;
     {
         std::lock_guard lock(self->mutex_);
         auto failed = std::stable_partition(self->peers_.begin(), self->peers_.end(),
                                             [](const auto &peer) { return !peer->failed(); });
         gone.assign(failed, self->peers_.end());
         self->peers_.erase(failed, self->peers_.end());
+        for (const auto &peer : gone)
+            self->retire(peer);
+        if (++self->ticks_ % (kWebrtcStatsMs / kWebrtcReapMs) == 0)
+            polled = self->peers_;
     }
+    // get-stats only queues a task on webrtcbin's thread: the reply is kept by the peer when it comes.
+    for (const auto &peer : polled)
+        peer->pollStats();
     for (const auto &peer : gone)
         self->log_(kLogInfo, "webrtc: peer " + peer->id() + " (" + peer->address() +
                                  ") lost: its connection failed or its reports stopped");
@@ -111,9 +121,18 @@ EncodedSinkState WebrtcPeers::state() const
     out.key = "webrtc";
     out.describe = "/whep";
     std::lock_guard lock(mutex_);
-    for (const auto &peer : peers_)
-        out.clients.push_back({peer->address(), "webrtc", peer->since()});
+    out.peerTotals = departed_;
+    for (const auto &peer : peers_) {
+        const WebrtcPeerStats stats = peer->stats();
+        out.peers.push_back({peer->id(), peer->address(), peer->since(), stats});
+        out.peerTotals += stats;
+    }
     return out;
+}
+
+void WebrtcPeers::retire(const std::shared_ptr<WebrtcPeer> &peer)
+{
+    departed_ += peer->stats();
 }
 
 } // namespace overlayd::stream::gst

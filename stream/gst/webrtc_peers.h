@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // WebrtcPeers: the WHEP viewers of one engine, at most max_peers. add() negotiates outside the lock (the encoder's
 // thread keeps pushing to the others meanwhile); a timer on the engine's loop reaps the peers whose ICE or DTLS
-// failed or closed.
+// failed or closed, and polls their statistics.
 #pragma once
 
 #include <gst/gst.h>
@@ -38,6 +38,8 @@ public:
 
 private:
     static gboolean onReap(gpointer self);
+    // A peer leaving peers_: its last statistics join departed_ (the lock held).
+    void retire(const std::shared_ptr<WebrtcPeer> &peer);
 
     WebrtcOptions options_;
     EngineLog log_;
@@ -48,6 +50,8 @@ private:
     std::vector<std::shared_ptr<WebrtcPeer>> peers_;
     unsigned pending_ = 0; // negotiating: they count towards max_peers
     uint64_t nextId_ = 1;
+    WebrtcPeerStats departed_; // the sums of the peers gone since start()
+    unsigned ticks_ = 0;       // of the reap timer: every kWebrtcStatsMs of them, the peers' statistics are polled
 };
 
 } // namespace overlayd::stream::gst

@@ -72,18 +72,23 @@ class Chromium:
 
 
 class Page:
-    """One page target, reached through the browser's endpoint with a flat session."""
+    """One page target, reached through the browser's endpoint with a flat session: the browser's first page, or a
+    new tab opened at `url`."""
 
-    def __init__(self, browser_ws_url, timeout):
+    def __init__(self, browser_ws_url, timeout, url=None):
         self.ws = websocket.create_connection(browser_ws_url, timeout=timeout, suppress_origin=True)
         self.next_id = 0
         self.session = None
         self.problems = []  # uncaught exceptions and security errors (a CSP refusal, say) the page ran into
-        targets = self.call('Target.getTargets')['targetInfos']
-        pages = [t for t in targets if t['type'] == 'page']
-        if not pages:
-            raise BrowserError(f'no page target among {targets}')
-        self.session = self.call('Target.attachToTarget', targetId=pages[0]['targetId'], flatten=True)['sessionId']
+        if url is None:
+            targets = self.call('Target.getTargets')['targetInfos']
+            pages = [t for t in targets if t['type'] == 'page']
+            if not pages:
+                raise BrowserError(f'no page target among {targets}')
+            self.target = pages[0]['targetId']
+        else:
+            self.target = self.call('Target.createTarget', url=url)['targetId']
+        self.session = self.call('Target.attachToTarget', targetId=self.target, flatten=True)['sessionId']
         self.call('Page.enable')
         self.call('Runtime.enable')
         self.call('Log.enable')
@@ -160,6 +165,12 @@ class Page:
         with open(path, 'wb') as file:
             file.write(png)
         return png
+
+    def close_tab(self):
+        """Closes the tab as a user does (its pagehide runs), then the connection."""
+        self.session = None
+        self.call('Target.closeTarget', targetId=self.target)
+        self.close()
 
     def close(self):
         try:

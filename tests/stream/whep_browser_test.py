@@ -75,7 +75,8 @@ def peers(daemon):
     return None
 
 
-def main():
+def browser_arguments():
+    """(the arguments, the work folder made with no old browser profile); exits 77 without chromium."""
     parser = argparse.ArgumentParser()
     for option in ("--overlayd", "--workdir"):
         parser.add_argument(option, required=True)
@@ -87,6 +88,11 @@ def main():
     workdir = os.path.abspath(args.workdir)
     shutil.rmtree(os.path.join(workdir, "chrome"), ignore_errors=True)
     os.makedirs(workdir, exist_ok=True)
+    return args, workdir
+
+
+def main():
+    args, workdir = browser_arguments()
     port = daemon_fixture.free_port()
     config = os.path.join(workdir, "whep.toml")
     with open(config, "w", encoding="utf-8") as file:
@@ -97,7 +103,8 @@ def main():
         daemon.wait_ready()
         browser = Chromium(args.chromium, os.path.join(workdir, "chrome"), os.path.join(workdir, "chromium.log"))
         page = Page(browser.browser_url(20), timeout=15)
-        page.call("Page.navigate", url=daemon.base + "/")
+        # The daemon's origin, but not its page: the page makes a peer of its own (whep_page_test.py tests that one).
+        page.call("Page.navigate", url=daemon.base + "/state")
         page.wait_for("document.readyState === 'complete'", 10, "the page")
         answered = page.evaluate(CONNECT)
         check(answered.get("status") == 201, f"the browser's POST /whep: 201 ({json.dumps(answered)[:300]})")

@@ -5,6 +5,8 @@ the defaults) watched by an independent receiver built here with GStreamer's web
 - POST /whep with the receiver's offer answers 201, application/sdp, a Location /whep/ID, and an answer whose ICE
   candidates are host candidates only (no ice_servers);
 - the receiver decodes at least 60 frames of the stream's size, while /state lists one peer;
+- /state's peer shows webrtcbin's RTCP figures: packets sent (at least the receiver's own count of packets
+  received), the PLIs the receiver sent (it asks for keyframes here), a loopback round trip; /metrics the totals;
 - a second offer past max_peers = 1 is 503; DELETE of the Location hangs up (/state: no peers), DELETE again 404;
 - a receiver that stops without DELETE is reaped within 30 s (its RTCP source times out);
 - bad offers are 400 naming what is wrong (not SDP; no video; no H.264), a wrong Content-Type is 415;
@@ -29,7 +31,8 @@ try:
     gi.require_version("Gst", "1.0")
     gi.require_version("GstWebRTC", "1.0")
     gi.require_version("GstSdp", "1.0")
-    from gi.repository import Gst, GstSdp, GstWebRTC  # noqa: E402
+    gi.require_version("GstVideo", "1.0")
+    from gi.repository import Gst, GstSdp, GstVideo, GstWebRTC  # noqa: E402
 except (ImportError, ValueError) as error:
     # python3-gi is Debian's: only the system interpreter has it (CMake may have found another, a pyenv one).
     if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and os.path.exists("/usr/bin/python3"):
@@ -73,6 +76,7 @@ class Receiver:
         self.webrtc.set_property("bundle-policy", GstWebRTC.WebRTCBundlePolicy.MAX_BUNDLE)
         self.pipeline.add(self.webrtc)
         self.sink = None
+        self.source = None  # webrtcbin's src pad: where a keyframe request goes upstream, as a PLI
         caps = Gst.Caps.from_string("application/x-rtp,media=video,encoding-name=H264,payload=102,clock-rate=90000,"
                                     "packetization-mode=(string)1,profile-level-id=(string)42e01f")
         self.webrtc.emit("add-transceiver", GstWebRTC.WebRTCRTPTransceiverDirection.RECVONLY, caps)
@@ -88,6 +92,7 @@ class Receiver:
         self.pipeline.add(decode)
         decode.sync_state_with_parent()
         pad.link(decode.get_static_pad("sink"))
+        self.source = pad
         self.sink = decode.get_by_name("frames")
 
     def offer(self):
@@ -127,6 +132,27 @@ class Receiver:
             size = (structure.get_value("width"), structure.get_value("height"))
         return decoded, size
 
+    def ask_keyframe(self):
+        """What a decoder does after a loss: webrtcbin's RTP session sends it as a PLI."""
+        event = GstVideo.video_event_new_upstream_force_key_unit(Gst.CLOCK_TIME_NONE, False, 0)
+        return bool(self.source and self.source.send_event(event))
+
+    def packets_received(self):
+        """The receiver's own count, from its webrtcbin's inbound-rtp statistics."""
+        promise = Gst.Promise.new()
+        self.webrtc.emit("get-stats", None, promise)
+        promise.wait()
+        reply = promise.get_reply()
+        received = [0]
+
+        def add(_, value):
+            if isinstance(value, Gst.Structure) and value.get_name() == "inbound-rtp":
+                found, count = value.get_uint64("packets-received")
+                received[0] += count if found else 0
+            return True
+        reply.foreach(add)
+        return received[0]
+
     def stop(self):
         self.pipeline.set_state(Gst.State.NULL)
 
@@ -136,6 +162,47 @@ def peers(daemon):
         if sink.get("kind") == "webrtc":
             return len(sink.get("peers", []))
     return None
+
+
+def webrtc_sink(daemon):
+    return next((s for s in daemon.state().get("encoder", {}).get("sinks", []) if s.get("kind") == "webrtc"), {})
+
+
+def metric(base, name):
+    with urllib.request.urlopen(base + "/metrics", timeout=10) as answer:
+        for line in answer.read().decode().splitlines():
+            if line.startswith(name + " "):
+                return float(line.split()[-1])
+    return None
+
+
+def peer_stats(daemon, receiver):
+    """The peer's figures in /state against the receiver's own: polled every 2 s, RTCP every second or more."""
+    asked = 0
+    for _ in range(3):  # apart: the receiver's RTP session holds back PLIs that come too close together
+        asked += receiver.ask_keyframe()
+        time.sleep(1.2)
+    peer = {}
+    deadline = time.monotonic() + 15
+    while time.monotonic() < deadline:
+        peer = (webrtc_sink(daemon).get("peers") or [{}])[0]
+        if peer.get("rtt_s") is not None and peer.get("plis", 0) >= 1:
+            break
+        time.sleep(0.5)
+    received = receiver.packets_received()
+    time.sleep(2.5)  # one more poll: the daemon's count is from after the receiver's
+    peer = (webrtc_sink(daemon).get("peers") or [{}])[0]
+    sent = peer.get("packets_sent", 0)
+    check(received > 0 and sent >= received and peer.get("address", "").startswith("127.0.0.1")
+          and peer.get("since"), f"/state's peer {peer.get('id')} ({peer.get('address')}, since {peer.get('since')}):"
+          f" {sent} packets sent >= the {received} the receiver counted")
+    rtt = peer.get("rtt_s")
+    check(rtt is not None and 0 <= rtt < 0.5, f"its RTCP round trip on loopback: {rtt} s")
+    check(asked >= 1 and peer.get("plis", 0) >= 1 and peer.get("nacks", -1) >= 0,
+          f"the receiver asked for {asked} keyframes: {peer.get('plis')} PLIs, {peer.get('nacks')} NACKs in /state")
+    totals = {name: metric(daemon.base, f"overlayd_webrtc_{name}_total") for name in ("packets_sent", "plis")}
+    check(totals["packets_sent"] is not None and totals["packets_sent"] >= sent and
+          totals["plis"] is not None and totals["plis"] >= peer.get("plis", 0), f"/metrics totals {totals}")
 
 
 def vanished(daemon, whep):
@@ -220,6 +287,7 @@ def main():
         check(decoded >= FRAMES and size == (WIDTH, HEIGHT),
               f"the receiver decoded {decoded} frames (>= {FRAMES}) of {size} ({WIDTH}x{HEIGHT})")
         check(peers(daemon) == 1, f"/state lists one WebRTC peer ({peers(daemon)})")
+        peer_stats(daemon, receiver)
 
         status, _, body = request("POST", whep, offer)
         check(status == 503 and "max_peers" in body, f"an offer past max_peers = 1 is 503 ({status}: {body.strip()})")
