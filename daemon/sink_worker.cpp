@@ -144,7 +144,8 @@ void SinkWorker::threadMain()
     }
 }
 
-void SinkWorker::writeInline(const std::function<Status()> &write, bool leased)
+template <typename Write>
+void SinkWorker::writeInline(const Write &write, bool leased)
 {
     const auto start = std::chrono::steady_clock::now();
     const Status written = write();
