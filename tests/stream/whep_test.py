@@ -8,7 +8,7 @@ the defaults) watched by an independent receiver built here with GStreamer's web
 - /state's peer shows webrtcbin's RTCP figures: packets sent (at least the receiver's own count of packets
   received), the PLIs the receiver sent (it asks for keyframes here), a loopback round trip; /metrics the totals;
 - a second offer past max_peers = 1 is 503; DELETE of the Location hangs up (/state: no peers), DELETE again 404;
-- a receiver that stops without DELETE is reaped within 30 s (its RTCP source times out);
+- a receiver that stops without DELETE is reaped (its RTCP source times out: 25 s nominal, REAP_BOUND_S);
 - bad offers are 400 naming what is wrong (not SDP; no video; no H.264), a wrong Content-Type is 415;
 - /stream's credential rules: with a viewer token configured, no credential is 401, the viewer's token passes.
 
@@ -205,8 +205,14 @@ def peer_stats(daemon, receiver):
           totals["plis"] is not None and totals["plis"] >= peer.get("plis", 0), f"/metrics totals {totals}")
 
 
+# A vanished viewer is found by its RTCP source timing out: five RTCP intervals, 25 s nominal (25.6 s measured on a
+# quiet machine), up to 29.6 s with the machine loaded. The bound leaves room for a loaded CI machine; what is
+# promised (docs/streaming.md) is the nominal 25 s, and ICE consent freshness is not there yet.
+REAP_BOUND_S = 40
+
+
 def vanished(daemon, whep):
-    """A receiver that goes without DELETE (its pipeline stopped: no more RTCP) is reaped within 30 s."""
+    """A receiver that goes without DELETE (its pipeline stopped: no more RTCP) is reaped by its RTCP timeout."""
     receiver = Receiver()
     status, _, answer = request("POST", whep, receiver.offer())
     if status != 201:
@@ -216,7 +222,7 @@ def vanished(daemon, whep):
     decoded, _ = receiver.frames(10, 10)
     receiver.stop()  # no DELETE; its RTCP stops
     started = time.monotonic()
-    while peers(daemon) != 0 and time.monotonic() - started < 30:
+    while peers(daemon) != 0 and time.monotonic() - started < REAP_BOUND_S:
         time.sleep(0.5)
     check(decoded >= 10 and peers(daemon) == 0,
           f"a receiver gone without DELETE is reaped: {peers(daemon)} peers {time.monotonic() - started:.1f} s later")
