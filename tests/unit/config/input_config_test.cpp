@@ -11,14 +11,7 @@ using overlayd::test::loadValid;
 
 namespace {
 
-const std::string kScene = R"(
-[source]
-kind = "synthetic"
-width = 640
-height = 480
-[camera]
-position = [0.0, -6.0, 3.0]
-yaw = 90.0
+const std::string kScene = test::kMinimalConfig + R"(
 [[annotation]]
 type = "text"
 text = "gear {slot:gear}, {slot:status}"
