@@ -144,7 +144,7 @@ void SinkWorker::threadMain()
     }
 }
 
-template <typename Write>
+template<typename Write>
 void SinkWorker::writeInline(const Write &write, bool leased)
 {
     const auto start = std::chrono::steady_clock::now();

@@ -74,7 +74,7 @@ private:
     // The sink's write() or writeLease() on the caller's thread, timed and counted. A template rather than a
     // std::function: the call's captures (three references) would not fit std::function's own storage, and the
     // frame path allocates nothing in the steady state (tests/unit/daemon/steady_allocation_test.cpp).
-    template <typename Write>
+    template<typename Write>
     void writeInline(const Write &write, bool leased);
     // Counts one write of the sink's (the lock held).
     void count(const Status &written, std::chrono::steady_clock::duration elapsed, bool leased);

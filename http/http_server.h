@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "base/auth_failures.h"
 #include "base/logger.h"
 #include "base/result.h"
-#include "base/auth_failures.h"
 #include "http/credentials.h"
 #include "http/http_options.h"
 #include "http/jpeg_feed.h"

@@ -15,8 +15,8 @@
 
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
-#include "stream/pending_clients.h"
 #include "stream/gst/rtsp_access.h"
+#include "stream/pending_clients.h"
 
 namespace overlayd::stream::gst {
 
