@@ -15,7 +15,7 @@
 #include <sstream>
 #include <utility>
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 namespace {
 
@@ -145,4 +145,4 @@ Result<std::vector<Correspondence>> readPointsFile(const std::string &path)
     return parsePoints(text, path);
 }
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -15,7 +15,7 @@
 #include "alignment/pose_solver.h"
 #include "base/result.h"
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 inline constexpr size_t kMaxPointsFileBytes = 1 << 20; // either form; kMaxCorrespondences bounds the points
 inline constexpr size_t kQuotedFieldBytes = 32;        // how much of a refused field a message quotes
@@ -34,4 +34,4 @@ Result<std::vector<PointRow>> parsePointRows(const std::string &text, const std:
 // project's points: the world points of either form, their pixels (if any) ignored.
 Result<std::vector<glm::dvec3>> parseWorldPoints(const std::string &text, const std::string &name);
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 namespace {
 
@@ -148,4 +148,4 @@ Result<std::vector<Correspondence>> parsePointsJson(const std::string &text, con
     return points;
 }
 
-} // namespace overlayd::alignment
+} // namespace overlayd

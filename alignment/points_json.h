@@ -13,7 +13,7 @@
 #include "alignment/pose_solver.h"
 #include "base/result.h"
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 // Deeper nesting than a points file needs is refused before the parser sees it.
 inline constexpr int kMaxPointsJsonDepth = 3;
@@ -22,4 +22,4 @@ inline constexpr int kMaxPointsJsonDepth = 3;
 bool looksLikeJson(const std::string &text, const std::string &name);
 Result<std::vector<Correspondence>> parsePointsJson(const std::string &text, const std::string &name);
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -14,7 +14,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 namespace {
 
@@ -191,4 +191,4 @@ OpenCvExtrinsics openCvExtrinsicsOf(const Pose &pose)
     return {glm::dvec3(rvec[0], rvec[1], rvec[2]), flip * pose.translation};
 }
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -15,7 +15,7 @@
 #include "projection/distortion.h"
 #include "projection/pose.h"
 
-namespace overlayd::alignment {
+namespace overlayd {
 
 inline constexpr size_t kMinCorrespondences = 4, kMaxCorrespondences = 10000;
 inline constexpr double kLargeRmsPx = 2.0; // above this the result is reported with a warning
@@ -56,4 +56,4 @@ struct OpenCvExtrinsics {
 };
 OpenCvExtrinsics openCvExtrinsicsOf(const Pose &pose);
 
-} // namespace overlayd::alignment
+} // namespace overlayd

@@ -11,8 +11,6 @@
 
 namespace overlayd {
 
-namespace detail {
-
 Error calibrationError(const std::string &path, const std::string &what, unsigned line)
 {
     return makeError(ErrorCode::Malformed,
@@ -42,13 +40,11 @@ std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &
     return {};
 }
 
-} // namespace detail
-
 namespace {
 
 Error malformed(const std::string &path, const std::string &what)
 {
-    return detail::calibrationError(path, what);
+    return calibrationError(path, what);
 }
 
 Result<DistortionModel> pickModel(const std::string &path, std::string_view model, size_t count)
@@ -108,22 +104,21 @@ Result<Calibration> loadCalibrationText(const std::string &path, const std::stri
 {
     // cv::FileStorage reads the text as C strings and crashes (SIGSEGV) on a NUL byte in an XML file.
     if (const size_t nul = text.find('\0'); nul != std::string::npos)
-        return detail::calibrationError(path, "holds a NUL byte: not a text file",
-                                        unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
+        return calibrationError(path, "holds a NUL byte: not a text file",
+                                unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
     const std::string extension = std::filesystem::path(path).extension().string();
     // The content decides first: OpenCV's YAML header, then an XML declaration or the .xml name.
     const bool openCvYaml = text.starts_with("%YAML:");
     const bool xml = !openCvYaml && (extension == ".xml" || text.starts_with("<?xml"));
     // cv::FileStorage recurses once per level and overflows the stack on a few thousand; yaml-cpp stops at its own
     // limit with a message that does not say why ("bad file").
-    if (auto deep = config::findTooDeep(text, xml ? config::TextSyntax::Xml : config::TextSyntax::Yaml))
-        return detail::calibrationError(path,
-                                        "nested deeper than " + std::to_string(config::kMaxNestingDepth) +
-                                            " levels (a calibration file needs 3)",
-                                        deep->line);
+    if (auto deep = findTooDeep(text, xml ? TextSyntax::Xml : TextSyntax::Yaml))
+        return calibrationError(
+            path, "nested deeper than " + std::to_string(kMaxNestingDepth) + " levels (a calibration file needs 3)",
+            deep->line);
     if (xml)
-        return detail::loadOpenCvXmlCalibration(path, text);
-    return detail::loadYamlCalibration(path, text, openCvYaml);
+        return loadOpenCvXmlCalibration(path, text);
+    return loadYamlCalibration(path, text, openCvYaml);
 }
 
 Result<Calibration> loadCalibration(const std::string &path)

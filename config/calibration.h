@@ -28,7 +28,7 @@ inline constexpr size_t kMaxCoefficients = 14;
 // Reads `path`: .xml, or YAML starting with OpenCV's "%YAML:1.0" header, as OpenCV writes them (camera_matrix,
 // distortion_coefficients, image_width, image_height, optional distortion_model); other YAML as ROS camera_info
 // (image_width, image_height, camera_matrix, distortion_model, distortion_coefficients). The file must be a regular
-// file of at most kMaxCalibrationFileBytes, nest at most config::kMaxNestingDepth levels and name no key twice in a
+// file of at most kMaxCalibrationFileBytes, nest at most kMaxNestingDepth levels and name no key twice in a
 // mapping; each matrix's declared size is checked against what the field needs before its data is read. NotFound
 // for a missing file, Malformed (naming the file, the line where it can and the field) for anything that does not
 // parse, InvalidArgument or Io (naming the file) for what is not a calibration file at all. Never throws.
@@ -43,7 +43,6 @@ Result<Calibration> makeCalibration(const std::string &path, const std::array<do
                                     const std::vector<double> &coefficients, std::string_view model, int width,
                                     int height);
 
-namespace detail {
 // `text` is the file's content, already checked for size and depth. OpenCV's XML goes through tinyxml2, YAML
 // (OpenCV's %YAML:1.0 and ROS's) through yaml-cpp: both give every refusal its line, and neither loops forever
 // or crashes on malformed files as cv::FileStorage's parsers did (found by tests/fuzz/calibration_fuzz).
@@ -63,6 +62,5 @@ std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &
 
 // "calibration file PATH: what", and "calibration file PATH:LINE: what" when line (1-based) is known.
 Error calibrationError(const std::string &path, const std::string &what, unsigned line = 0);
-} // namespace detail
 
 } // namespace overlayd

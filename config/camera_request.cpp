@@ -64,7 +64,7 @@ void completeYawPitchRoll(nlohmann::json &body, const Pose &live)
 {
     constexpr std::string_view kYawPitchRoll[] = {"position", "yaw", "pitch", "roll"};
     size_t named = 0;
-    for (std::string_view key : config::kPoseKeys) {
+    for (std::string_view key : kPoseKeys) {
         const bool inForm =
             std::find(std::begin(kYawPitchRoll), std::end(kYawPitchRoll), key) != std::end(kYawPitchRoll);
         if (body.contains(key)) {
@@ -107,16 +107,16 @@ Result<CameraSpec> cameraFromJson(std::string_view json, const CameraSpec &live,
             return makeError(ErrorCode::InvalidArgument, "camera." + std::string(refused) +
                                                              ": not through the API: it names a file or frame of "
                                                              "the config file");
-    config::Problems problems("request");
-    config::TableReader camera(table, "camera", problems);
+    Problems problems("request");
+    TableReader camera(table, "camera", problems);
     CameraSpec spec = live;
     bool posed = false;
-    for (std::string_view key : config::kPoseKeys)
+    for (std::string_view key : kPoseKeys)
         posed = posed || table.contains(key);
     if (posed)
-        config::readPose(camera, spec.pose);
-    config::CameraKeys keys;
-    config::readIntrinsics(camera, ".", spec, keys);
+        readPose(camera, spec.pose);
+    CameraKeys keys;
+    readIntrinsics(camera, ".", spec, keys);
     camera.finish();
     if (problems.empty()) {
         if (auto built = spec.build(width, height); !built)

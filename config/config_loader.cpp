@@ -16,7 +16,6 @@
 
 namespace overlayd {
 
-namespace config {
 namespace {
 
 std::vector<std::string> frameNames(const std::vector<FrameSpec> &frames)
@@ -233,26 +232,25 @@ std::optional<std::string> readConfigText(const std::string &path, Problems &fou
 }
 
 } // namespace
-} // namespace config
 
 Result<DaemonConfig> loadConfigText(std::string_view text, const std::string &name, const std::string &baseDirectory,
                                     std::vector<ConfigProblem> &problems)
 {
     problems.clear();
-    config::Problems found(name);
+    Problems found(name);
     toml::table root;
-    if (!config::parseToml(text, name, root, found))
-        return config::summarize(found, problems);
-    return config::readRoot(root, name, baseDirectory, found, problems);
+    if (!parseToml(text, name, root, found))
+        return summarize(found, problems);
+    return readRoot(root, name, baseDirectory, found, problems);
 }
 
 Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigProblem> &problems)
 {
     problems.clear();
-    config::Problems found(path);
-    const auto text = config::readConfigText(path, found);
+    Problems found(path);
+    const auto text = readConfigText(path, found);
     if (!text)
-        return config::summarize(found, problems);
+        return summarize(found, problems);
     std::string base = std::filesystem::path(path).parent_path().string();
     base = base.empty() ? "." : base;
     const std::string dropInPath = liveDropInPath(path);
@@ -260,12 +258,11 @@ Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigP
     if (!std::filesystem::exists(dropInPath, absent))
         return loadConfigText(*text, path, base, problems);
     toml::table root, dropIn;
-    const auto dropInText = config::readConfigText(dropInPath, found);
-    if (!dropInText || !config::parseToml(*text, path, root, found) ||
-        !config::parseToml(*dropInText, dropInPath, dropIn, found))
-        return config::summarize(found, problems);
-    config::mergeDropIn(root, dropIn);
-    return config::readRoot(root, path, base, found, problems);
+    const auto dropInText = readConfigText(dropInPath, found);
+    if (!dropInText || !parseToml(*text, path, root, found) || !parseToml(*dropInText, dropInPath, dropIn, found))
+        return summarize(found, problems);
+    mergeDropIn(root, dropIn);
+    return readRoot(root, path, base, found, problems);
 }
 
 } // namespace overlayd

@@ -9,7 +9,7 @@
 #include "config/daemon_config.h"
 #include "config/toml_reader.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 class SceneImages;
 
@@ -33,27 +33,26 @@ std::string resolvePath(const std::string &baseDirectory, const std::string &pat
 void readDaemon(TableReader &root, DaemonSettings &out);
 void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
 // [[sink]]: the raw kinds into `out`, the encoded kinds (stream_config.cpp) into `encoded`.
-void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamOptions &encoded);
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, StreamOptions &encoded);
 // [encoder]: the one encode the encoded sinks share; an encoded [[sink]] (kind = "rtsp").
-void readEncoder(TableReader &root, stream::StreamOptions &out);
+void readEncoder(TableReader &root, StreamOptions &out);
 bool isEncodedSink(TableReader &sink);
-void readEncodedSink(TableReader &sink, stream::StreamOptions &out);
+void readEncodedSink(TableReader &sink, StreamOptions &out);
 // kind = "record" and kind = "push" (record_push_config.cpp); `sofar` holds the encoded sinks read before.
-void readRecord(TableReader &sink, const stream::StreamOptions &sofar, stream::RecordSinkOptions &out);
-void readPush(TableReader &sink, stream::PushSinkOptions &out);
+void readRecord(TableReader &sink, const StreamOptions &sofar, RecordSinkOptions &out);
+void readPush(TableReader &sink, PushSinkOptions &out);
 // [webrtc] (webrtc_config.cpp), after [http], which serves it.
-void readWebrtc(TableReader &root, bool httpEnabled, stream::WebrtcOptions &out);
+void readWebrtc(TableReader &root, bool httpEnabled, WebrtcOptions &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
-void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out);
+void readGpio(TableReader &root, const std::vector<Annotation> &annotations, GpioOptions &out);
 // [[input.text]] (after the annotations: their text slots are what inputs may feed).
-void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
-                inputs::InputOptions &out);
+void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene, InputOptions &out);
 // [http]: the server's options (see http/http_options.h).
-void readHttp(TableReader &root, const std::string &baseDirectory, http::HttpOptions &out);
+void readHttp(TableReader &root, const std::string &baseDirectory, HttpOptions &out);
 // An RTSP sink's `auth` and `tls` keys (rtsp_access_config.cpp); after [http], what they resolve to: its users and
 // tokens, its certificate.
-void readRtspAccess(TableReader &sink, stream::RtspAccessOptions &out);
-void resolveRtspAccess(TableReader &root, const http::HttpOptions &http, stream::StreamOptions &stream);
+void readRtspAccess(TableReader &sink, RtspAccessOptions &out);
+void resolveRtspAccess(TableReader &root, const HttpOptions &http, StreamOptions &stream);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
 // `used`, when given, learns which form the keys were in.
@@ -74,4 +73,4 @@ Shape readFrustumShape(TableReader &table, const std::string &baseDirectory);
 Shape readImageShape(TableReader &table, const std::string &baseDirectory, SceneImages &images);
 std::optional<Style> readStyle(TableReader &style, const Style &base);
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -30,10 +30,10 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
-    stream::StreamOptions stream; // [encoder] and the encoded [[sink]]s
-    gpio::GpioOptions gpio;
-    http::HttpOptions http;
-    inputs::InputOptions inputs;
+    StreamOptions stream; // [encoder] and the encoded [[sink]]s
+    GpioOptions gpio;
+    HttpOptions http;
+    InputOptions inputs;
     DaemonSettings daemon;
 };
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace overlayd::config {
+namespace overlayd {
 
 Shape readFrustumShape(TableReader &t, const std::string &baseDirectory)
 {
@@ -35,4 +35,4 @@ Shape readFrustumShape(TableReader &t, const std::string &baseDirectory)
     return s;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

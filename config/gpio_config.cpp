@@ -7,13 +7,13 @@
 
 #include "gpio/line_provider.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
 constexpr int64_t kMaxLineOffset = 65535; // the GPIO uAPI's line offsets are u32; no chip has more
 
-void readLine(TableReader &table, gpio::LineAddress &out)
+void readLine(TableReader &table, LineAddress &out)
 {
     if (auto chip = table.string("chip"); chip && !chip->empty())
         out.chip = *chip;
@@ -64,7 +64,7 @@ void checkMaskLayers(TableReader &table, std::string_view key, const std::vector
 
 // An input must switch something, and no layer both ways: shown only while the line is active and hidden while it
 // is, the layer could never be seen (layer_rules.h), whatever the line does.
-void checkSwitches(TableReader &input, const gpio::InputOptions &in)
+void checkSwitches(TableReader &input, const GpioInputOptions &in)
 {
     if (in.showLayers.empty() && in.hideLayers.empty()) {
         const char *given = input.has("show_layers") ? "show_layers" : input.has("hide_layers") ? "hide_layers" : "";
@@ -83,12 +83,12 @@ void checkSwitches(TableReader &input, const gpio::InputOptions &in)
 }
 
 struct Claim {
-    gpio::LineAddress line;
+    LineAddress line;
     std::string who;
 };
 
 // Two inputs or outputs on one line: the second is refused where it is written.
-void claimLine(TableReader &table, const gpio::LineAddress &line, const std::string &who, std::vector<Claim> &claims)
+void claimLine(TableReader &table, const LineAddress &line, const std::string &who, std::vector<Claim> &claims)
 {
     if (line.chip.empty())
         return;
@@ -102,25 +102,25 @@ void claimLine(TableReader &table, const gpio::LineAddress &line, const std::str
 }
 
 void readInput(TableReader &input, size_t index, const std::vector<Annotation> &annotations,
-               const std::vector<std::string> &layers, std::vector<Claim> &claims, gpio::InputOptions &out)
+               const std::vector<std::string> &layers, std::vector<Claim> &claims, GpioInputOptions &out)
 {
     out.name = input.string("name").value_or("gpio.input[" + std::to_string(index) + "]");
     readLine(input, out.line);
     if (auto low = input.boolean("active_low"))
         out.activeLow = *low;
-    if (auto bias = input.choice<gpio::Bias>("bias", {{"as-is", gpio::Bias::AsIs},
-                                                      {"disable", gpio::Bias::Disable},
-                                                      {"pull-up", gpio::Bias::PullUp},
-                                                      {"pull-down", gpio::Bias::PullDown}}))
+    if (auto bias = input.choice<Bias>("bias", {{"as-is", Bias::AsIs},
+                                                {"disable", Bias::Disable},
+                                                {"pull-up", Bias::PullUp},
+                                                {"pull-down", Bias::PullDown}}))
         out.bias = *bias;
-    if (auto debounce = input.integer("debounce_ms", 0, gpio::kMaxDebounceMs))
+    if (auto debounce = input.integer("debounce_ms", 0, kMaxDebounceMs))
         out.debounceMs = unsigned(*debounce);
-    if (auto show = input.strings("show_layers", gpio::kMaxLayersPerInput)) {
+    if (auto show = input.strings("show_layers", kMaxLayersPerInput)) {
         out.showLayers = *show;
         checkLayers(input, "show_layers", out.showLayers, layers);
         checkMaskLayers(input, "show_layers", out.showLayers, annotations);
     }
-    if (auto hide = input.strings("hide_layers", gpio::kMaxLayersPerInput)) {
+    if (auto hide = input.strings("hide_layers", kMaxLayersPerInput)) {
         out.hideLayers = *hide;
         checkLayers(input, "hide_layers", out.hideLayers, layers);
         checkMaskLayers(input, "hide_layers", out.hideLayers, annotations);
@@ -130,14 +130,14 @@ void readInput(TableReader &input, size_t index, const std::vector<Annotation> &
     input.finish();
 }
 
-void readOutput(TableReader &output, size_t index, std::vector<Claim> &claims, gpio::OutputOptions &out)
+void readOutput(TableReader &output, size_t index, std::vector<Claim> &claims, OutputOptions &out)
 {
     out.name = output.string("name").value_or("gpio.output[" + std::to_string(index) + "]");
     readLine(output, out.line);
-    if (auto signal = output.choice<gpio::OutputSignal>("signal", {{"streaming", gpio::OutputSignal::Streaming},
-                                                                   {"no-signal", gpio::OutputSignal::NoSignal},
-                                                                   {"error", gpio::OutputSignal::Error},
-                                                                   {"frame-toggle", gpio::OutputSignal::FrameToggle}}))
+    if (auto signal = output.choice<OutputSignal>("signal", {{"streaming", OutputSignal::Streaming},
+                                                             {"no-signal", OutputSignal::NoSignal},
+                                                             {"error", OutputSignal::Error},
+                                                             {"frame-toggle", OutputSignal::FrameToggle}}))
         out.signal = *signal;
     if (auto low = output.boolean("active_low"))
         out.activeLow = *low;
@@ -147,12 +147,12 @@ void readOutput(TableReader &output, size_t index, std::vector<Claim> &claims, g
 
 } // namespace
 
-void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpio::GpioOptions &out)
+void readGpio(TableReader &root, const std::vector<Annotation> &annotations, GpioOptions &out)
 {
     auto gpio = root.table("gpio");
     if (!gpio)
         return;
-    if (!gpio::haveLibgpiod()) { // refused here, so that check-config refuses what run could not do
+    if (!haveLibgpiod()) { // refused here, so that check-config refuses what run could not do
         root.problem("gpio", "this overlayd was built without GPIO lines (CMake option OVERLAYD_GPIOD, libgpiod): "
                              "[gpio] is not available");
         return;
@@ -162,8 +162,8 @@ void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpi
         if (std::find(layers.begin(), layers.end(), annotation.style.layer) == layers.end())
             layers.push_back(annotation.style.layer);
     std::vector<Claim> claims;
-    std::vector<TableReader> inputs = gpio->tables("input", gpio::kMaxInputs);
-    std::vector<TableReader> outputs = gpio->tables("output", gpio::kMaxOutputs);
+    std::vector<TableReader> inputs = gpio->tables("input", kMaxInputs);
+    std::vector<TableReader> outputs = gpio->tables("output", kMaxOutputs);
     for (size_t i = 0; i < inputs.size(); ++i)
         readInput(inputs[i], i, annotations, layers, claims, out.inputs.emplace_back());
     for (size_t i = 0; i < outputs.size(); ++i)
@@ -171,4 +171,4 @@ void readGpio(TableReader &root, const std::vector<Annotation> &annotations, gpi
     gpio->finish();
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -7,7 +7,7 @@
 
 #include "config/scene_images.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 Shape readImageShape(TableReader &table, const std::string &baseDirectory, SceneImages &images)
 {
@@ -46,4 +46,4 @@ Shape readImageShape(TableReader &table, const std::string &baseDirectory, Scene
     return s;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

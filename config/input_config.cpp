@@ -18,12 +18,12 @@
 #include "overlay/shapes/scene_checks.h"
 #include "overlay/shapes/text_tokens.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
 // The file an [[input.text]] or [[input.path]] watches: its folder must exist (the daemon watches the folder), and
-// what is at the path, if anything, must be a regular file (inputs::watchedFileProblem, as the watch refuses it).
+// what is at the path, if anything, must be a regular file (watchedFileProblem, as the watch refuses it).
 void readWatchedFile(TableReader &table, const std::string &baseDirectory, const std::string &missing, std::string &out)
 {
     const std::optional<std::string> file = table.string("file");
@@ -44,12 +44,12 @@ void readWatchedFile(TableReader &table, const std::string &baseDirectory, const
     if (!std::filesystem::is_directory(folder, error))
         table.problem("file", "the folder " + folder.string() +
                                   " does not exist (the file may appear later; its folder must be there)");
-    else if (const std::string problem = inputs::watchedFileProblem(out); !problem.empty())
+    else if (const std::string problem = watchedFileProblem(out); !problem.empty())
         table.problem("file", problem);
 }
 
 void readTextInput(TableReader &table, const std::string &baseDirectory, const std::vector<std::string> &slots,
-                   std::vector<std::string> &fed, inputs::TextInputOptions &out)
+                   std::vector<std::string> &fed, TextInputOptions &out)
 {
     if (auto slot = table.string("slot")) {
         out.slot = *slot;
@@ -66,13 +66,13 @@ void readTextInput(TableReader &table, const std::string &baseDirectory, const s
         table.problem("slot", "missing: the {slot:NAME} this file feeds");
     }
     readWatchedFile(table, baseDirectory, "the file another program writes", out.file);
-    if (auto bytes = table.integer("max_bytes", 1, int64_t(inputs::kMaxTextBytes)))
+    if (auto bytes = table.integer("max_bytes", 1, int64_t(kMaxInputTextBytes)))
         out.maxBytes = size_t(*bytes);
     table.finish();
 }
 
 void readPathInput(TableReader &table, const std::string &baseDirectory, const OverlayScene &scene,
-                   std::vector<std::string> &fed, inputs::PathInputOptions &out)
+                   std::vector<std::string> &fed, PathInputOptions &out)
 {
     if (auto name = table.string("annotation")) {
         out.annotation = *name;
@@ -101,7 +101,7 @@ void readPathInput(TableReader &table, const std::string &baseDirectory, const O
 
 // "ANNOTATION.steering" or "slot:NAME".
 void readCanTarget(TableReader &table, const OverlayScene &scene, const std::vector<std::string> &slots,
-                   std::vector<std::string> &fed, inputs::CanTarget &out)
+                   std::vector<std::string> &fed, CanTarget &out)
 {
     const std::optional<std::string> target = table.string("target");
     if (!target) {
@@ -110,11 +110,11 @@ void readCanTarget(TableReader &table, const OverlayScene &scene, const std::vec
         return;
     }
     if (target->starts_with("slot:")) {
-        out = {inputs::CanTarget::Kind::Slot, target->substr(5)};
+        out = {CanTarget::Kind::Slot, target->substr(5)};
         if (std::find(slots.begin(), slots.end(), out.name) == slots.end())
             table.problem("target", "no text annotation shows {slot:" + out.name + "}");
     } else if (target->ends_with(".steering")) {
-        out = {inputs::CanTarget::Kind::Steering, target->substr(0, target->size() - 9)};
+        out = {CanTarget::Kind::Steering, target->substr(0, target->size() - 9)};
         const auto annotation = std::find_if(scene.annotations.begin(), scene.annotations.end(),
                                              [&](const Annotation &a) { return a.name == out.name; });
         if (annotation == scene.annotations.end() || !std::holds_alternative<GuideLinesShape>(annotation->shape))
@@ -123,7 +123,7 @@ void readCanTarget(TableReader &table, const OverlayScene &scene, const std::vec
         table.problem("target", "expected \"GUIDE-LINES NAME.steering\" or \"slot:NAME\", got \"" + *target + "\"");
         return;
     }
-    const std::string key = (out.kind == inputs::CanTarget::Kind::Slot ? "slot:" : "steering:") + out.name;
+    const std::string key = (out.kind == CanTarget::Kind::Slot ? "slot:" : "steering:") + out.name;
     if (std::find(fed.begin(), fed.end(), key) != fed.end())
         table.problem("target", "'" + *target + "' is already fed by another input");
     fed.push_back(key);
@@ -132,35 +132,35 @@ void readCanTarget(TableReader &table, const OverlayScene &scene, const std::vec
 // What a slot target shows must be text a slot takes (checkSlotText, as SceneControl refuses it): the stale text,
 // and the unit after the shortest reading of [min, max] (a unit that does not fit then never shows). min >= max is
 // refused at max already.
-void checkSlotTexts(TableReader &table, const inputs::CanInputOptions &in)
+void checkSlotTexts(TableReader &table, const CanInputOptions &in)
 {
     if (Status stale = checkSlotText(in.staleText); !stale)
         table.problem("stale_text", "it could never show: " + stale.error().message);
-    if (in.target.kind != inputs::CanTarget::Kind::Slot || in.min >= in.max) // a steering target shows no unit
+    if (in.target.kind != CanTarget::Kind::Slot || in.min >= in.max) // a steering target shows no unit
         return;
-    const std::string shortest = inputs::canReadingText(std::clamp(0.0, in.min, in.max), in.decimals, in.unit);
+    const std::string shortest = canReadingText(std::clamp(0.0, in.min, in.max), in.decimals, in.unit);
     if (Status unit = checkSlotText(shortest); !unit)
         table.problem("unit", "no reading could show: " + unit.error().message);
 }
 
 void readCanInput(TableReader &table, const OverlayScene &scene, const std::vector<std::string> &slots,
-                  std::vector<std::string> &fed, inputs::CanInputOptions &out)
+                  std::vector<std::string> &fed, CanInputOptions &out)
 {
     out.name = table.string("name").value_or("");
     if (auto interface = table.string("interface")) {
         out.interface = *interface;
-        if (const std::string problem = inputs::canInterfaceProblem(*interface); !problem.empty())
+        if (const std::string problem = canInterfaceProblem(*interface); !problem.empty())
             table.problem("interface", problem); // what opening the socket would refuse
     } else if (!table.has("interface")) {
         table.problem("interface", "missing: the SocketCAN interface (e.g. can0)");
     }
     out.id.extended = table.boolean("id_extended").value_or(false);
-    const int64_t maxId = out.id.extended ? inputs::kMaxExtendedCanId : inputs::kMaxStandardCanId;
+    const int64_t maxId = out.id.extended ? kMaxExtendedCanId : kMaxStandardCanId;
     if (auto id = table.integer("id", 0, maxId))
         out.id.id = uint32_t(*id);
     else if (!table.has("id"))
         table.problem("id", "missing: the frame's CAN id (0..0x7FF, or up to 0x1FFFFFFF with id_extended = true)");
-    inputs::CanSignalLayout &layout = out.layout;
+    CanSignalLayout &layout = out.layout;
     const bool haveStart = table.has("start_bit") && table.has("length");
     layout.startBit = unsigned(table.integer("start_bit", 0, 63).value_or(0));
     layout.length = unsigned(table.integer("length", 1, 64).value_or(8));
@@ -175,7 +175,7 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
         table.problem("scale", "a scale of 0 makes every value the offset");
     layout.offset = table.number("offset", -kMaxCanValue, kMaxCanValue).value_or(0.0);
     if (haveStart)
-        if (const std::string problem = inputs::canLayoutProblem(layout); !problem.empty())
+        if (const std::string problem = canLayoutProblem(layout); !problem.empty())
             table.problem("start_bit", problem);
     out.unit = table.string("unit").value_or("");
     if (const auto problem = outsideTextProblem(out.unit))
@@ -184,7 +184,7 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
     out.max = table.number("max", -kMaxCanValue, kMaxCanValue).value_or(out.max);
     if (out.min >= out.max)
         table.problem("max", "max must be greater than min");
-    out.timeoutMs = int(table.integer("timeout_ms", 1, inputs::kMaxCanTimeoutMs).value_or(out.timeoutMs));
+    out.timeoutMs = int(table.integer("timeout_ms", 1, kMaxCanTimeoutMs).value_or(out.timeoutMs));
     out.step = table.number("step", 0.0, kMaxCanValue).value_or(out.step);
     out.decimals = int(table.integer("decimals", 0, 9).value_or(out.decimals));
     out.staleText = table.string("stale_text").value_or(out.staleText);
@@ -197,28 +197,27 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
 
 } // namespace
 
-void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
-                inputs::InputOptions &out)
+void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene, InputOptions &out)
 {
     auto input = root.table("input");
     if (!input)
         return;
     const std::vector<std::string> slots = textSlotNames(scene);
     std::vector<std::string> fed;
-    std::vector<TableReader> texts = input->tables("text", inputs::kMaxTextInputs);
+    std::vector<TableReader> texts = input->tables("text", kMaxTextInputs);
     for (size_t i = 0; i < texts.size(); ++i)
         readTextInput(texts[i], baseDirectory, slots, fed, out.text.emplace_back());
-    std::vector<TableReader> paths = input->tables("path", inputs::kMaxPathInputs);
+    std::vector<TableReader> paths = input->tables("path", kMaxPathInputs);
     std::vector<std::string> fedPaths;
     for (size_t i = 0; i < paths.size(); ++i)
         readPathInput(paths[i], baseDirectory, scene, fedPaths, out.paths.emplace_back());
     std::vector<std::string> fedByCan;
     for (const std::string &slot : fed)
         fedByCan.push_back("slot:" + slot);
-    std::vector<TableReader> cans = input->tables("can", inputs::kMaxCanInputs);
+    std::vector<TableReader> cans = input->tables("can", kMaxCanInputs);
     for (size_t i = 0; i < cans.size(); ++i)
         readCanInput(cans[i], scene, slots, fedByCan, out.can.emplace_back());
     input->finish();
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -8,7 +8,7 @@
 #include "config/calibration.h"
 #include "config/limits.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -179,7 +179,7 @@ void readDistortion(TableReader &camera, Distortion &out, CameraKeys &keys)
             table->problem("coefficients", "missing: a distortion model needs its coefficients");
         out = Distortion{*model, {}};
     }
-    if (auto coefficients = table->numbers("coefficients", kMaxCoefficients)) {
+    if (auto coefficients = table->numbers("coefficients", kMaxFixedListEntries)) {
         const size_t count = size_t(coefficientCount(out.model));
         if (coefficients->size() > count || (count == 0 && !coefficients->empty()))
             table->problem("coefficients", "model takes " + std::to_string(count) + " coefficients, got " +
@@ -266,4 +266,4 @@ void readViewport(TableReader &viewport, ViewportSpec &out)
     viewport.finish();
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -242,9 +242,9 @@ void putIntrinsicsForm(const CameraSpec &spec, toml::table &camera)
 // Every camera key the API or a calibration can set, so that nothing of the live camera is left to the main file.
 void putCamera(const CameraSpec &spec, toml::table &camera)
 {
-    for (std::string_view key : config::kPoseKeys)
+    for (std::string_view key : kPoseKeys)
         camera.erase(key);
-    for (std::string_view key : config::kIntrinsicsFormKeys)
+    for (std::string_view key : kIntrinsicsFormKeys)
         camera.erase(key);
     camera.erase("calibration"); // its pinhole and distortion are written out below
     putPose(spec, camera);
@@ -277,7 +277,7 @@ void putCamera(const CameraSpec &spec, toml::table &camera)
 
 Result<toml::table> parseExisting(std::string_view existing, const std::string &dropInName)
 {
-    if (auto deep = config::findTooDeep(existing, config::TextSyntax::Toml))
+    if (auto deep = findTooDeep(existing, TextSyntax::Toml))
         return makeError(ErrorCode::ConfigError,
                          dropInName + ":" + std::to_string(deep->line) + ": nested too deep; not saved over it");
     try {

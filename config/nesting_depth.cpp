@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <vector>
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -208,4 +208,4 @@ std::optional<TooDeep> findTooDeep(std::string_view text, TextSyntax syntax, siz
     return positionOf(text, *offset);
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

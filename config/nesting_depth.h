@@ -9,7 +9,7 @@
 #include <optional>
 #include <string_view>
 
-namespace overlayd::config {
+namespace overlayd {
 
 inline constexpr size_t kMaxNestingDepth = 64;
 
@@ -26,4 +26,4 @@ struct TooDeep {
 // Where the text first nests deeper than maxDepth levels; nullopt when it never does.
 std::optional<TooDeep> findTooDeep(std::string_view text, TextSyntax syntax, size_t maxDepth = kMaxNestingDepth);
 
-} // namespace overlayd::config
+} // namespace overlayd

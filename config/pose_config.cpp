@@ -8,7 +8,7 @@
 
 #include "projection/pose.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -200,4 +200,4 @@ bool readPose(TableReader &camera, Pose &out, PoseKeysUsed *used)
     return true;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

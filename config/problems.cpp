@@ -14,8 +14,6 @@ std::string ConfigProblem::format() const
     return out + message;
 }
 
-namespace config {
-
 void Problems::add(unsigned line, unsigned column, std::string key, std::string message, std::string file)
 {
     if (list_.size() >= kMaxListedProblems) {
@@ -86,5 +84,4 @@ std::string closestMatch(std::string_view word, const std::vector<std::string> &
     return bestDistance <= allowed ? best : std::string();
 }
 
-} // namespace config
 } // namespace overlayd

@@ -8,7 +8,7 @@
 
 #include "config/daemon_config.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 // The most problems one load lists: 10000 unknown keys still make a short answer (the rest are counted).
 inline constexpr size_t kMaxListedProblems = 100;
@@ -46,4 +46,4 @@ inline constexpr size_t kMaxSuggestionCandidates = 256;
 // The candidate closest to `word` when it is close enough to be a plausible typo, else empty.
 std::string closestMatch(std::string_view word, const std::vector<std::string> &candidates);
 
-} // namespace overlayd::config
+} // namespace overlayd

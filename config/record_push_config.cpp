@@ -6,10 +6,11 @@
 
 #include "config/config_sections.h"
 #include "stream/directory_segment_store.h"
+#include "stream/record_options.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
-using namespace overlayd::stream;
+using namespace overlayd;
 
 namespace {
 
@@ -67,4 +68,4 @@ void readPush(TableReader &sink, PushSinkOptions &out)
         sink.problem("url", "missing: rtsp://, rtmp:// or srt:// and the server");
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -6,9 +6,9 @@
 #include "http/credentials.h"
 #include "http/token_file.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
-using namespace overlayd::stream;
+using namespace overlayd;
 
 void readRtspAccess(TableReader &sink, RtspAccessOptions &out)
 {
@@ -23,24 +23,24 @@ namespace {
 
 // Every credential that may watch on [http]: its users (viewer and control alike) and its tokens under
 // kRtspTokenUser. The files were checked by readHttp, which reported any it could not read.
-std::vector<RtspUser> httpViewers(const http::HttpOptions &http)
+std::vector<RtspUser> httpViewers(const HttpOptions &http)
 {
     std::vector<RtspUser> out;
     if (!http.usersFile.empty())
-        if (auto users = http::readUsersFile(http.usersFile))
-            for (const http::BasicUser &user : *users)
+        if (auto users = readUsersFile(http.usersFile))
+            for (const BasicUser &user : *users)
                 out.push_back({user.name, user.password});
-    const bool controlToken = http.control == http::ControlMode::Token;
+    const bool controlToken = http.control == ControlMode::Token;
     for (const std::string &file : {controlToken ? http.tokenFile : std::string(), http.viewerTokenFile})
         if (!file.empty())
-            if (auto token = http::readTokenFile(file))
+            if (auto token = readTokenFile(file))
                 out.push_back({kRtspTokenUser, *token});
     return out;
 }
 
 } // namespace
 
-void resolveRtspAccess(TableReader &root, const http::HttpOptions &http, StreamOptions &stream)
+void resolveRtspAccess(TableReader &root, const HttpOptions &http, StreamOptions &stream)
 {
     for (EncodedSinkOptions &sink : stream.sinks) {
         if (sink.kind != EncodedSinkKind::Rtsp)
@@ -58,4 +58,4 @@ void resolveRtspAccess(TableReader &root, const http::HttpOptions &http, StreamO
     }
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

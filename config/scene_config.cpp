@@ -9,7 +9,7 @@
 #include "config/scene_images.h"
 #include "overlay/shapes/scene_checks.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -118,4 +118,4 @@ void readAnnotations(TableReader &root, const std::string &baseDirectory, std::v
     }
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

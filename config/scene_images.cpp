@@ -12,7 +12,7 @@
 #include "config/limits.h"
 #include "media/codec/image_codec.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -105,4 +105,4 @@ std::shared_ptr<const ImagePixels> SceneImages::load(TableReader &table, const s
     return image;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -10,7 +10,7 @@
 #include "config/toml_reader.h"
 #include "overlay/shapes/annotation.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 class SceneImages
 {
@@ -32,4 +32,4 @@ private:
     bool full_ = false;
 };
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -7,7 +7,7 @@
 
 #include "config/limits.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -115,7 +115,7 @@ Shape readLabel(TableReader &t)
 {
     LabelShape s;
     s.anchor = t.vec3("anchor").value_or(s.anchor);
-    s.text = t.string("text", kMaxTextBytes).value_or("");
+    s.text = t.string("text", kMaxAnnotationTextBytes).value_or("");
     s.offsetPx = t.vec2("offset_px").value_or(s.offsetPx);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
@@ -149,7 +149,7 @@ Shape readGuideLines(TableReader &t)
 Shape readScreenText(TableReader &t)
 {
     ScreenTextShape s;
-    s.text = t.string("text", kMaxTextBytes).value_or("");
+    s.text = t.string("text", kMaxAnnotationTextBytes).value_or("");
     s.position = t.vec2("position").value_or(s.position);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
@@ -247,4 +247,4 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
     table.ignoreRest(); // the shape keys cannot be judged without a known type
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

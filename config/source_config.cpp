@@ -15,7 +15,7 @@
 #include "media/frame.h"
 #include "media/pixel_format.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 namespace {
 
@@ -291,7 +291,7 @@ std::string outputIdentity(const std::string &path)
 // Output paths stay as written (relative to the daemon's working directory, where a user looks for them); only
 // inputs (replay files, calibrations) resolve against the config file's folder. Two sinks on one file (or both on
 // stdout) would interleave their frames into a file nothing reads: the second is refused at its path.
-void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamOptions &encoded)
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, StreamOptions &encoded)
 {
     std::map<std::string, std::string> writers; // output identity -> the first sink's key, "sink[0].path"
     std::string holder;                         // the sink with zero_copy = "on", "sink[0].zero_copy"
@@ -362,4 +362,4 @@ void readSinks(TableReader &root, std::vector<SinkOptions> &out, stream::StreamO
     }
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

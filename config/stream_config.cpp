@@ -10,9 +10,9 @@
 #include "stream/engine_loader.h"
 #include "stream/listen_check.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
-using namespace overlayd::stream;
+using namespace overlayd;
 
 namespace {
 
@@ -23,10 +23,10 @@ void readRtsp(TableReader &sink, RtspSinkOptions &out)
 {
     if (auto listen = sink.string("listen")) {
         out.listen = *listen;
-        auto address = http::parseListenAddress(*listen);
+        auto address = parseListenAddress(*listen);
         if (!address)
             sink.problem("listen", address.error().message);
-        else if (address->kind == http::ListenAddress::Kind::Unix)
+        else if (address->kind == ListenAddress::Kind::Unix)
             sink.problem("listen", "an RTSP server listens on HOST:PORT, not a unix socket");
         else if (auto free = checkListenable(address->host, address->port); !free)
             sink.problem("listen", free.error().message);
@@ -202,4 +202,4 @@ void readEncoder(TableReader &root, StreamOptions &out)
         checkEncoderThere(root, &*table, out);
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include "base/utf8.h"
 #include "config/limits.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 const char *typeName(const toml::node &node)
 {
@@ -450,4 +450,4 @@ std::vector<TableReader> TableReader::tables(std::string_view key, size_t maxCou
     return out;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

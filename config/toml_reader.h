@@ -21,7 +21,7 @@
 #include "config/problems.h"
 #include "media/rgba.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
 // The longest string without a narrower limit (paths: Linux's PATH_MAX).
 inline constexpr size_t kMaxStringBytes = 4096;
@@ -143,4 +143,4 @@ std::optional<E> TableReader::choice(std::string_view key, std::span<const std::
     return std::nullopt;
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -3,9 +3,9 @@
 // [encoder] table is optional, as for an RTSP sink); it is served on the HTTP server, so it needs [http].
 #include "config/config_sections.h"
 
-namespace overlayd::config {
+namespace overlayd {
 
-using namespace overlayd::stream;
+using namespace overlayd;
 
 void readWebrtc(TableReader &root, bool httpEnabled, WebrtcOptions &out)
 {
@@ -43,4 +43,4 @@ void readWebrtc(TableReader &root, bool httpEnabled, WebrtcOptions &out)
     table->finish();
 }
 
-} // namespace overlayd::config
+} // namespace overlayd

@@ -14,7 +14,7 @@
 
 #include <tinyxml2.h>
 
-namespace overlayd::detail {
+namespace overlayd {
 
 namespace {
 
@@ -198,4 +198,4 @@ Result<Calibration> loadOpenCvXmlCalibration(const std::string &path, const std:
     }
 }
 
-} // namespace overlayd::detail
+} // namespace overlayd

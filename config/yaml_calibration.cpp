@@ -9,7 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-namespace overlayd::detail {
+namespace overlayd {
 
 namespace {
 
@@ -168,4 +168,4 @@ Result<Calibration> loadYamlCalibration(const std::string &path, const std::stri
     }
 }
 
-} // namespace overlayd::detail
+} // namespace overlayd

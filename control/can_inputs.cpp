@@ -24,12 +24,12 @@ const char *CanInputs::stateName(State state)
     return "?";
 }
 
-void CanInputs::configure(const std::vector<inputs::CanInputOptions> &options)
+void CanInputs::configure(const std::vector<CanInputOptions> &options)
 {
     EventLoop *loop = loop_;
     attachLoop(nullptr);
     std::vector<Input> next;
-    for (const inputs::CanInputOptions &option : options) {
+    for (const CanInputOptions &option : options) {
         auto same = std::find_if(inputs_.begin(), inputs_.end(), [&](const Input &input) {
             return input.options == option && !input.options.name.empty();
         });
@@ -37,8 +37,7 @@ void CanInputs::configure(const std::vector<inputs::CanInputOptions> &options)
             next.push_back(std::move(*same));
             same->options.name.clear(); // taken
         } else {
-            inputs::InputHealth health("can", option.name, option.interface, inputs::InputHealth::State::Waiting,
-                                       Clock::now());
+            InputHealth health("can", option.name, option.interface, InputHealth::State::Waiting, Clock::now());
             next.push_back(Input{option, std::nullopt, {}, {}, std::nullopt, false, std::move(health)});
         }
     }
@@ -100,7 +99,7 @@ void CanInputs::open(size_t input, Clock::time_point now)
 {
     Input &in = inputs_[input];
     in.nextOpen = now + kRetry;
-    auto socket = inputs::CanSocket::open(in.options.interface, in.options.id);
+    auto socket = CanSocket::open(in.options.interface, in.options.id);
     if (!socket) {
         if (socket.error().message != in.reading.error) { // once per new reason, not every second
             logger_.warning(cat("input.can '", in.options.name, "': ", socket.error().message, " (retrying)"));
@@ -112,7 +111,7 @@ void CanInputs::open(size_t input, Clock::time_point now)
     in.socket = std::move(*socket);
     in.reading.connected = true;
     in.reading.error.clear();
-    in.health.enter(inputs::InputHealth::State::Following, now);
+    in.health.enter(InputHealth::State::Following, now);
     logger_.info(cat("input.can '", in.options.name, "': reading ", in.options.interface));
     wire(input, true);
 }
@@ -124,7 +123,7 @@ void CanInputs::close(size_t input, const std::string &why, Clock::time_point no
     in.socket.reset();
     in.reading.connected = false;
     in.reading.error = why;
-    in.health.enter(inputs::InputHealth::State::Waiting, now);
+    in.health.enter(InputHealth::State::Waiting, now);
     in.health.fail(why);
     in.nextOpen = now + kRetry;
     logger_.warning(cat("input.can '", in.options.name, "': ", why, " (retrying)"));
@@ -132,7 +131,7 @@ void CanInputs::close(size_t input, const std::string &why, Clock::time_point no
 
 void CanInputs::readAll(size_t input)
 {
-    inputs::CanFrame frame;
+    CanFrame frame;
     for (int n = 0; n < kMaxFramesPerWake && inputs_[input].socket; ++n) {
         auto got = inputs_[input].socket->read(frame);
         if (!got) {
@@ -145,12 +144,12 @@ void CanInputs::readAll(size_t input)
     }
 }
 
-void CanInputs::onFrame(size_t input, const inputs::CanFrame &frame, Clock::time_point now)
+void CanInputs::onFrame(size_t input, const CanFrame &frame, Clock::time_point now)
 {
     Input &in = inputs_[input];
     Reading &r = in.reading;
     ++r.frames;
-    const std::optional<double> value = inputs::canDecode(in.options.layout, frame.bytes());
+    const std::optional<double> value = canDecode(in.options.layout, frame.bytes());
     if (!value) { // too few data bytes for the signal (a wrong DLC)
         ++r.malformed;
         return;
@@ -189,14 +188,13 @@ void CanInputs::show(size_t input, bool force)
     if (!force && in.everShown && value.has_value() == in.shown.has_value() &&
         (!value || *value == *in.shown || std::abs(*value - *in.shown) < in.options.step))
         return; // nothing the target shows would change (a steady wheel costs nothing)
-    const inputs::CanTarget &target = in.options.target;
+    const CanTarget &target = in.options.target;
     Status applied = Ok{};
-    if (target.kind == inputs::CanTarget::Kind::Steering)
+    if (target.kind == CanTarget::Kind::Steering)
         applied = scene_.apply(SteeringChange{target.name, value});
     else
-        applied = scene_.apply(
-            TextChange{target.name, value ? inputs::canReadingText(*value, in.options.decimals, in.options.unit)
-                                          : in.options.staleText});
+        applied = scene_.apply(TextChange{
+            target.name, value ? canReadingText(*value, in.options.decimals, in.options.unit) : in.options.staleText});
     if (!applied) {
         logger_.warning(cat("input.can '", in.options.name, "': ", applied.error().message));
         return;
@@ -207,9 +205,9 @@ void CanInputs::show(size_t input, bool force)
     in.everShown = true;
 }
 
-std::vector<inputs::InputHealth> CanInputs::health() const
+std::vector<InputHealth> CanInputs::health() const
 {
-    std::vector<inputs::InputHealth> out;
+    std::vector<InputHealth> out;
     for (const Input &in : inputs_)
         out.push_back(in.health);
     return out;
@@ -222,8 +220,8 @@ std::string CanInputs::describe(Clock::time_point now) const
         const Reading &r = in.reading;
         out += out.empty() ? "" : ", ";
         out += cat(in.options.name, "=");
-        out += r.state == State::NoData ? std::string("-")
-                                        : inputs::canReadingText(r.value, in.options.decimals, in.options.unit);
+        out +=
+            r.state == State::NoData ? std::string("-") : canReadingText(r.value, in.options.decimals, in.options.unit);
         out += cat(" ", stateName(r.state));
         if (r.state != State::NoData)
             out += cat(" age ", std::chrono::duration_cast<std::chrono::milliseconds>(now - r.received).count(), " ms");
@@ -239,16 +237,15 @@ void CanInputs::report(StatusReport &report) const
 {
     using nlohmann::json;
     for (const Input &in : inputs_) {
-        const inputs::CanInputOptions &options = in.options;
+        const CanInputOptions &options = in.options;
         const Reading &reading = in.reading;
         const bool any = reading.state != State::NoData;
         json entry = {{"kind", "can"},
                       {"name", options.name},
                       {"interface", options.interface},
                       {"id", options.id.id},
-                      {"target", options.target.kind == inputs::CanTarget::Kind::Slot
-                                     ? "slot:" + options.target.name
-                                     : options.target.name + ".steering"},
+                      {"target", options.target.kind == CanTarget::Kind::Slot ? "slot:" + options.target.name
+                                                                              : options.target.name + ".steering"},
                       {"value", any ? json(reading.value) : json(nullptr)},
                       {"unit", options.unit},
                       {"state", stateName(reading.state)},

@@ -32,14 +32,14 @@ public:
 
     // Takes the inputs of a (re)loaded config; an input identical to one already running keeps its socket and
     // its value. Opening sockets happens on the next tick (never fails the config).
-    void configure(const std::vector<inputs::CanInputOptions> &options);
+    void configure(const std::vector<CanInputOptions> &options);
     // Shows every input's current state on its target again (a new scene was loaded).
     void showAll();
     // Adds the sockets and the tick timer to the loop (null: removes them).
     void attachLoop(EventLoop *loop);
 
     // A frame as its socket delivered it; a tick ages values and retries sockets. Public for tests.
-    void onFrame(size_t input, const inputs::CanFrame &frame, Clock::time_point now);
+    void onFrame(size_t input, const CanFrame &frame, Clock::time_point now);
     void tick(Clock::time_point now);
 
     enum class State { NoData, Ok, Stale, OutOfRange };
@@ -53,11 +53,11 @@ public:
         std::string error; // why the socket is not open
     };
     size_t size() const { return inputs_.size(); }
-    const inputs::CanInputOptions &options(size_t input) const { return inputs_[input].options; }
+    const CanInputOptions &options(size_t input) const { return inputs_[input].options; }
     const Reading &reading(size_t input) const { return inputs_[input].reading; }
     static const char *stateName(State state);
     // Each input's health: following while its socket is open, waiting while the interface is missing or down.
-    std::vector<inputs::InputHealth> health() const;
+    std::vector<InputHealth> health() const;
     // Its entries in /state and its samples in /metrics.
     void report(StatusReport &report) const override;
     // "steering=40.0 deg ok, ..." for the stats log line.
@@ -65,13 +65,13 @@ public:
 
 private:
     struct Input {
-        inputs::CanInputOptions options;
-        std::optional<inputs::CanSocket> socket;
+        CanInputOptions options;
+        std::optional<CanSocket> socket;
         Reading reading;
         Clock::time_point nextOpen;
         std::optional<double> shown; // what the target shows (nullopt: unknown); unset before the first show
         bool everShown = false;
-        inputs::InputHealth health;
+        InputHealth health;
     };
     void open(size_t input, Clock::time_point now);
     void close(size_t input, const std::string &why, Clock::time_point now);

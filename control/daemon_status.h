@@ -29,7 +29,7 @@ public:
     // their entries appear.
     virtual std::vector<const StatusReporter *> reporters() const = 0;
     // The encoded stream running now (null: none), which WHEP's peers join.
-    virtual std::shared_ptr<stream::EncodedStream> encodedStream() const { return nullptr; }
+    virtual std::shared_ptr<EncodedStream> encodedStream() const { return nullptr; }
 
 protected:
     ~DaemonStatus() = default;

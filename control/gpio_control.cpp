@@ -71,7 +71,7 @@ GpioControl::~GpioControl()
 
 Status GpioControl::requestInput(Input &input)
 {
-    const gpio::InputOptions &o = input.options;
+    const GpioInputOptions &o = input.options;
     auto line = provider_->requestInput({o.line, o.activeLow, o.bias}, kConsumer);
     if (!line)
         return makeError(line.error().code, "gpio input '" + o.name + "': " + line.error().message);
@@ -91,7 +91,7 @@ Status GpioControl::requestInput(Input &input)
 
 Status GpioControl::requestOutput(Output &output)
 {
-    const gpio::OutputOptions &o = output.options;
+    const OutputOptions &o = output.options;
     output.level = wanted(output);
     auto line = provider_->requestOutput({o.line, o.activeLow, output.level}, kConsumer);
     if (!line)
@@ -100,7 +100,7 @@ Status GpioControl::requestOutput(Output &output)
     return Ok{};
 }
 
-Status GpioControl::configure(const gpio::GpioOptions &options)
+Status GpioControl::configure(const GpioOptions &options)
 {
     if (!provider_)
         return makeError(ErrorCode::InvalidArgument, "gpio: no line provider");
@@ -111,7 +111,7 @@ Status GpioControl::configure(const gpio::GpioOptions &options)
         retry_.emplace(std::move(*timer));
     }
     wire(false);
-    std::vector<gpio::InputOptions> previousInputs;
+    std::vector<GpioInputOptions> previousInputs;
     for (const Input &input : inputs_)
         previousInputs.push_back(input.options);
     std::vector<Input> inputs;
@@ -144,13 +144,13 @@ Status GpioControl::configure(const gpio::GpioOptions &options)
 
 void GpioControl::applyLayers()
 {
-    std::vector<gpio::InputOptions> options;
+    std::vector<GpioInputOptions> options;
     std::vector<bool> active;
     for (const Input &input : inputs_) {
         options.push_back(input.options);
         active.push_back(input.settled);
     }
-    for (const auto &[layer, visible] : gpio::layerVisibility(options, active)) {
+    for (const auto &[layer, visible] : layerVisibility(options, active)) {
         const auto last = applied_.find(layer);
         if (layersApplied_ && last != applied_.end() && last->second == visible)
             continue;
@@ -259,13 +259,13 @@ void GpioControl::onRetry()
 bool GpioControl::wanted(const Output &output) const
 {
     switch (output.options.signal) {
-    case gpio::OutputSignal::Streaming:
+    case OutputSignal::Streaming:
         return state_ == State::Streaming;
-    case gpio::OutputSignal::NoSignal:
+    case OutputSignal::NoSignal:
         return state_ == State::Waiting;
-    case gpio::OutputSignal::Error:
+    case OutputSignal::Error:
         return failedLastFrame_;
-    case gpio::OutputSignal::FrameToggle:
+    case OutputSignal::FrameToggle:
         return output.level;
     }
     return false;
@@ -295,7 +295,7 @@ void GpioControl::onState(State state)
 bool GpioControl::wantsSinkFailures() const
 {
     for (const Output &output : outputs_)
-        if (output.options.signal == gpio::OutputSignal::Error)
+        if (output.options.signal == OutputSignal::Error)
             return true;
     return false;
 }
@@ -306,7 +306,7 @@ void GpioControl::onFrameDelivered(uint64_t sinkFailures)
     sinkFailures_ = sinkFailures;
     state_ = State::Streaming;
     for (Output &output : outputs_)
-        drive(output, output.options.signal == gpio::OutputSignal::FrameToggle ? !output.level : wanted(output));
+        drive(output, output.options.signal == OutputSignal::FrameToggle ? !output.level : wanted(output));
 }
 
 void GpioControl::shutdown()

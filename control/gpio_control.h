@@ -30,12 +30,12 @@ public:
     ~GpioControl();
 
     // The provider the lines come from (libgpiod, or a fake in tests); set before the first configure().
-    void setProvider(std::unique_ptr<gpio::LineProvider> provider) { provider_ = std::move(provider); }
+    void setProvider(std::unique_ptr<LineProvider> provider) { provider_ = std::move(provider); }
 
     // Requests the lines of `options`, keeping those whose options did not change and releasing the rest. All or
     // nothing: on failure the previous lines are held again and the error names the line (and who holds it). Input
     // states are read, not assumed; call applyLayers() once the scene that names their layers is loaded.
-    Status configure(const gpio::GpioOptions &options);
+    Status configure(const GpioOptions &options);
     // Every layer the inputs decide, set through SceneControl (all of them after configure, then only changes).
     void applyLayers();
     // Adds the input fds and timers to the loop (null: removes them).
@@ -63,14 +63,14 @@ public:
 
 private:
     struct Input {
-        gpio::InputOptions options;
-        std::unique_ptr<gpio::InputLine> line; // null while lost
+        GpioInputOptions options;
+        std::unique_ptr<InputLine> line; // null while lost
         std::optional<Timer> debounce;
         bool settled = false;
     };
     struct Output {
-        gpio::OutputOptions options;
-        std::unique_ptr<gpio::OutputLine> line; // null while lost
+        OutputOptions options;
+        std::unique_ptr<OutputLine> line; // null while lost
         bool level = false;
     };
 
@@ -86,7 +86,7 @@ private:
 
     Logger &logger_;
     SceneControl &scene_;
-    std::unique_ptr<gpio::LineProvider> provider_;
+    std::unique_ptr<LineProvider> provider_;
     std::vector<Input> inputs_;
     std::vector<Output> outputs_;
     std::map<std::string, bool> applied_; // the layer visibility last set

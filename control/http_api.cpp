@@ -25,8 +25,6 @@
 namespace overlayd {
 
 namespace {
-
-using http::HttpResponse;
 using nlohmann::json;
 
 constexpr size_t kMaxApiPoints = 4096; // /api/project and /api/unproject, per request
@@ -146,11 +144,11 @@ std::optional<std::vector<double>> numberList(const std::string &text)
 
 } // namespace
 
-HttpApi::HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<http::HttpCounters()> counters)
+HttpApi::HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<HttpCounters()> counters)
     : scene_(scene), status_(status), counters_(std::move(counters))
 {}
 
-HttpResponse HttpApi::handle(const http::HttpRequest &request)
+HttpResponse HttpApi::handle(const HttpRequest &request)
 {
     const std::string &path = request.path;
     const bool get = request.method == "GET" || request.method == "HEAD";
@@ -220,7 +218,7 @@ HttpResponse HttpApi::state()
     json slots = json::object();
     for (const std::string &slot : textSlotNames(scene.scene()))
         slots[slot] = scene.slotText(slot);
-    const http::HttpCounters http = counters_();
+    const HttpCounters http = counters_();
     const unsigned width = format.format ? format.width : config.source.width;
     const unsigned height = format.format ? format.height : config.source.height;
     json out = {
@@ -253,7 +251,7 @@ HttpResponse HttpApi::state()
 
 HttpResponse HttpApi::metrics()
 {
-    const http::HttpCounters http = counters_();
+    const HttpCounters http = counters_();
     const auto now = std::chrono::steady_clock::now();
     StatusReport report(now);
     report.metric("overlayd_uptime_seconds", "gauge", "Seconds since the daemon started.",
@@ -285,7 +283,7 @@ void HttpApi::addParts(StatusReport &report) const
     for (const StatusReporter *reporter : status_.reporters())
         reporter->report(report);
 }
-HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
+HttpResponse HttpApi::putCamera(const HttpRequest &request)
 {
     SceneControl &scene = scene_;
     const StreamFormat &format = status_.streamFormat();
@@ -299,7 +297,7 @@ HttpResponse HttpApi::putCamera(const http::HttpRequest &request)
     return HttpResponse::json(200, writeJson(cameraJson(scene.camera(), scene.cameraFor(width, height))));
 }
 
-HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest &request)
+HttpResponse HttpApi::putLayer(const std::string &layer, const HttpRequest &request)
 {
     SceneControl &scene = scene_;
     const auto names = scene.layerNames();
@@ -321,7 +319,7 @@ HttpResponse HttpApi::putLayer(const std::string &layer, const http::HttpRequest
     return HttpResponse::json(200, writeJson(json({{"name", layer}, {"visible", visible}})));
 }
 
-HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &request)
+HttpResponse HttpApi::putText(const std::string &slot, const HttpRequest &request)
 {
     const auto slots = textSlotNames(scene_.scene());
     if (std::find(slots.begin(), slots.end(), slot) == slots.end())
@@ -337,7 +335,7 @@ HttpResponse HttpApi::putText(const std::string &slot, const http::HttpRequest &
     return HttpResponse::json(200, writeJson(json({{"slot", slot}, {"text", text}})));
 }
 
-HttpResponse HttpApi::project(const http::HttpRequest &request)
+HttpResponse HttpApi::project(const HttpRequest &request)
 {
     const auto it = request.query.find("points");
     const auto numbers = it == request.query.end() ? std::nullopt : numberList(it->second);
@@ -356,7 +354,7 @@ HttpResponse HttpApi::project(const http::HttpRequest &request)
     return HttpResponse::json(200, projectJson(*camera, world));
 }
 
-HttpResponse HttpApi::unproject(const http::HttpRequest &request)
+HttpResponse HttpApi::unproject(const HttpRequest &request)
 {
     const auto body = parseJsonBody(request.body);
     if (!body)

@@ -18,19 +18,19 @@ class HttpApi
 {
 public:
     // counters: the server's, for /state and /metrics (the server is created after the API it calls).
-    HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<http::HttpCounters()> counters);
+    HttpApi(SceneControl &scene, const DaemonStatus &status, std::function<HttpCounters()> counters);
 
-    http::HttpResponse handle(const http::HttpRequest &request);
+    HttpResponse handle(const HttpRequest &request);
 
 private:
-    http::HttpResponse state();
-    http::HttpResponse metrics();
-    http::HttpResponse putCamera(const http::HttpRequest &request);
-    http::HttpResponse putLayer(const std::string &layer, const http::HttpRequest &request);
-    http::HttpResponse putText(const std::string &slot, const http::HttpRequest &request);
-    http::HttpResponse project(const http::HttpRequest &request);
-    http::HttpResponse unproject(const http::HttpRequest &request);
-    http::HttpResponse save();
+    HttpResponse state();
+    HttpResponse metrics();
+    HttpResponse putCamera(const HttpRequest &request);
+    HttpResponse putLayer(const std::string &layer, const HttpRequest &request);
+    HttpResponse putText(const std::string &slot, const HttpRequest &request);
+    HttpResponse project(const HttpRequest &request);
+    HttpResponse unproject(const HttpRequest &request);
+    HttpResponse save();
     double measuredFps();
     // What every part the daemon lists (sinks, GPIO, each kind of input) reports of itself, after what `report`
     // holds already.
@@ -38,7 +38,7 @@ private:
 
     SceneControl &scene_;
     const DaemonStatus &status_;
-    std::function<http::HttpCounters()> counters_;
+    std::function<HttpCounters()> counters_;
     const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
     // fps measured between two samples at least a second apart
     std::chrono::steady_clock::time_point sampleTime_ = started_;

@@ -5,7 +5,7 @@ namespace overlayd {
 
 namespace {
 
-Status encodeInto(std::optional<JpegEncoder> &encoder, http::JpegFeed &feed, int quality, const FrameView &frame,
+Status encodeInto(std::optional<JpegEncoder> &encoder, JpegFeed &feed, int quality, const FrameView &frame,
                   const FrameMetadata &metadata, bool raw)
 {
     if (!encoder) {

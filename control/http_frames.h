@@ -16,7 +16,7 @@ namespace overlayd {
 class JpegFeedSink : public FrameSink
 {
 public:
-    JpegFeedSink(http::JpegFeed &feed, const std::atomic<int> &quality) : feed_(feed), quality_(quality) {}
+    JpegFeedSink(JpegFeed &feed, const std::atomic<int> &quality) : feed_(feed), quality_(quality) {}
 
     Status open(const StreamFormat &) override { return Ok{}; }
     Status write(const FrameView &frame, const FrameMetadata &metadata) override;
@@ -24,7 +24,7 @@ public:
     std::string describe() const override { return "http jpeg"; }
 
 private:
-    http::JpegFeed &feed_;
+    JpegFeed &feed_;
     const std::atomic<int> &quality_;
     std::optional<JpegEncoder> encoder_; // made on the worker thread's first frame
 };
@@ -34,11 +34,11 @@ private:
 class RawSnapshotTap
 {
 public:
-    RawSnapshotTap(http::JpegFeed &feed, const std::atomic<int> &quality) : feed_(feed), quality_(quality) {}
+    RawSnapshotTap(JpegFeed &feed, const std::atomic<int> &quality) : feed_(feed), quality_(quality) {}
     void operator()(const FrameView &frame, const FrameMetadata &metadata);
 
 private:
-    http::JpegFeed &feed_;
+    JpegFeed &feed_;
     const std::atomic<int> &quality_;
     std::optional<JpegEncoder> encoder_;
 };

@@ -9,10 +9,10 @@ namespace {
 
 constexpr size_t kMaxLoggedBodyBytes = 512; // of a change's request and answer, in its log line
 
-http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
+JpegFeed &feedOrAbort(std::unique_ptr<JpegFeed> &feed)
 {
     if (!feed) {
-        auto created = http::JpegFeed::create();
+        auto created = JpegFeed::create();
         // An eventfd that cannot be made means the process is out of fds at start-up: nothing else would work.
         if (!created)
             std::abort();
@@ -24,7 +24,7 @@ http::JpegFeed &feedOrAbort(std::unique_ptr<http::JpegFeed> &feed)
 } // namespace
 
 HttpFront::HttpFront(Logger &logger, SceneControl &scene, const DaemonStatus &status)
-    : logger_(logger), api_(scene, status, [this] { return server_ ? server_->counters() : http::HttpCounters{}; }),
+    : logger_(logger), api_(scene, status, [this] { return server_ ? server_->counters() : HttpCounters{}; }),
       rawTap_(feedOrAbort(feed_), quality_)
 {}
 
@@ -33,19 +33,19 @@ HttpFront::~HttpFront()
     removeFromLoop();
 }
 
-Result<std::unique_ptr<http::HttpServer>> HttpFront::startServer(const http::HttpOptions &options)
+Result<std::unique_ptr<HttpServer>> HttpFront::startServer(const HttpOptions &options)
 {
-    return http::HttpServer::start(
+    return HttpServer::start(
         options, *feed_,
-        [this](const http::HttpRequest &request) {
-            http::HttpResponse response = api_.handle(request);
+        [this](const HttpRequest &request) {
+            HttpResponse response = api_.handle(request);
             logChange(request, response);
             return response;
         },
         logger_);
 }
 
-void HttpFront::logChange(const http::HttpRequest &request, const http::HttpResponse &response)
+void HttpFront::logChange(const HttpRequest &request, const HttpResponse &response)
 {
     // A change (PUT) or a save, whoever made it and what it was; a refused one at info, with why.
     const bool save = request.method == "POST" && request.path == "/api/save";
@@ -62,11 +62,11 @@ void HttpFront::logChange(const http::HttpRequest &request, const http::HttpResp
         logger_.info(cat("http: ", what, " refused (", response.status, "): ", quotable(answer, kMaxLoggedBodyBytes)));
 }
 
-Status HttpFront::configure(const http::HttpOptions &options)
+Status HttpFront::configure(const HttpOptions &options)
 {
     if (options == options_ && (server_ != nullptr) == options.enabled)
         return Ok{};
-    http::HttpOptions sameCertificate = options;
+    HttpOptions sameCertificate = options;
     sameCertificate.tls = options_.tls;
     if (server_ && !options.tls.empty() && sameCertificate == options_) { // renewed: open streams go on
         if (Status renewed = server_->replaceCertificate(options.tls); !renewed)
@@ -84,7 +84,7 @@ Status HttpFront::configure(const http::HttpOptions &options)
         }
     }
     // The old server lets go of its address first: the new one usually listens on the same.
-    const http::HttpOptions previous = options_;
+    const HttpOptions previous = options_;
     const bool wasRunning = server_ != nullptr;
     removeFromLoop();
     server_.reset();

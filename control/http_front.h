@@ -24,7 +24,7 @@ public:
 
     // Starts the server, restarts it when the options changed, or stops it (options.enabled false). A server that
     // cannot start (the port is taken, the token unreadable) is an error, and the server that ran keeps running.
-    Status configure(const http::HttpOptions &options);
+    Status configure(const HttpOptions &options);
     bool running() const { return server_ != nullptr; }
     // Adds the server's fds to the loop (null: removes them).
     void attachLoop(EventLoop *loop);
@@ -37,21 +37,21 @@ public:
     void onRawFrame(const FrameView &frame, const FrameMetadata &metadata) { rawTap_(frame, metadata); }
 
 private:
-    Result<std::unique_ptr<http::HttpServer>> startServer(const http::HttpOptions &options);
+    Result<std::unique_ptr<HttpServer>> startServer(const HttpOptions &options);
     // The log line of a control request that changes something (PUT, POST /api/save): who and what.
-    void logChange(const http::HttpRequest &request, const http::HttpResponse &response);
+    void logChange(const HttpRequest &request, const HttpResponse &response);
     void addToLoop();
     void removeFromLoop();
     void pump(); // libmicrohttpd's work, then its next deadline on the timer
 
     Logger &logger_;
     std::atomic<int> quality_{80};
-    std::unique_ptr<http::JpegFeed> feed_;
+    std::unique_ptr<JpegFeed> feed_;
     std::optional<Timer> timeout_, tick_;
     HttpApi api_;
     RawSnapshotTap rawTap_;
-    std::unique_ptr<http::HttpServer> server_;
-    http::HttpOptions options_;
+    std::unique_ptr<HttpServer> server_;
+    HttpOptions options_;
     EventLoop *loop_ = nullptr;
     int watchedFd_ = -1; // the server's epoll fd while in the loop
 };

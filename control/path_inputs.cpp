@@ -6,14 +6,13 @@
 
 namespace overlayd {
 
-Status PathInputs::configure(const std::vector<inputs::PathInputOptions> &options)
+Status PathInputs::configure(const std::vector<PathInputOptions> &options)
 {
-    std::vector<inputs::TextFileWatch> watches;
+    std::vector<TextFileWatch> watches;
     std::vector<Reading> readings;
     std::vector<std::string> names;
-    for (const inputs::PathInputOptions &input : options) {
-        auto watch = inputs::TextFileWatch::open(input.file, inputs::kMaxPathFileBytes,
-                                                 inputs::TextFileWatch::Reread::WhenComplete);
+    for (const PathInputOptions &input : options) {
+        auto watch = TextFileWatch::open(input.file, kMaxPathFileBytes, TextFileWatch::Reread::WhenComplete);
         if (!watch)
             return makeError(watch.error().code, "input.path '" + input.annotation + "': " + watch.error().message);
         watches.push_back(std::move(*watch));
@@ -34,13 +33,12 @@ void PathInputs::showAll()
 void PathInputs::show(size_t input)
 {
     Reading &reading = readings_[input];
-    const std::string content = files_[input].readPrefix(inputs::kMaxPathFileBytes);
+    const std::string content = files_[input].readPrefix(kMaxPathFileBytes);
     Result<std::vector<glm::dvec3>> points =
-        content.size() > inputs::kMaxPathFileBytes
-            ? Result<std::vector<glm::dvec3>>(
-                  makeError(ErrorCode::Malformed,
-                            reading.file + ": more than " + std::to_string(inputs::kMaxPathFileBytes) + " bytes"))
-            : inputs::parsePointList(content, reading.file);
+        content.size() > kMaxPathFileBytes
+            ? Result<std::vector<glm::dvec3>>(makeError(
+                  ErrorCode::Malformed, reading.file + ": more than " + std::to_string(kMaxPathFileBytes) + " bytes"))
+            : parsePointList(content, reading.file);
     Status applied = points ? scene_.apply(PointsChange{reading.annotation, *points}) : Status(points.error());
     if (!applied) {
         reading.error = applied.error().message;

@@ -27,7 +27,7 @@ public:
     // Watches every file (replacing the previous watches); showAll() then shows what each holds (after a reload's
     // new scene is in place, which may be the first to have the annotations). A folder that cannot be watched is an
     // error, and the previous watches stay.
-    Status configure(const std::vector<inputs::PathInputOptions> &options);
+    Status configure(const std::vector<PathInputOptions> &options);
     // Shows every file's points again (a new scene was loaded).
     void showAll();
     void attachLoop(EventLoop *loop) { files_.attachLoop(loop); }
@@ -40,7 +40,7 @@ public:
     };
     const std::vector<Reading> &readings() const { return readings_; }
     // Each input's health: following its file or waiting for its folder, and its last error.
-    const std::vector<inputs::InputHealth> &health() const { return files_.health(); }
+    const std::vector<InputHealth> &health() const { return files_.health(); }
     // Its entries in /state and its samples in /metrics.
     void report(StatusReport &report) const override;
 

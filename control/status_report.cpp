@@ -64,20 +64,20 @@ void StatusReport::input(json entry, const std::string &error)
     add("inputs", std::move(entry));
 }
 
-void StatusReport::health(const inputs::InputHealth &input)
+void StatusReport::health(const InputHealth &input)
 {
     add("input_health",
         {{"kind", input.kind},
          {"name", input.name},
          {"source", input.source},
-         {"state", inputs::inputStateName(input.state)},
+         {"state", inputStateName(input.state)},
          {"state_age_s", std::chrono::duration<double>(now_ - input.since).count()},
          {"errors", input.errors},
          {"last_error", input.lastError.empty() ? json(nullptr) : json(input.lastError)},
          {"last_error_at", input.lastError.empty() ? json(nullptr) : json(utcTime(input.lastErrorAt))}});
     const std::string labels = label("kind", input.kind) + "," + label("input", input.name);
     metric("overlayd_input_following", "gauge", "1 while an input follows its file or interface, 0 while it waits.",
-           input.state == inputs::InputHealth::State::Following ? 1.0 : 0.0, labels);
+           input.state == InputHealth::State::Following ? 1.0 : 0.0, labels);
     metric("overlayd_input_errors_total", "counter",
            "Errors an input met (its folder or interface gone, a version refused).", double(input.errors), labels);
 }

@@ -35,7 +35,7 @@ public:
     // An "inputs" entry, with `error` (why the input's last value was refused) when there is one.
     void input(nlohmann::json entry, const std::string &error);
     // One input's health, the same for every kind of input: an "input_health" entry and its two metrics.
-    void health(const inputs::InputHealth &input);
+    void health(const InputHealth &input);
 
     // `key="value"` with the value quoted as JSON quotes it (the text format's escapes are JSON's).
     static std::string label(const std::string &key, const std::string &value);

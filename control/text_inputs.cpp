@@ -5,13 +5,13 @@
 
 namespace overlayd {
 
-Status TextInputs::configure(const std::vector<inputs::TextInputOptions> &options)
+Status TextInputs::configure(const std::vector<TextInputOptions> &options)
 {
-    std::vector<inputs::TextFileWatch> watches;
+    std::vector<TextFileWatch> watches;
     std::vector<Reading> readings;
     std::vector<std::string> names;
-    for (const inputs::TextInputOptions &input : options) {
-        auto watch = inputs::TextFileWatch::open(input.file, input.maxBytes);
+    for (const TextInputOptions &input : options) {
+        auto watch = TextFileWatch::open(input.file, input.maxBytes);
         if (!watch)
             return makeError(watch.error().code, "input.text '" + input.slot + "': " + watch.error().message);
         watches.push_back(std::move(*watch));

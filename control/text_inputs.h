@@ -25,7 +25,7 @@ public:
 
     // Watches every file (replacing the watches of the previous config) and shows what each holds now. A folder
     // that cannot be watched is an error, and the previous watches stay.
-    Status configure(const std::vector<inputs::TextInputOptions> &options);
+    Status configure(const std::vector<TextInputOptions> &options);
     // Puts every file's current line into its slot again (a new scene was loaded).
     void showAll();
     // Adds the watches' fds to the loop (null: removes them).
@@ -38,7 +38,7 @@ public:
     };
     const std::vector<Reading> &readings() const { return readings_; }
     // Each input's health: following its file or waiting for its folder, and its last error.
-    const std::vector<inputs::InputHealth> &health() const { return files_.health(); }
+    const std::vector<InputHealth> &health() const { return files_.health(); }
     // Its entries in /state and its samples in /metrics.
     void report(StatusReport &report) const override;
 

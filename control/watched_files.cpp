@@ -7,14 +7,14 @@
 
 namespace overlayd {
 
-void WatchedFiles::replace(std::vector<inputs::TextFileWatch> watches, const std::vector<std::string> &names)
+void WatchedFiles::replace(std::vector<TextFileWatch> watches, const std::vector<std::string> &names)
 {
-    std::vector<inputs::InputHealth> health;
-    const auto now = inputs::InputHealth::Clock::now();
+    std::vector<InputHealth> health;
+    const auto now = InputHealth::Clock::now();
     for (size_t i = 0; i < watches.size(); ++i) {
-        inputs::InputHealth next{kind_, names[i], watches[i].path(), inputs::InputHealth::State::Following, now};
-        const auto before = std::find_if(health_.begin(), health_.end(),
-                                         [&](const inputs::InputHealth &old) { return old.sameInput(next); });
+        InputHealth next{kind_, names[i], watches[i].path(), InputHealth::State::Following, now};
+        const auto before =
+            std::find_if(health_.begin(), health_.end(), [&](const InputHealth &old) { return old.sameInput(next); });
         if (before != health_.end())
             next.keepHistory(*before);
         health.push_back(std::move(next));
@@ -34,11 +34,11 @@ void WatchedFiles::attachLoop(EventLoop *loop)
 
 void WatchedFiles::onEvent(size_t file)
 {
-    inputs::TextFileWatch &watch = watches_[file];
+    TextFileWatch &watch = watches_[file];
     const bool changed = watch.consume();
-    inputs::InputHealth &health = health_[file];
+    InputHealth &health = health_[file];
     const std::string input = cat("input.", kind_, " '", health.name, "': ");
-    if (health.enter(watch.following() ? inputs::InputHealth::State::Following : inputs::InputHealth::State::Waiting)) {
+    if (health.enter(watch.following() ? InputHealth::State::Following : InputHealth::State::Waiting)) {
         if (watch.following()) {
             logger_.info(cat(input, "following ", watch.path(), " again"));
         } else {
@@ -64,7 +64,7 @@ void WatchedFiles::wire(bool add)
 
 void WatchedFiles::report(StatusReport &report) const
 {
-    for (const inputs::InputHealth &input : health_)
+    for (const InputHealth &input : health_)
         report.health(input);
 }
 

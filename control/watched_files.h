@@ -27,7 +27,7 @@ public:
 
     // Swaps in new watches, one per input, named as its table names it (the caller opened every one, so that one
     // that fails leaves the old ones in place). An input watched before keeps its error count and last error.
-    void replace(std::vector<inputs::TextFileWatch> watches, const std::vector<std::string> &names);
+    void replace(std::vector<TextFileWatch> watches, const std::vector<std::string> &names);
     // Adds the watches' fds to the loop (null: removes them).
     void attachLoop(EventLoop *loop);
     // What the loop runs when a watch's fd is readable; public for tests.
@@ -36,8 +36,8 @@ public:
     void fail(size_t file, const std::string &message) { health_[file].fail(message); }
 
     size_t size() const { return watches_.size(); }
-    const inputs::TextFileWatch &operator[](size_t file) const { return watches_[file]; }
-    const std::vector<inputs::InputHealth> &health() const { return health_; }
+    const TextFileWatch &operator[](size_t file) const { return watches_[file]; }
+    const std::vector<InputHealth> &health() const { return health_; }
     // Each file's health in /state and /metrics.
     void report(StatusReport &report) const;
 
@@ -47,8 +47,8 @@ private:
     Logger &logger_;
     std::string kind_;
     Changed changed_;
-    std::vector<inputs::TextFileWatch> watches_;
-    std::vector<inputs::InputHealth> health_;
+    std::vector<TextFileWatch> watches_;
+    std::vector<InputHealth> health_;
     EventLoop *loop_ = nullptr;
 };
 

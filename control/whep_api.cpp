@@ -5,8 +5,6 @@
 namespace overlayd {
 namespace {
 
-using http::HttpResponse;
-
 HttpResponse fromError(const Error &error)
 {
     switch (error.code) {
@@ -30,7 +28,7 @@ bool isWhepPath(const std::string &path)
            (path.starts_with(kWhepPath) && path.size() > kWhepPath.size() + 1 && path[kWhepPath.size()] == '/');
 }
 
-HttpResponse handleWhep(const DaemonStatus &status, const http::HttpRequest &request)
+HttpResponse handleWhep(const DaemonStatus &status, const HttpRequest &request)
 {
     const bool collection = request.path == kWhepPath;
     if (collection && request.method != "POST")

@@ -12,7 +12,7 @@ inline constexpr std::string_view kWhepPath = "/whep";
 
 // Whether `path` is WHEP's (/whep or /whep/ID).
 bool isWhepPath(const std::string &path);
-// On the loop thread; POST waits for the answer, at most stream::kWhepAnswerTimeout.
-http::HttpResponse handleWhep(const DaemonStatus &status, const http::HttpRequest &request);
+// On the loop thread; POST waits for the answer, at most kWhepAnswerTimeout.
+HttpResponse handleWhep(const DaemonStatus &status, const HttpRequest &request);
 
 } // namespace overlayd

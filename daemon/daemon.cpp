@@ -134,7 +134,7 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
     std::vector<std::unique_ptr<SinkWorker>> sinks;
     std::vector<SinkOptions> all = config.sinks;
     std::vector<std::string> notices;
-    stream::StreamOptions streamOptions = config.stream;
+    StreamOptions streamOptions = config.stream;
     if (auto limited = limitZeroCopy(all, notices); !limited) {
         status = limited;
         return {};
@@ -157,7 +157,7 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
         sinks.push_back(std::make_unique<SinkWorker>(http_.makeSink(), HttpFront::sinkOptions(), logger_));
     builtStream_ = keepStream ? stream_ : nullptr;
     if (config.stream.enabled() && !keepStream) {
-        const stream::EngineLog log = [this](int level, const std::string &message) {
+        const EngineLog log = [this](int level, const std::string &message) {
             // syslog priorities, as the engine numbers them
             logger_.log(level <= 3   ? LogLevel::Error
                         : level == 4 ? LogLevel::Warning
@@ -172,7 +172,7 @@ std::vector<std::unique_ptr<SinkWorker>> Daemon::buildSinks(const DaemonConfig &
             status = makeError(engine.error().code, key + ": " + engine.error().message);
             return {};
         }
-        builtStream_ = std::make_shared<stream::EncodedStream>(streamOptions, std::move(*engine));
+        builtStream_ = std::make_shared<EncodedStream>(streamOptions, std::move(*engine));
         builtStream_->setLog(log);
         SinkOptions encoder;
         encoder.name = kEncoderSinkName;

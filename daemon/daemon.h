@@ -69,7 +69,7 @@ public:
     const StreamFormat &streamFormat() const override { return pipeline_.format(); }
     uint64_t framesIn() const override { return pipeline_.framesIn(); }
     std::vector<const StatusReporter *> reporters() const override;
-    std::shared_ptr<stream::EncodedStream> encodedStream() const override { return stream_; }
+    std::shared_ptr<EncodedStream> encodedStream() const override { return stream_; }
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
     const GpioControl &gpio() const { return gpio_; }
@@ -122,7 +122,7 @@ private:
     PathInputs pathInputs_; // after scene_, whose polylines and markers it feeds
     CanInputs canInputs_;   // after scene_, whose guide lines and slots it feeds
     // The encoded outputs the running sinks feed, and those buildSinks() made for sinks not yet switched in.
-    std::shared_ptr<stream::EncodedStream> stream_, builtStream_;
+    std::shared_ptr<EncodedStream> stream_, builtStream_;
     EncodedStreamReport streamReport_{stream_}; // reports whichever encoded stream runs, or nothing
     HttpFront http_;                            // after everything its API reads
 

@@ -21,18 +21,18 @@ std::string utcText(std::chrono::system_clock::time_point when)
 }
 
 // Every stage's histogram, capture first: "blended", then the engine's.
-std::vector<std::pair<std::string, stream::LatencyHistogram>> stages(const stream::EncodedStreamState &state)
+std::vector<std::pair<std::string, LatencyHistogram>> stages(const EncodedStreamState &state)
 {
-    std::vector<std::pair<std::string, stream::LatencyHistogram>> all{{"blended", state.blended}};
+    std::vector<std::pair<std::string, LatencyHistogram>> all{{"blended", state.blended}};
     all.insert(all.end(), state.engine.latency.begin(), state.engine.latency.end());
     return all;
 }
 
 // A WebRTC sink's peers with their RTCP figures (rtt_s null before the first receiver report).
-nlohmann::json webrtcPeers(const std::vector<stream::WebrtcPeerState> &peers)
+nlohmann::json webrtcPeers(const std::vector<WebrtcPeerState> &peers)
 {
     nlohmann::json out = nlohmann::json::array();
-    for (const stream::WebrtcPeerState &peer : peers)
+    for (const WebrtcPeerState &peer : peers)
         out.push_back({{"id", peer.id},
                        {"address", peer.address},
                        {"transport", "webrtc"},
@@ -44,9 +44,9 @@ nlohmann::json webrtcPeers(const std::vector<stream::WebrtcPeerState> &peers)
     return out;
 }
 
-void reportWebrtcTotals(StatusReport &report, const stream::EncodedSinkState &sink)
+void reportWebrtcTotals(StatusReport &report, const EncodedSinkState &sink)
 {
-    const stream::WebrtcPeerStats &totals = sink.peerTotals;
+    const WebrtcPeerStats &totals = sink.peerTotals;
     report.metric("overlayd_webrtc_peers", "gauge", "WebRTC (WHEP) viewers connected.", double(sink.peers.size()));
     report.metric("overlayd_webrtc_packets_sent_total", "counter",
                   "RTP packets sent to WebRTC viewers (departed ones included), as webrtcbin counts them.",
@@ -63,12 +63,12 @@ void EncodedStreamReport::report(StatusReport &report) const
 {
     if (!running_)
         return;
-    const stream::EncodedStreamState state = running_->state();
-    const stream::EngineState &engine = state.engine;
+    const EncodedStreamState state = running_->state();
+    const EngineState &engine = state.engine;
     nlohmann::json sinks = nlohmann::json::array();
-    for (const stream::EncodedSinkState &sink : engine.sinks) {
+    for (const EncodedSinkState &sink : engine.sinks) {
         nlohmann::json clients = nlohmann::json::array();
-        for (const stream::RtspClientState &client : sink.clients)
+        for (const RtspClientState &client : sink.clients)
             clients.push_back(
                 {{"address", client.address}, {"transport", client.transport}, {"since", utcText(client.since)}});
         nlohmann::json entry = {{"kind", sink.kind}, {"sink", sink.key}, {"url", sink.describe}};
@@ -136,7 +136,7 @@ void EncodedStreamReport::report(StatusReport &report) const
     report.metric("overlayd_encoder_zero_copy_total", "counter",
                   "Frames the encoder took as the capture buffer's DMABUF, not copied.", double(state.feed.zeroCopy),
                   label);
-    for (const stream::EncodedSinkState &sink : engine.sinks) {
+    for (const EncodedSinkState &sink : engine.sinks) {
         const std::string sinkLabel =
             StatusReport::label("sink", sink.key) + "," + StatusReport::label("url", sink.describe);
         if (sink.kind == "webrtc")
@@ -180,10 +180,10 @@ void EncodedStreamReport::report(StatusReport &report) const
     for (const auto &[stage, histogram] : stages(state)) {
         const std::string stageLabel = StatusReport::label("stage", stage);
         uint64_t cumulative = 0;
-        for (size_t i = 0; i <= stream::LatencyHistogram::kBounds.size(); ++i) {
+        for (size_t i = 0; i <= LatencyHistogram::kBounds.size(); ++i) {
             cumulative += histogram.counts[i];
-            const std::string bound = i < stream::LatencyHistogram::kBounds.size()
-                                          ? nlohmann::json(stream::LatencyHistogram::kBounds[i]).dump()
+            const std::string bound = i < LatencyHistogram::kBounds.size()
+                                          ? nlohmann::json(LatencyHistogram::kBounds[i]).dump()
                                           : std::string("+Inf");
             report.sample(family, "histogram", help, family + "_bucket", double(cumulative),
                           stageLabel + ",le=\"" + bound + "\"");

@@ -15,12 +15,12 @@ class EncodedStreamReport final : public StatusReporter
 {
 public:
     // Reads whichever stream `running` holds when asked (the daemon swaps it on a reload); none: reports nothing.
-    explicit EncodedStreamReport(const std::shared_ptr<stream::EncodedStream> &running) : running_(running) {}
+    explicit EncodedStreamReport(const std::shared_ptr<EncodedStream> &running) : running_(running) {}
 
     void report(StatusReport &report) const override;
 
 private:
-    const std::shared_ptr<stream::EncodedStream> &running_;
+    const std::shared_ptr<EncodedStream> &running_;
 };
 
 } // namespace overlayd

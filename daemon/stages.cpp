@@ -35,9 +35,9 @@ bool wantsZeroCopy(const DaemonConfig &config)
         if (sink.kind == SinkKind::V4l2Output && sink.zeroCopy != ZeroCopy::Off)
             return true;
     // A V4L2 encoder may import them as well ([encoder] zero_copy); a software encoder only ever gets copies.
-    const stream::EncoderOptions &encoder = config.stream.encoder;
-    return config.stream.enabled() && encoder.zeroCopy != stream::EncoderZeroCopy::Off &&
-           (encoder.kind == stream::EncoderKind::V4l2 || encoder.kind == stream::EncoderKind::Auto);
+    const EncoderOptions &encoder = config.stream.encoder;
+    return config.stream.enabled() && encoder.zeroCopy != EncoderZeroCopy::Off &&
+           (encoder.kind == EncoderKind::V4l2 || encoder.kind == EncoderKind::Auto);
 }
 
 Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices)
@@ -68,19 +68,19 @@ Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &
     return Ok{};
 }
 
-Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, stream::EncoderOptions &encoder,
+Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, EncoderOptions &encoder,
                             std::vector<std::string> &notices)
 {
     const auto keeper = std::find_if(sinks.begin(), sinks.end(), [](const SinkOptions &s) {
         return s.kind == SinkKind::V4l2Output && s.zeroCopy != ZeroCopy::Off;
     });
-    if (keeper == sinks.end() || encoder.zeroCopy == stream::EncoderZeroCopy::Off)
+    if (keeper == sinks.end() || encoder.zeroCopy == EncoderZeroCopy::Off)
         return Ok{};
-    if (encoder.zeroCopy == stream::EncoderZeroCopy::On)
+    if (encoder.zeroCopy == EncoderZeroCopy::On)
         return makeError(ErrorCode::ConfigError,
                          "[encoder] zero_copy = \"on\" and sink " + keeper->path +
                              " (zero_copy not \"off\"): only one can hold the camera's buffers");
-    encoder.zeroCopy = stream::EncoderZeroCopy::Off;
+    encoder.zeroCopy = EncoderZeroCopy::Off;
     notices.push_back("encoder: copying (zero_copy \"auto\"): " + keeper->path + " already takes the camera's buffers");
     return Ok{};
 }
@@ -110,8 +110,8 @@ StageFactories defaultStageFactories()
 {
     return StageFactories{
         [](const SourceOptions &options, const Camera *sceneCamera) { return makeSource(options, sceneCamera); },
-        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, gpio::makeLineProvider,
-        stream::loadStreamEngine};
+        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, makeLineProvider,
+        loadStreamEngine};
 }
 
 } // namespace overlayd

@@ -28,12 +28,10 @@ struct StageFactories {
     // May return a null renderer: nothing to draw. SceneControl calls it with the live scene and camera.
     RendererFactory renderer;
     // Where GPIO lines come from (libgpiod); null: no [[gpio.*]] line can be requested.
-    std::function<std::unique_ptr<gpio::LineProvider>()> gpio;
+    std::function<std::unique_ptr<LineProvider>()> gpio;
     // The encoded outputs' engine (the GStreamer module, loaded on first use); asked only when an encoded sink is
     // configured.
-    std::function<Result<std::unique_ptr<stream::EncodedStreamEngine>>(const stream::StreamOptions &,
-                                                                       const stream::EngineLog &)>
-        streamEngine;
+    std::function<Result<std::unique_ptr<EncodedStreamEngine>>(const StreamOptions &, const EngineLog &)> streamEngine;
 };
 
 // makeSource, makeSink, and SceneRenderer::create for the negotiated stream.
@@ -50,7 +48,7 @@ bool wantsZeroCopy(const DaemonConfig &config);
 Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices);
 // The encoder does not hold the camera's buffers beside a V4L2 output sink that does (limitZeroCopy's outcome): its
 // "auto" turns "off" (a notice), "on" with such a sink is a ConfigError.
-Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, stream::EncoderOptions &encoder,
+Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, EncoderOptions &encoder,
                             std::vector<std::string> &notices);
 // Whether the source draws through [camera] (the synthetic checkerboard scene) and that camera changed, so that a
 // reload must re-open the source although its own options are the same (whole CameraSpecs compared).

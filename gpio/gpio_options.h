@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 // Limits: a board has a few dozen lines at most that mean anything to a camera.
 inline constexpr size_t kMaxInputs = 32, kMaxOutputs = 32, kMaxLayersPerInput = 64;
@@ -29,7 +29,7 @@ struct LineAddress {
     bool operator==(const LineAddress &) const = default;
 };
 
-struct InputOptions {
+struct GpioInputOptions {
     std::string name;
     LineAddress line;
     bool activeLow = false;
@@ -37,7 +37,7 @@ struct InputOptions {
     unsigned debounceMs = 20;
     std::vector<std::string> showLayers; // visible only while the line is active
     std::vector<std::string> hideLayers; // hidden while it is active
-    bool operator==(const InputOptions &) const = default;
+    bool operator==(const GpioInputOptions &) const = default;
 };
 
 // What an output line shows: frames flowing (the watchdog's rule), the NO SIGNAL state, sink write failures, or a
@@ -53,10 +53,10 @@ struct OutputOptions {
 };
 
 struct GpioOptions {
-    std::vector<InputOptions> inputs;
+    std::vector<GpioInputOptions> inputs;
     std::vector<OutputOptions> outputs;
     bool empty() const { return inputs.empty() && outputs.empty(); }
     bool operator==(const GpioOptions &) const = default;
 };
 
-} // namespace overlayd::gpio
+} // namespace overlayd

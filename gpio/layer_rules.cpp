@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 namespace {
 
@@ -14,7 +14,8 @@ struct Votes {
 
 } // namespace
 
-std::map<std::string, bool> layerVisibility(const std::vector<InputOptions> &inputs, const std::vector<bool> &active)
+std::map<std::string, bool> layerVisibility(const std::vector<GpioInputOptions> &inputs,
+                                            const std::vector<bool> &active)
 {
     std::map<std::string, Votes> votes;
     for (size_t i = 0; i < inputs.size(); ++i) {
@@ -33,4 +34,4 @@ std::map<std::string, bool> layerVisibility(const std::vector<InputOptions> &inp
     return visible;
 }
 
-} // namespace overlayd::gpio
+} // namespace overlayd

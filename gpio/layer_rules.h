@@ -10,9 +10,10 @@
 
 #include "gpio/gpio_options.h"
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 // Every layer some input names, with its visibility; `active[i]` is input i's settled state.
-std::map<std::string, bool> layerVisibility(const std::vector<InputOptions> &inputs, const std::vector<bool> &active);
+std::map<std::string, bool> layerVisibility(const std::vector<GpioInputOptions> &inputs,
+                                            const std::vector<bool> &active);
 
-} // namespace overlayd::gpio
+} // namespace overlayd

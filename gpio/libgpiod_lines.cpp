@@ -9,7 +9,7 @@
 
 #include "gpio/line_provider.h"
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 namespace {
 
@@ -243,4 +243,4 @@ Result<std::vector<ChipInfo>> listChips()
     return chips;
 }
 
-} // namespace overlayd::gpio
+} // namespace overlayd

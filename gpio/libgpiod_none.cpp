@@ -2,7 +2,7 @@
 // The LineProvider of an overlayd built without libgpiod: every request is refused, saying so.
 #include "gpio/line_provider.h"
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 namespace {
 
@@ -38,4 +38,4 @@ Result<std::vector<ChipInfo>> listChips()
     return makeError(ErrorCode::Unsupported, kWithout);
 }
 
-} // namespace overlayd::gpio
+} // namespace overlayd

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cctype>
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 namespace {
 
@@ -36,4 +36,4 @@ bool LineAddress::sameLine(const LineAddress &other) const
     return name == other.name && offset == other.offset && chipDevice(chip) == chipDevice(other.chip);
 }
 
-} // namespace overlayd::gpio
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include "base/result.h"
 #include "gpio/gpio_options.h"
 
-namespace overlayd::gpio {
+namespace overlayd {
 
 // A requested input with both edges as events. Values are logical: active-low is applied by the kernel.
 class InputLine
@@ -75,4 +75,4 @@ Result<std::vector<ChipInfo>> listChips();
 // Whether this overlayd was built with libgpiod.
 bool haveLibgpiod();
 
-} // namespace overlayd::gpio
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include "base/regular_file.h"
 #include "http/token_file.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -160,4 +160,4 @@ Role Credentials::basic(std::string_view name, std::string_view password) const
     return role;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -12,7 +12,7 @@
 #include "base/result.h"
 #include "http/http_options.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 enum class Role { None, Viewer, Control };
 
@@ -47,4 +47,4 @@ private:
     std::vector<BasicUser> users_;
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -7,7 +7,7 @@
 
 #include "http/tls_files.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 // Limits, each named where it is enforced.
 inline constexpr unsigned kMaxClients = 1024;               // connections at once (each holds an fd)
@@ -57,4 +57,4 @@ struct HttpOptions {
 // [http] at load, so check-config says what run could not do. Defined by http_server.cpp or http_server_none.cpp.
 bool httpBuiltIn();
 
-} // namespace overlayd::http
+} // namespace overlayd

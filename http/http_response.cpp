@@ -5,7 +5,7 @@
 
 #include "base/utf8.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 HttpResponse HttpResponse::json(unsigned status, std::string body)
 {
@@ -29,4 +29,4 @@ HttpResponse HttpResponse::error(unsigned status, const std::string &message)
     return json(status, "{\"error\":\"" + escaped + "\"}");
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -17,7 +17,7 @@
 #include "http/percent_decoding.h"
 #include "http/tls_certificate.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -671,4 +671,4 @@ ssize_t HttpServer::fillStream(StreamClient &client, char *buffer, size_t max)
     return ssize_t(copied);
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

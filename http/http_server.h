@@ -25,7 +25,7 @@
 struct MHD_Daemon;
 struct MHD_Connection;
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct HttpRequest {
     std::string method;
@@ -133,4 +133,4 @@ private:
     bool shed_ = false;           // shed() shut a connection down since the last pass of run()
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -3,7 +3,7 @@
 // config refuses [http] first (httpBuiltIn), so only a caller that skipped the config meets this refusal.
 #include "http/http_server.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 bool httpBuiltIn()
 {
@@ -49,4 +49,4 @@ HttpCounters HttpServer::counters() const
     return counters_;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -6,7 +6,7 @@
 #include <sys/eventfd.h>
 #include <unistd.h>
 
-namespace overlayd::http {
+namespace overlayd {
 
 Result<std::unique_ptr<JpegFeed>> JpegFeed::create()
 {
@@ -46,4 +46,4 @@ std::shared_ptr<const JpegFrame> JpegFeed::latest(bool raw) const
     return raw ? latestRaw_ : latest_;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -13,7 +13,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct JpegFrame {
     std::vector<uint8_t> bytes;
@@ -51,4 +51,4 @@ private:
     std::shared_ptr<const JpegFrame> latest_, latestRaw_;
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

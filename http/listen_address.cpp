@@ -14,7 +14,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -159,4 +159,4 @@ Result<UniqueFd> openListeningSocket(const ListenAddress &address, int backlog)
     return fd;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

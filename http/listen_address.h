@@ -7,7 +7,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct ListenAddress {
     enum class Kind { Ipv4, Ipv6, Unix } kind = Kind::Ipv4;
@@ -29,4 +29,4 @@ Status checkListenFolder(const ListenAddress &address);
 // A bound, listening, non-blocking socket (a stale unix socket file is replaced; its folder must exist).
 Result<UniqueFd> openListeningSocket(const ListenAddress &address, int backlog);
 
-} // namespace overlayd::http
+} // namespace overlayd

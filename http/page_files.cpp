@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string_view>
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -73,4 +73,4 @@ std::string defaultPageDirectory()
     return OVERLAYD_PAGE_DIRECTORY;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

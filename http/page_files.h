@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct PageFile {
     std::string contentType;
@@ -20,4 +20,4 @@ std::optional<PageFile> readPageFile(const std::string &directory, const std::st
 // source tree's http/www unless the build set OVERLAYD_PAGE_DIRECTORY).
 std::string defaultPageDirectory();
 
-} // namespace overlayd::http
+} // namespace overlayd

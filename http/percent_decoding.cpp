@@ -2,7 +2,7 @@
 // percentDecoded: RFC 3986 section 2.1, with the control characters refused rather than passed on.
 #include "http/percent_decoding.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -41,4 +41,4 @@ Result<std::string> percentDecoded(std::string_view text)
     return out;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

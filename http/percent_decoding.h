@@ -8,10 +8,10 @@
 
 #include "base/result.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 // The text with each %XX replaced by its byte. InvalidArgument for a '%' without two hex digits after it, and for a
 // control character (U+0000..U+001F, U+007F), written raw or %-escaped: no name, slot or number holds one.
 Result<std::string> percentDecoded(std::string_view text);
 
-} // namespace overlayd::http
+} // namespace overlayd

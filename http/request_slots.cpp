@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -92,4 +92,4 @@ std::vector<std::pair<RequestSlots::Id, ShedReason>> RequestSlots::late(Clock::t
     return out;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

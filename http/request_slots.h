@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::http {
+namespace overlayd {
 
 struct SlotLimits {
     unsigned perAddress = 8; // incomplete requests from one client address
@@ -60,4 +60,4 @@ private:
     uint64_t counts_[4] = {};
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

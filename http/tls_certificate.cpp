@@ -6,7 +6,7 @@
 #include <gnutls/gnutls.h>
 #include <vector>
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -94,4 +94,4 @@ void *TlsCertificate::callback()
     return reinterpret_cast<void *>(function);
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include "base/result.h"
 #include "http/tls_files.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 class TlsCertificate
 {
@@ -34,4 +34,4 @@ private:
     std::unique_ptr<Parts> parts_;
 };
 
-} // namespace overlayd::http
+} // namespace overlayd

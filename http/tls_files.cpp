@@ -8,7 +8,7 @@
 
 #include "base/regular_file.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -54,4 +54,4 @@ Result<TlsFiles> readTlsFiles(const std::string &certPath, const std::string &ke
     return TlsFiles{std::move(*cert), std::move(*key)};
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

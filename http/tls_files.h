@@ -8,7 +8,7 @@
 
 #include "base/result.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 inline constexpr size_t kMaxPemBytes = 256 * 1024; // a certificate chain or key file
 
@@ -23,4 +23,4 @@ struct TlsFiles {
 // names the file (never its contents) and not the key: the caller says which.
 Result<TlsFiles> readTlsFiles(const std::string &certPath, const std::string &keyPath);
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -8,7 +8,7 @@
 
 #include "http/http_options.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 namespace {
 
@@ -41,4 +41,4 @@ Result<std::string> readTokenFile(const std::string &path)
     return token;
 }
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -7,11 +7,11 @@
 
 #include "base/result.h"
 
-namespace overlayd::http {
+namespace overlayd {
 
 // The token: the first line of a readable regular file, trailing blanks and '\r' dropped, 1..kMaxTokenBytes
 // (http_options.h) bytes. A FIFO or device is refused without being opened (reading one could block or never end).
 // The error's message does not name the key: the caller says which.
 Result<std::string> readTokenFile(const std::string &path);
 
-} // namespace overlayd::http
+} // namespace overlayd

@@ -6,7 +6,7 @@
 
 #include "base/number_text.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -82,4 +82,4 @@ std::string canReadingText(double value, int decimals, const std::string &unit)
     return unit.empty() ? text : text + " " + unit;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -15,7 +15,7 @@
 #include <span>
 #include <string>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 inline constexpr unsigned kCanDataBytes = 8; // classic CAN (CAN FD frames are not read)
 inline constexpr uint32_t kMaxStandardCanId = 0x7FF, kMaxExtendedCanId = 0x1FFFFFFF;
@@ -46,4 +46,4 @@ std::optional<double> canDecode(const CanSignalLayout &layout, std::span<const u
 // loader checks the shortest reading against the slot's limits, so a unit no reading could show is refused.
 std::string canReadingText(double value, int decimals, const std::string &unit);
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -15,7 +15,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -90,4 +90,4 @@ Result<bool> CanSocket::read(CanFrame &frame)
     return true;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

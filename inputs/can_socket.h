@@ -12,7 +12,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 struct CanId {
     uint32_t id = 0;
@@ -49,4 +49,4 @@ private:
     UniqueFd fd_;
 };
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -7,7 +7,7 @@
 #include <sys/inotify.h>
 #include <unistd.h>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -118,4 +118,4 @@ void FolderWatch::drop(int &wd)
     wd = -1;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include "base/result.h"
 #include "base/unique_fd.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 class FolderWatch
 {
@@ -52,4 +52,4 @@ private:
     std::string problem_;
 };
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -3,7 +3,7 @@
 
 #include <utility>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 bool InputHealth::enter(State next, Clock::time_point now)
 {
@@ -39,4 +39,4 @@ const char *inputStateName(InputHealth::State state)
     return "?";
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 struct InputHealth {
     using Clock = std::chrono::steady_clock;
@@ -46,4 +46,4 @@ struct InputHealth {
 // "following", "waiting".
 const char *inputStateName(InputHealth::State state);
 
-} // namespace overlayd::inputs
+} // namespace overlayd

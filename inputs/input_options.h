@@ -11,18 +11,18 @@
 #include "inputs/can_signal.h"
 #include "inputs/can_socket.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 inline constexpr size_t kMaxTextInputs = 32;
 inline constexpr size_t kMaxCanInputs = 16;
 inline constexpr int kMaxCanTimeoutMs = 60000;
-inline constexpr size_t kMaxTextBytes = 256; // a slot's limit (overlay/shapes/text_tokens.h kMaxSlotTextBytes)
+inline constexpr size_t kMaxInputTextBytes = 256; // a slot's limit (overlay/shapes/text_tokens.h kMaxSlotTextBytes)
 
 // A text slot fed by a file another program writes: its first line, on the next frame after each change.
 struct TextInputOptions {
     std::string slot; // a {slot:NAME} some text annotation shows
     std::string file; // absolute (resolved against the config's folder)
-    size_t maxBytes = kMaxTextBytes;
+    size_t maxBytes = kMaxInputTextBytes;
     bool operator==(const TextInputOptions &) const = default;
 };
 
@@ -67,4 +67,4 @@ struct InputOptions {
     bool operator==(const InputOptions &) const = default;
 };
 
-} // namespace overlayd::inputs
+} // namespace overlayd

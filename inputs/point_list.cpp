@@ -10,7 +10,7 @@
 
 #include "base/utf8.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -75,4 +75,4 @@ Result<std::vector<glm::dvec3>> parsePointList(std::string_view text, const std:
     return points;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -12,7 +12,7 @@
 
 #include "base/result.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 inline constexpr size_t kMaxPathPoints = 10000;
 inline constexpr size_t kMaxPathFileBytes = 1 << 20;
@@ -21,4 +21,4 @@ inline constexpr size_t kMaxPathFileBytes = 1 << 20;
 // not a finite number or outside kAnyMagnitude, more than kMaxPathPoints points). An empty text is an empty path.
 Result<std::vector<glm::dvec3>> parsePointList(std::string_view text, const std::string &name);
 
-} // namespace overlayd::inputs
+} // namespace overlayd

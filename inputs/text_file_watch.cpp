@@ -10,7 +10,7 @@
 #include "base/regular_file.h"
 #include "base/utf8.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 namespace {
 
@@ -78,4 +78,4 @@ std::string TextFileWatch::readPrefix(size_t maxBytes) const
     return content;
 }
 
-} // namespace overlayd::inputs
+} // namespace overlayd

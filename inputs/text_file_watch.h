@@ -9,7 +9,7 @@
 #include "base/result.h"
 #include "inputs/folder_watch.h"
 
-namespace overlayd::inputs {
+namespace overlayd {
 
 // The line a slot shows: the first line of `content`, other control characters dropped, cut to at most maxBytes
 // at a UTF-8 character boundary.
@@ -54,4 +54,4 @@ private:
     size_t maxBytes_;
 };
 
-} // namespace overlayd::inputs
+} // namespace overlayd

@@ -8,29 +8,29 @@
 
 #include <glm/mat3x3.hpp>
 
-namespace overlayd::checks {
+namespace overlayd {
 
-bool finite(const glm::dvec3 &v)
+bool Checks::finite(const glm::dvec3 &v)
 {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-bool finite(const glm::dmat3 &m)
+bool Checks::finite(const glm::dmat3 &m)
 {
     return finite(m[0]) && finite(m[1]) && finite(m[2]);
 }
 
-std::string str(double v)
+std::string Checks::str(double v)
 {
     return shortNumber(v, 9);
 }
 
-std::string str(const glm::dvec3 &v)
+std::string Checks::str(const glm::dvec3 &v)
 {
     return "(" + str(v.x) + ", " + str(v.y) + ", " + str(v.z) + ")";
 }
 
-double orthonormalityError(const glm::dmat3 &r)
+double Checks::orthonormalityError(const glm::dmat3 &r)
 {
     const glm::dmat3 gram = glm::transpose(r) * r;
     double worst = 0.0;
@@ -40,7 +40,7 @@ double orthonormalityError(const glm::dmat3 &r)
     return worst;
 }
 
-Status requireRotation(const glm::dmat3 &r, const char *what)
+Status Checks::requireRotation(const glm::dmat3 &r, const char *what)
 {
     if (!finite(r))
         return makeError(ErrorCode::InvalidArgument, std::string(what) + " has a non-finite element");
@@ -54,4 +54,4 @@ Status requireRotation(const glm::dmat3 &r, const char *what)
     return Ok{};
 }
 
-} // namespace overlayd::checks
+} // namespace overlayd

@@ -10,21 +10,24 @@
 
 #include "base/result.h"
 
-namespace overlayd::checks {
+namespace overlayd {
 
-// Relative tolerance below which a vector counts as zero or two directions as parallel.
-inline constexpr double kDegenerate = 1e-9;
-// How far R^T R may stray from the identity before R is refused as "not a rotation".
-inline constexpr double kOrthonormal = 1e-6;
+// Checks every builder shares: a class of static functions, so that call sites read Checks::finite(v).
+struct Checks {
+    // Relative tolerance below which a vector counts as zero or two directions as parallel.
+    static constexpr double kDegenerate = 1e-9;
+    // How far R^T R may stray from the identity before R is refused as "not a rotation".
+    static constexpr double kOrthonormal = 1e-6;
 
-bool finite(const glm::dvec3 &v);
-bool finite(const glm::dmat3 &m);
-std::string str(const glm::dvec3 &v);
-std::string str(double v);
+    static bool finite(const glm::dvec3 &v);
+    static bool finite(const glm::dmat3 &m);
+    static std::string str(const glm::dvec3 &v);
+    static std::string str(double v);
 
-// The largest |(R^T R - I)_ij|: zero for a rotation or reflection.
-double orthonormalityError(const glm::dmat3 &r);
-// Refuses anything but a proper rotation (orthonormal, determinant +1); `what` names the value in the message.
-Status requireRotation(const glm::dmat3 &r, const char *what);
+    // The largest |(R^T R - I)_ij|: zero for a rotation or reflection.
+    static double orthonormalityError(const glm::dmat3 &r);
+    // Refuses anything but a proper rotation (orthonormal, determinant +1); `what` names the value in the message.
+    static Status requireRotation(const glm::dmat3 &r, const char *what);
+};
 
-} // namespace overlayd::checks
+} // namespace overlayd

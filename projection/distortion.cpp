@@ -52,7 +52,7 @@ namespace {
 double radialImage(const Distortion &d, double r)
 {
     if (d.model == DistortionModel::Fisheye)
-        return formulas::fisheyeTheta(d.coeffs, std::atan(r));
+        return DistortionFormulas::fisheyeTheta(d.coeffs, std::atan(r));
     const auto &c = d.coeffs;
     const double r2 = r * r;
     return r * (1.0 + c[0] * r2 + c[1] * r2 * r2 + c[4] * r2 * r2 * r2) /
@@ -67,11 +67,11 @@ glm::dvec2 distortNormalized(const Distortion &distortion, const glm::dvec2 &xy)
     case DistortionModel::None:
         return xy;
     case DistortionModel::RadialTangential:
-        return formulas::radialTangential(distortion.coeffs, xy.x, xy.y);
+        return DistortionFormulas::radialTangential(distortion.coeffs, xy.x, xy.y);
     case DistortionModel::Rational:
-        return formulas::rational(distortion.coeffs, xy.x, xy.y);
+        return DistortionFormulas::rational(distortion.coeffs, xy.x, xy.y);
     case DistortionModel::Fisheye:
-        return formulas::fisheye(distortion.coeffs, xy.x, xy.y);
+        return DistortionFormulas::fisheye(distortion.coeffs, xy.x, xy.y);
     }
     return xy;
 }
@@ -126,7 +126,7 @@ double scanFisheye(const Distortion &distortion, int steps)
 {
     double previous = 0.0;
     for (int i = 1; i <= steps; ++i) {
-        const double image = formulas::fisheyeTheta(distortion.coeffs, scanAngle(i));
+        const double image = DistortionFormulas::fisheyeTheta(distortion.coeffs, scanAngle(i));
         // The peak lies between steps i - 2 and i: i - 2 is the last step known to be before it.
         if (!(image > previous))
             return scanAngle(std::max(i - 2, 0));
@@ -177,20 +177,20 @@ Result<double> undistortFisheyeAngle(const Distortion &distortion, double thetaD
     // theta_d(theta) grows on [0, maxAngle] (that is what maxAngle means), so bisection cannot miss the root;
     // Newton's steps speed it up where they stay inside the bracket.
     // The rim itself is reached by projecting points on the field's edge: allow its rounding, no more.
-    const double rim = formulas::fisheyeTheta(distortion.coeffs, maxAngle);
+    const double rim = DistortionFormulas::fisheyeTheta(distortion.coeffs, maxAngle);
     if (!(thetaD >= 0.0) || thetaD > rim * (1.0 + 1e-12))
         return makeError(ErrorCode::NoConvergence, "pixel lies outside the lens model's valid field");
     if (thetaD >= rim)
         return maxAngle;
     double lo = 0.0, hi = maxAngle, theta = std::min(thetaD, maxAngle);
     for (int iteration = 0; iteration < 200 && hi - lo > 0.0; ++iteration) {
-        const double f = formulas::fisheyeTheta(distortion.coeffs, theta) - thetaD;
+        const double f = DistortionFormulas::fisheyeTheta(distortion.coeffs, theta) - thetaD;
         if (f == 0.0)
             break;
         (f < 0.0 ? lo : hi) = theta;
         const double h = 1e-7;
-        const double slope = (formulas::fisheyeTheta(distortion.coeffs, theta + h) -
-                              formulas::fisheyeTheta(distortion.coeffs, theta - h)) /
+        const double slope = (DistortionFormulas::fisheyeTheta(distortion.coeffs, theta + h) -
+                              DistortionFormulas::fisheyeTheta(distortion.coeffs, theta - h)) /
                              (2.0 * h);
         const double newton = theta - f / slope;
         const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);

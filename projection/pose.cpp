@@ -12,8 +12,6 @@
 
 namespace overlayd {
 
-using checks::str;
-
 glm::dmat4 Pose::viewMatrix() const
 {
     glm::dmat4 view(rotation);
@@ -65,7 +63,7 @@ Pose poseFromBasis(const glm::dvec3 &eye, const glm::dvec3 &u, const glm::dvec3 
 
 Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const glm::dvec3 &up)
 {
-    if (!checks::finite(eye) || !checks::finite(gaze) || !checks::finite(up))
+    if (!Checks::finite(eye) || !Checks::finite(gaze) || !Checks::finite(up))
         return makeError(ErrorCode::InvalidArgument, "eye, gaze and up must be finite");
     const auto gazeDirection = unitDirection(gaze);
     const auto upDirection = unitDirection(up);
@@ -75,9 +73,9 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
         return makeError(ErrorCode::DegenerateBasis, "up vector is the zero vector");
     const glm::dvec3 w = -*gazeDirection;
     const glm::dvec3 side = glm::cross(*upDirection, w);
-    if (glm::length(side) <= checks::kDegenerate)
+    if (glm::length(side) <= Checks::kDegenerate)
         return makeError(ErrorCode::DegenerateBasis,
-                         "up " + str(up) + " is parallel to the gaze direction " + str(gaze));
+                         "up " + Checks::str(up) + " is parallel to the gaze direction " + Checks::str(gaze));
     const glm::dvec3 u = glm::normalize(side);
     const glm::dvec3 v = glm::cross(w, u);
     return poseFromBasis(eye, u, v, w);
@@ -86,16 +84,16 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
 Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const glm::dvec3 &up)
 {
     // Non-finite first: infinite eye and target compare equal but are not "the same point".
-    if (!checks::finite(eye) || !checks::finite(target) || !checks::finite(up))
+    if (!Checks::finite(eye) || !Checks::finite(target) || !Checks::finite(up))
         return makeError(ErrorCode::InvalidArgument, "eye, target and up must be finite");
     if (eye == target)
-        return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + str(eye));
+        return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + Checks::str(eye));
     return poseFromGaze(eye, target - eye, up);
 }
 
 Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, const glm::dvec3 &vup)
 {
-    if (!checks::finite(prp) || !checks::finite(vpn) || !checks::finite(vup))
+    if (!Checks::finite(prp) || !Checks::finite(vpn) || !Checks::finite(vup))
         return makeError(ErrorCode::InvalidArgument, "PRP, VPN and VUP must be finite");
     const auto vpnDirection = unitDirection(vpn);
     const auto vupDirection = unitDirection(vup);
@@ -105,8 +103,9 @@ Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, con
         return makeError(ErrorCode::DegenerateBasis, "VUP is the zero vector");
     const glm::dvec3 zAxis = *vpnDirection;
     const glm::dvec3 side = glm::cross(*vupDirection, zAxis);
-    if (glm::length(side) <= checks::kDegenerate)
-        return makeError(ErrorCode::DegenerateBasis, "VUP " + str(vup) + " is parallel to VPN " + str(vpn));
+    if (glm::length(side) <= Checks::kDegenerate)
+        return makeError(ErrorCode::DegenerateBasis,
+                         "VUP " + Checks::str(vup) + " is parallel to VPN " + Checks::str(vpn));
     const glm::dvec3 xAxis = glm::normalize(side);
     const glm::dvec3 yAxis = glm::cross(zAxis, xAxis);
     return poseFromBasis(prp, xAxis, yAxis, zAxis);
@@ -115,11 +114,11 @@ Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, con
 Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &worldFromAxes, CameraAxes axes)
 {
     const double norm = std::sqrt(glm::dot(worldFromAxes, worldFromAxes));
-    if (!std::isfinite(norm) || !checks::finite(position))
+    if (!std::isfinite(norm) || !Checks::finite(position))
         return makeError(ErrorCode::InvalidArgument, "position and orientation must be finite");
-    if (std::abs(norm - 1.0) > checks::kOrthonormal)
+    if (std::abs(norm - 1.0) > Checks::kOrthonormal)
         return makeError(ErrorCode::NotOrthonormal,
-                         "orientation quaternion is not of unit length (|q| = " + str(norm) + ")");
+                         "orientation quaternion is not of unit length (|q| = " + Checks::str(norm) + ")");
     const glm::dmat3 worldFromGivenAxes = glm::mat3_cast(worldFromAxes / norm);
     const glm::dmat3 worldFromInternal = worldFromGivenAxes * glm::transpose(internalFromAxes(axes));
     return poseFromBasis(position, worldFromInternal[0], worldFromInternal[1], worldFromInternal[2]);
@@ -156,9 +155,9 @@ YawPitchRoll yawPitchRollOf(const Pose &pose)
 
 Result<Pose> poseFromRt(const glm::dmat3 &rotation, const glm::dvec3 &translation)
 {
-    if (auto status = checks::requireRotation(rotation, "extrinsic rotation R"); !status)
+    if (auto status = Checks::requireRotation(rotation, "extrinsic rotation R"); !status)
         return status.error();
-    if (!checks::finite(translation))
+    if (!Checks::finite(translation))
         return makeError(ErrorCode::InvalidArgument, "extrinsic translation t must be finite");
     // x_internal = F x_optical with F = diag(1, -1, -1): exact, no rounding is introduced.
     const glm::dmat3 flip = internalFromAxes(CameraAxes::Optical);
@@ -180,7 +179,7 @@ glm::dmat3 rotationFromRodrigues(const glm::dvec3 &rvec)
 
 Result<Pose> poseFromRodrigues(const glm::dvec3 &rvec, const glm::dvec3 &tvec)
 {
-    if (!checks::finite(rvec))
+    if (!Checks::finite(rvec))
         return makeError(ErrorCode::InvalidArgument, "rvec must be finite");
     return poseFromRt(rotationFromRodrigues(rvec), tvec);
 }

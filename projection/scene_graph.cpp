@@ -33,14 +33,14 @@ Status validateFrame(const FrameSpec &frame)
         return makeError(ErrorCode::DuplicateFrame, "'world' is the root frame and cannot be redefined");
     const Transform &t = frame.transform;
     const double qNorm = std::sqrt(glm::dot(t.rotation, t.rotation));
-    if (!checks::finite(t.translation) || !checks::finite(t.scale) || !std::isfinite(qNorm))
+    if (!Checks::finite(t.translation) || !Checks::finite(t.scale) || !std::isfinite(qNorm))
         return makeError(ErrorCode::InvalidArgument, where + "transform must be finite");
-    if (std::abs(qNorm - 1.0) > checks::kOrthonormal)
+    if (std::abs(qNorm - 1.0) > Checks::kOrthonormal)
         return makeError(ErrorCode::NotOrthonormal,
-                         where + "rotation quaternion is not of unit length (|q| = " + checks::str(qNorm) + ")");
+                         where + "rotation quaternion is not of unit length (|q| = " + Checks::str(qNorm) + ")");
     if (t.scale.x == 0.0 || t.scale.y == 0.0 || t.scale.z == 0.0)
         return makeError(ErrorCode::InvalidArgument,
-                         where + "scale " + checks::str(t.scale) + " has a zero component (not invertible)");
+                         where + "scale " + Checks::str(t.scale) + " has a zero component (not invertible)");
     return Ok{};
 }
 

@@ -2,9 +2,9 @@
 // The viewing pipeline's step matrices (column-major GLM: m[column][row]).
 #include "viewing_pipeline.h"
 
-namespace overlayd::viewing_pipeline {
+namespace overlayd {
 
-glm::dmat4 shear(const glm::dvec3 &cw)
+glm::dmat4 ViewingPipeline::shear(const glm::dvec3 &cw)
 {
     glm::dmat4 h(1.0);
     h[2][0] = -cw.x / cw.z;
@@ -12,7 +12,7 @@ glm::dmat4 shear(const glm::dvec3 &cw)
     return h;
 }
 
-glm::dmat4 scaleXY(double focal, double width, double height)
+glm::dmat4 ViewingPipeline::scaleXY(double focal, double width, double height)
 {
     glm::dmat4 s(1.0);
     s[0][0] = 2.0 * focal / width;
@@ -20,14 +20,14 @@ glm::dmat4 scaleXY(double focal, double width, double height)
     return s;
 }
 
-glm::dmat4 scaleFar(double far)
+glm::dmat4 ViewingPipeline::scaleFar(double far)
 {
     glm::dmat4 s(1.0);
     s[0][0] = s[1][1] = s[2][2] = 1.0 / far;
     return s;
 }
 
-glm::dmat4 perspective(double n)
+glm::dmat4 ViewingPipeline::perspective(double n)
 {
     glm::dmat4 p(1.0);
     p[2][2] = -1.0 / (1.0 - n);
@@ -37,7 +37,7 @@ glm::dmat4 perspective(double n)
     return p;
 }
 
-glm::dmat4 orthographic(double width, double height, double near, double far)
+glm::dmat4 ViewingPipeline::orthographic(double width, double height, double near, double far)
 {
     glm::dmat4 scale(1.0);
     scale[0][0] = 2.0 / width;
@@ -48,14 +48,14 @@ glm::dmat4 orthographic(double width, double height, double near, double far)
     return scale * toNear;
 }
 
-glm::dmat4 parallel(bool keepDepth)
+glm::dmat4 ViewingPipeline::parallel(bool keepDepth)
 {
     glm::dmat4 p(1.0);
     p[2][2] = keepDepth ? 1.0 : 0.0;
     return p;
 }
 
-glm::dmat4 normalize()
+glm::dmat4 ViewingPipeline::normalize()
 {
     glm::dmat4 n(1.0);
     n[0][0] = n[1][1] = 0.5;
@@ -63,7 +63,7 @@ glm::dmat4 normalize()
     return n;
 }
 
-glm::dmat4 rasterScale(double xres, double yres)
+glm::dmat4 ViewingPipeline::rasterScale(double xres, double yres)
 {
     glm::dmat4 s(1.0);
     s[0][0] = xres;
@@ -71,7 +71,7 @@ glm::dmat4 rasterScale(double xres, double yres)
     return s;
 }
 
-glm::dmat4 rasterTranslate(double posx, double posy)
+glm::dmat4 ViewingPipeline::rasterTranslate(double posx, double posy)
 {
     glm::dmat4 t(1.0);
     t[3][0] = posx;
@@ -79,4 +79,4 @@ glm::dmat4 rasterTranslate(double posx, double posy)
     return t;
 }
 
-} // namespace overlayd::viewing_pipeline
+} // namespace overlayd

@@ -13,7 +13,7 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 namespace {
 
@@ -88,4 +88,4 @@ Status DirectorySegmentStore::checkWritable()
     return Ok{};
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -6,7 +6,7 @@
 
 #include "stream/segment_store.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 class DirectorySegmentStore : public SegmentStore
 {
@@ -27,4 +27,4 @@ private:
     std::string directory_;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

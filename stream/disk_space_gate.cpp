@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 bool DiskSpaceGate::noSpace()
 {
@@ -28,4 +28,4 @@ uint64_t DiskSpaceGate::resumeBytes(uint64_t largestSegmentBytes)
     return std::max(kMinResumeFreeBytes, largestSegmentBytes);
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

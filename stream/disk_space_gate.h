@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // Never resume with less free than this, however small the segments: a filesystem this full fails again at once.
 inline constexpr uint64_t kMinResumeFreeBytes = 1u << 20;
@@ -27,4 +27,4 @@ private:
     unsigned stops_ = 0;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 std::chrono::nanoseconds monotonicNow()
@@ -173,4 +173,4 @@ std::string EncodedStream::describe() const
     return text;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -14,7 +14,7 @@
 #include "stream/encoded_stream_engine.h"
 #include "stream/encoder_feed.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // What /state and /metrics read: the engine's own state and the feed's counters, taken together.
 struct EncodedStreamState {
@@ -69,4 +69,4 @@ private:
     std::optional<bool> toMonotonic_;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

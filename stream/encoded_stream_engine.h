@@ -21,7 +21,7 @@
 #include "stream/stream_options.h"
 #include "stream/webrtc_peer_stats.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // The raw format the engine is fed: always planar I420 (Y, then U, then V, rows packed), converted once by the
 // feed (encoder_feed.h) from whatever the stream's format is.
@@ -161,4 +161,4 @@ inline constexpr const char *kModuleFileName = "overlayd-stream.so";
 // in after the binary's own folder (the build tree) and before OVERLAYD_STREAM_MODULE_DIR (cmake --install).
 inline constexpr const char *kPackagedModuleDir = "../lib/overlayd";
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -10,7 +10,7 @@
 #include "media/convert/colour_convert.h"
 #include "media/convert/frame_convert.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 struct EncoderFeed::Pool {
     std::mutex mutex;
@@ -183,4 +183,4 @@ FeedCounters EncoderFeed::counters() const
     return pool_->counters;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

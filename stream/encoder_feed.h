@@ -14,7 +14,7 @@
 #include "media/stream.h"
 #include "stream/encoded_stream_engine.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 struct FeedCounters {
     uint64_t copied = 0;    // frames copied into a slot (each one copy)
@@ -57,4 +57,4 @@ private:
     RgbImage rgbScratch_;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include <mutex>
 #include <vector>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 // The running binary's folder: the build tree puts the module there, beside build/daemon/overlayd.
@@ -114,4 +114,4 @@ void requireStreamModule()
     moduleRequired = true;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

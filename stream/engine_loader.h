@@ -10,7 +10,7 @@
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // A new engine from the module: found next to the running binary (the build tree) or in the library folder it
 // was installed to. An error names every place it looked, or what dlopen said.
@@ -26,4 +26,4 @@ Status checkEncoder(const EncoderOptions &options);
 // config loader leaves it off: its binary has no module beside it, and what it tests is the parsing.
 void requireStreamModule();
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -2,7 +2,7 @@
 // Built without the encoded outputs (OVERLAYD_STREAM=OFF, or GStreamer missing): the config refuses them.
 #include "stream/engine_loader.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 bool streamBuiltIn()
 {
@@ -22,4 +22,4 @@ Status checkEncoder(const EncoderOptions &)
 
 void requireStreamModule() {} // the config refuses [encoder] itself
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 bool fwhtIsKeyframe(const uint8_t *data, size_t size)
 {
@@ -16,4 +16,4 @@ bool fwhtIsKeyframe(const uint8_t *data, size_t size)
     return (value & kFwhtIFrameFlag) != 0;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

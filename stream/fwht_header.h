@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // The kernel's struct fwht_cframe_hdr (drivers/media/test-drivers/vicodec/codec-fwht.h): two magic words, then
 // big-endian version, width, height, flags, ...; V4L2_FWHT_FL_I_FRAME is bit 10 of flags (linux/v4l2-controls.h).
@@ -18,4 +18,4 @@ inline constexpr uint32_t kFwhtIFrameFlag = 1u << 10;
 // False for anything that is not a whole FWHT header (too short, wrong magic).
 bool fwhtIsKeyframe(const uint8_t *data, size_t size);
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 struct LatencyHistogram {
     // Upper bounds, seconds: a frame interval at 30 fps is 0.033.
@@ -41,4 +41,4 @@ struct LatencyHistogram {
     }
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

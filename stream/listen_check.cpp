@@ -17,7 +17,7 @@
 
 #include "base/unique_fd.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 namespace fs = std::filesystem;
@@ -120,4 +120,4 @@ Status checkListenable(const std::string &host, unsigned port)
                                                      process->filename().string() + ")");
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

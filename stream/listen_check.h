@@ -7,7 +7,7 @@
 
 #include "base/result.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // A TCP socket bound to HOST:PORT (SO_REUSEADDR, as gst-rtsp-server binds) and closed at once. A port already
 // listened on is taken only by another program: one held by this process (the running engine, which a reload
@@ -15,4 +15,4 @@ namespace overlayd::stream {
 // The holder is found through /proc/net/tcp{,6} and /proc/PID/fd; its name is in the message.
 Status checkListenable(const std::string &host, unsigned port);
 
-} // namespace overlayd::stream
+} // namespace overlayd

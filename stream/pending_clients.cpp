@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 std::vector<PendingClients::Handle> PendingClients::admit(Handle client, const std::string &address,
                                                           Clock::time_point now)
@@ -52,4 +52,4 @@ std::vector<PendingClients::Handle> PendingClients::expired(Clock::time_point no
     return late;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

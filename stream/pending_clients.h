@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // Connections pending in all (at least a sink's highest max_clients, kMaxRtspClients), from one address (the RTSP
 // sink sets its max_clients), and how long one may take from its connect to PLAY.
@@ -62,4 +62,4 @@ private:
     uint64_t shed_ = 0, timedOut_ = 0;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

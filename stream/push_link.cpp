@@ -2,7 +2,7 @@
 // Push state: the back-off restarts from its floor after each connection that worked.
 #include "stream/push_link.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 PushLink::PushLink(Backoff backoff) : backoff_(backoff) {}
 
@@ -21,4 +21,4 @@ PushLink::Retry PushLink::failed(const std::string &reason)
     return {backoff_.next(), fresh};
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -7,7 +7,7 @@
 
 #include "base/backoff.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 class PushLink
 {
@@ -36,4 +36,4 @@ private:
     std::string lastError_;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

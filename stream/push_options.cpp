@@ -5,7 +5,7 @@
 #include <array>
 #include <utility>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 namespace {
 
@@ -48,4 +48,4 @@ std::string_view protocolName(PushProtocol protocol)
     return "?";
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

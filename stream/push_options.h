@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // The protocols a push speaks, each by its URL scheme: RTSP ANNOUNCE/RECORD, RTMP publish, SRT caller.
 enum class PushProtocol { Rtsp, Rtmp, Srt };
@@ -26,4 +26,4 @@ struct PushSinkOptions {
 std::optional<PushProtocol> pushProtocol(std::string_view url, std::string &why);
 std::string_view protocolName(PushProtocol protocol); // "rtsp", "rtmp", "srt"
 
-} // namespace overlayd::stream
+} // namespace overlayd

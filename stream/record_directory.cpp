@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 RecordDirectory::RecordDirectory(SegmentStore &store, RecordContainer container, RetentionLimits limits)
     : store_(store), container_(container), limits_(limits)
@@ -111,4 +111,4 @@ void RecordDirectory::tally(const std::vector<StoredSegment> &finished)
         figures_.oldest = oldest->file.finalName;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -12,7 +12,7 @@
 #include "stream/retention.h"
 #include "stream/segment_store.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 struct RecordFigures {
     unsigned segments = 0;  // finished segments in the directory
@@ -54,4 +54,4 @@ private:
     uint64_t largest_ = 0;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -2,11 +2,11 @@
 // The file name extension of each container.
 #include "stream/record_options.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 std::string_view containerExtension(RecordContainer container)
 {
     return container == RecordContainer::Mp4 ? "mp4" : "mkv";
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // Both keep what was written before a SIGKILL or a power cut: fragmented MP4 up to its last fragment, Matroska up
 // to its last cluster.
@@ -30,4 +30,4 @@ struct RecordSinkOptions {
     bool operator==(const RecordSinkOptions &) const = default;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

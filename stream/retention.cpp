@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 std::vector<StoredSegment> segmentsToDelete(std::vector<StoredSegment> finished, uint64_t currentBytes,
                                             const RetentionLimits &limits, WallClock::time_point now)
@@ -31,4 +31,4 @@ std::vector<StoredSegment> segmentsToDelete(std::vector<StoredSegment> finished,
     return finished;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

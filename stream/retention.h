@@ -9,7 +9,7 @@
 
 #include "stream/segment_name.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 struct RetentionLimits {
     uint64_t keepBytes = 0;         // 0: no limit
@@ -28,4 +28,4 @@ struct StoredSegment {
 std::vector<StoredSegment> segmentsToDelete(std::vector<StoredSegment> finished, uint64_t currentBytes,
                                             const RetentionLimits &limits, WallClock::time_point now);
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 enum class RtspAuth {
     Http,       // as [http] viewer: a credential when it is "credential", none when "open" (or no [http])
@@ -38,4 +38,4 @@ struct RtspAccessOptions {
     bool operator==(const RtspAccessOptions &) const = default;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <ctime>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 namespace {
 
@@ -90,4 +90,4 @@ std::optional<SegmentFile> parseSegmentFileName(std::string_view name, std::stri
     return file;
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

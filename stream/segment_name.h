@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 using WallClock = std::chrono::system_clock;
 
@@ -35,4 +35,4 @@ struct SegmentFile {
 // nullopt for any other file: the recorder never touches what it did not write.
 std::optional<SegmentFile> parseSegmentFileName(std::string_view name, std::string_view extension);
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -8,7 +8,7 @@
 
 #include "base/result.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 class SegmentStore
 {
@@ -30,4 +30,4 @@ public:
     virtual Status checkWritable() = 0;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

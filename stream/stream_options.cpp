@@ -2,7 +2,7 @@
 // Names of the encoded outputs' choices, for logs, /state and the config's messages.
 #include "stream/stream_options.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 const char *encoderKindName(EncoderKind kind)
 {
@@ -52,4 +52,4 @@ const char *encodedSinkKindName(EncodedSinkKind kind)
     return "?";
 }
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -12,7 +12,7 @@
 #include "stream/rtsp_access_options.h"
 #include "stream/webrtc_options.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 enum class EncoderKind {
     Auto,     // a V4L2 M2M H.264 encoder when the board has one, else openh264
@@ -106,4 +106,4 @@ const char *encodedSinkKindName(EncodedSinkKind kind);
 // Whether this overlayd was built with the encoded outputs (CMake option OVERLAYD_STREAM, GStreamer).
 bool streamBuiltIn();
 
-} // namespace overlayd::stream
+} // namespace overlayd

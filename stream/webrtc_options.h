@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 // Limits of [webrtc] and of WHEP (docs/config.md "Limits").
 inline constexpr unsigned kMaxWebrtcPeers = 64;   // [webrtc] max_peers at most: each peer packetizes and encrypts
@@ -26,4 +26,4 @@ struct WebrtcOptions {
     bool operator==(const WebrtcOptions &) const = default;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-namespace overlayd::stream {
+namespace overlayd {
 
 struct WebrtcPeerStats {
     uint64_t packetsSent = 0; // RTP packets sent to the viewer (retransmissions included)
@@ -32,4 +32,4 @@ struct WebrtcPeerState {
     WebrtcPeerStats stats;                       // as of the last poll (kWebrtcStatsMs)
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

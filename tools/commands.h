@@ -37,7 +37,7 @@ int unprojectCommand(const std::string &configPath, bool json, const std::vector
                      const std::vector<double> &coordinates, Logger &logger);
 // `overlayd solve-pose --points FILE`: the camera pose from world points and their pixels, as config keys.
 // --write: also into the config's live drop-in (NAME.live.toml, config/live_drop_in.h) with the whole camera.
-// solver: "sqpnp", "iterative" or "ippe" (alignment::PnpSolver).
+// solver: "sqpnp", "iterative" or "ippe" (PnpSolver).
 int solvePoseCommand(const std::string &configPath, const std::string &pointsPath, const std::string &solver,
                      bool write, Logger &logger);
 // logLevel (from --log-level) overrides the config's daemon.log_level.

@@ -12,15 +12,15 @@ namespace overlayd {
 
 namespace {
 
-std::string asJson(const std::vector<gpio::ChipInfo> &chips)
+std::string asJson(const std::vector<ChipInfo> &chips)
 {
     std::string out = "[";
     for (size_t c = 0; c < chips.size(); ++c) {
-        const gpio::ChipInfo &chip = chips[c];
+        const ChipInfo &chip = chips[c];
         out += std::string(c ? ",\n " : "\n ") + "{\"name\": " + jsonString(chip.name) +
                ", \"label\": " + jsonString(chip.label) + ", \"path\": " + jsonString(chip.path) + ", \"lines\": [";
         for (size_t l = 0; l < chip.lines.size(); ++l) {
-            const gpio::LineInfo &line = chip.lines[l];
+            const LineInfo &line = chip.lines[l];
             out += std::string(l ? ", " : "") + "{\"offset\": " + std::to_string(line.offset) +
                    ", \"name\": " + jsonString(line.name) + ", \"consumer\": " + jsonString(line.consumer) +
                    ", \"direction\": " + (line.output ? "\"output\"" : "\"input\"") +
@@ -31,15 +31,15 @@ std::string asJson(const std::vector<gpio::ChipInfo> &chips)
     return out + (chips.empty() ? "]\n" : "\n]\n");
 }
 
-std::string asText(const std::vector<gpio::ChipInfo> &chips)
+std::string asText(const std::vector<ChipInfo> &chips)
 {
     if (chips.empty())
         return "no GPIO chips found (/dev/gpiochip*)\n";
     std::string out;
-    for (const gpio::ChipInfo &chip : chips) {
+    for (const ChipInfo &chip : chips) {
         out +=
             chip.name + " '" + chip.label + "' (" + chip.path + ", " + std::to_string(chip.lines.size()) + " lines)\n";
-        for (const gpio::LineInfo &line : chip.lines) {
+        for (const LineInfo &line : chip.lines) {
             out += "  line " + std::to_string(line.offset) + (line.name.empty() ? " unnamed" : " '" + line.name + "'") +
                    (line.output ? " output" : " input") + (line.activeLow ? " active-low" : "");
             out += line.consumer.empty() ? "\n" : " held by '" + line.consumer + "'\n";
@@ -52,7 +52,7 @@ std::string asText(const std::vector<gpio::ChipInfo> &chips)
 
 int listGpioCommand(bool json)
 {
-    auto chips = gpio::listChips();
+    auto chips = listChips();
     if (!chips) {
         std::fprintf(stderr, "overlayd: list-gpio: %s\n", chips.error().message.c_str());
         return 1;

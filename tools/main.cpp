@@ -27,7 +27,7 @@ int main(int argc, char **argv)
             logger.setLevel(*line.logLevel);
         // The config loader refuses encoded sinks whose module cannot be loaded, as `run` would fail to start them.
         if (line.command == Command::CheckConfig || line.command == Command::Run)
-            stream::requireStreamModule();
+            requireStreamModule();
         switch (line.command) {
         case Command::CheckConfig:
             return checkConfigCommand(line.configPath);

@@ -21,14 +21,13 @@ Result<std::vector<glm::dvec3>> readPoints(const std::string &path)
     std::FILE *file = path == "-" ? stdin : std::fopen(path.c_str(), "rb");
     if (!file)
         return makeError(ErrorCode::NotFound, "cannot open " + path + ": " + std::strerror(errno));
-    std::string text(alignment::kMaxPointsFileBytes + 1, '\0');
+    std::string text(kMaxPointsFileBytes + 1, '\0');
     text.resize(std::fread(text.data(), 1, text.size(), file));
     if (file != stdin)
         std::fclose(file);
-    if (text.size() > alignment::kMaxPointsFileBytes)
-        return makeError(ErrorCode::Malformed,
-                         path + ": more than " + std::to_string(alignment::kMaxPointsFileBytes) + " bytes");
-    return alignment::parseWorldPoints(text, path == "-" ? "stdin" : path);
+    if (text.size() > kMaxPointsFileBytes)
+        return makeError(ErrorCode::Malformed, path + ": more than " + std::to_string(kMaxPointsFileBytes) + " bytes");
+    return parseWorldPoints(text, path == "-" ? "stdin" : path);
 }
 
 } // namespace

@@ -39,17 +39,17 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
         return kExitConfigError;
     const Camera *camera = &configured->camera;
     const DaemonConfig *config = &configured->config;
-    auto points = alignment::readPointsFile(pointsPath);
+    auto points = readPointsFile(pointsPath);
     if (!points) {
         logger.error(points.error().message);
         return kExitFailure;
     }
-    for (alignment::Correspondence &point : *points)
+    for (Correspondence &point : *points)
         point.pixel = camera->viewport().toTopLeft(point.pixel); // the user's origin in, memory order inside
-    const alignment::PnpSolver pnp = solver == "iterative" ? alignment::PnpSolver::Iterative
-                                     : solver == "ippe"    ? alignment::PnpSolver::Ippe
-                                                           : alignment::PnpSolver::Sqpnp;
-    auto solution = alignment::solvePose(*camera, config->camera.distortion, *points, pnp);
+    const PnpSolver pnp = solver == "iterative" ? PnpSolver::Iterative
+                          : solver == "ippe"    ? PnpSolver::Ippe
+                                                : PnpSolver::Sqpnp;
+    auto solution = solvePose(*camera, config->camera.distortion, *points, pnp);
     if (!solution) {
         logger.error(cat("solve-pose: ", solution.error().message));
         return kExitFailure;
@@ -58,7 +58,7 @@ int solvePoseCommand(const std::string &configPath, const std::string &pointsPat
     // The solved pose maps world to camera; the config's pose maps the mount frame to camera.
     const glm::dmat4 cameraFromMount = solution->pose.viewMatrix() * config->camera.worldFromMount;
     const Pose mountPose{glm::dmat3(cameraFromMount), glm::dvec3(cameraFromMount[3])};
-    const alignment::OpenCvExtrinsics extrinsics = alignment::openCvExtrinsicsOf(mountPose);
+    const OpenCvExtrinsics extrinsics = openCvExtrinsicsOf(mountPose);
     const YawPitchRoll ypr = yawPitchRollOf(mountPose);
 
     // Written before anything is printed: the output says where the pose went only once it is there.

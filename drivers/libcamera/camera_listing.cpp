@@ -11,13 +11,13 @@ namespace overlayd {
 std::vector<CameraDescription> listLibcameraCameras()
 {
     std::vector<CameraDescription> out;
-    auto manager = lc::cameraManager();
+    auto manager = cameraManager();
     if (!manager) {
         out.push_back({"libcamera", "", "", manager.error().message, {}});
         return out;
     }
     for (const auto &camera : (*manager)->cameras()) {
-        CameraDescription description{"libcamera", camera->id(), lc::cameraModel(*camera), "", {}};
+        CameraDescription description{"libcamera", camera->id(), cameraModel(*camera), "", {}};
         // The formats of a stream are known without acquiring the camera (another program may be streaming it).
         const auto config = camera->generateConfiguration({libcamera::StreamRole::VideoRecording});
         if (!config || config->empty()) {
@@ -27,7 +27,7 @@ std::vector<CameraDescription> listLibcameraCameras()
         }
         const libcamera::StreamFormats &formats = config->at(0).formats();
         for (const libcamera::PixelFormat &format : formats.pixelformats()) {
-            CameraMode mode{lc::formatName(format), lc::fromLibcamera(format) != nullptr, {}, {}};
+            CameraMode mode{formatName(format), fromLibcamera(format) != nullptr, {}, {}};
             for (const libcamera::Size &size : formats.sizes(format))
                 mode.sizes.push_back(size.toString());
             if (mode.sizes.empty())

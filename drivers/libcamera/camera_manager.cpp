@@ -9,7 +9,7 @@
 #include <libcamera/logging.h>
 #include <libcamera/property_ids.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 Result<std::shared_ptr<libcamera::CameraManager>> cameraManager()
 {
@@ -61,4 +61,4 @@ Result<std::shared_ptr<libcamera::Camera>> findCamera(const libcamera::CameraMan
                          (cameras.empty() ? " (libcamera sees no camera)" : "; there are " + known));
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

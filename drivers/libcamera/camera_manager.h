@@ -10,7 +10,7 @@
 
 #include "base/result.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // Started on first use and stopped when the last holder lets go: a source that retries after its camera vanished
 // gets a fresh enumeration (without udevd, libcamera sees no hot-plug events, so re-enumerating is how a camera
@@ -24,4 +24,4 @@ Result<std::shared_ptr<libcamera::Camera>> findCamera(const libcamera::CameraMan
 // The sensor's model ("Sensor B"), or the id when the camera names none.
 std::string cameraModel(const libcamera::Camera &camera);
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -70,8 +70,6 @@ std::optional<ControlValueKind> libcameraControlKind(const std::string &name)
     }
 }
 
-namespace lc {
-
 namespace {
 
 // The config value as the control's type, or the reason it can never be one, whatever the camera.
@@ -154,18 +152,14 @@ std::string checkRange(const libcamera::ControlValue &value, const libcamera::Co
 
 } // namespace
 
-} // namespace lc
-
 std::string libcameraControlProblem(const ControlSetting &setting)
 {
     const libcamera::ControlId *id = registryControl(setting.name);
     if (!id)
         return "unknown libcamera control";
-    const auto value = lc::toControlValue(*id, setting);
+    const auto value = toControlValue(*id, setting);
     return value ? std::string() : value.error().message;
 }
-
-namespace lc {
 
 Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &settings,
                                              const libcamera::ControlInfoMap &camera)
@@ -197,7 +191,5 @@ Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &
         return makeError(ErrorCode::ConfigError, problems);
     return list;
 }
-
-} // namespace lc
 
 } // namespace overlayd

@@ -11,11 +11,11 @@
 #include "base/result.h"
 #include "drivers/source_options.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // The ControlList that start() hands to Camera::start(). Every problem is reported, each in the config's shape
 // ("file:line:column: source.libcamera.controls.Brightness: 2 is outside -1..1"), one per line.
 Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &settings,
                                              const libcamera::ControlInfoMap &camera);
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -19,7 +19,7 @@ Result<std::unique_ptr<FrameSource>> makeLibcameraSource(const SourceOptions &op
     if (options.libcamera.bufferCount < 2 || options.libcamera.bufferCount > 32)
         return makeError(ErrorCode::ConfigError, "source.libcamera.buffers must be 2..32 (got " +
                                                      std::to_string(options.libcamera.bufferCount) + ")");
-    return std::unique_ptr<FrameSource>(std::make_unique<lc::LibcameraSource>(options, [](const std::string &line) {
+    return std::unique_ptr<FrameSource>(std::make_unique<LibcameraSource>(options, [](const std::string &line) {
         std::fprintf(stderr, "%slibcamera: %s\n", std::getenv("JOURNAL_STREAM") ? "<5>" : "", line.c_str());
     }));
 }

@@ -9,7 +9,7 @@
 
 #include <libcamera/formats.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -58,4 +58,4 @@ std::string formatName(const libcamera::PixelFormat &format)
     return format.toString();
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -9,7 +9,7 @@
 
 #include "media/pixel_format.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // nullopt / nullptr when the other side has no format with the same bytes in memory.
 std::optional<libcamera::PixelFormat> toLibcamera(const PixelFormatInfo &format);
@@ -17,4 +17,4 @@ const PixelFormatInfo *fromLibcamera(const libcamera::PixelFormat &format);
 // "NV12", or libcamera's own name ("SRGGB10_CSI2P") for a format the project has no name for.
 std::string formatName(const libcamera::PixelFormat &format);
 
-} // namespace overlayd::lc
+} // namespace overlayd

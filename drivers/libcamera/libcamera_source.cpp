@@ -14,7 +14,7 @@
 #include "drivers/libcamera/libcamera_controls.h"
 #include "drivers/libcamera/libcamera_formats.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -399,4 +399,4 @@ Result<FrameLease> LibcameraSource::nextFrame()
     return FrameLease(mapped.view(), metadata, std::shared_ptr<LeaseOwner>(session_, session_->recycler.get()), index);
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

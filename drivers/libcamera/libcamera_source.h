@@ -23,7 +23,7 @@
 #include "drivers/source_options.h"
 #include "media/sequence_counter.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 using LogFunction = std::function<void(const std::string &)>;
 
@@ -96,4 +96,4 @@ private:
     std::string adjustment_, lastLogged_;
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -12,7 +12,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 namespace {
 
@@ -108,4 +108,4 @@ void MappedFrameBuffer::unmap()
     mappings_.clear();
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

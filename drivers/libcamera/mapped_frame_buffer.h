@@ -11,7 +11,7 @@
 #include "base/result.h"
 #include "media/frame.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 class MappedFrameBuffer
 {
@@ -46,4 +46,4 @@ private:
     FrameView view_{};
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <string>
 
-namespace overlayd::lc {
+namespace overlayd {
 
 void RequestRecycler::giveBack(unsigned index)
 {
@@ -43,4 +43,4 @@ void RequestRecycler::detach()
     detached_ = true;
 }
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include "base/result.h"
 #include "media/stream.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 
 // A zero-copy sink drops its lease on its own thread when the output device is done with the buffer, so the
 // re-queue runs there: Camera::queueRequest is thread-safe, and one mutex orders give-backs against detach(). The
@@ -40,4 +40,4 @@ private:
     std::optional<Error> error_;
 };
 
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -19,10 +19,6 @@ namespace overlayd {
 
 namespace {
 
-using scene::Hit;
-using scene::SceneTracer;
-using scene::Square;
-
 constexpr unsigned kBlock = 4; // pixels per side of the blocks tried as one colour first
 // Footprints at least this wide (in squares) are box-filtered; narrower ones, near the camera, are supersampled,
 // which keeps their edges as sharp as the footprint itself.

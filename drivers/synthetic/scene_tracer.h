@@ -10,7 +10,7 @@
 #include "projection/camera.h"
 
 // A namespace of its own: Hit and Square are common names.
-namespace overlayd::scene {
+namespace overlayd {
 
 // Where one sample's ray meets the ground (x, y in metres), or that it misses it (sky).
 struct Hit {
@@ -63,4 +63,4 @@ private:
     Plane ground_ = Plane::fromPointNormal({0, 0, 0}, {0, 0, 1});
 };
 
-} // namespace overlayd::scene
+} // namespace overlayd

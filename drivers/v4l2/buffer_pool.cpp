@@ -9,7 +9,7 @@
 
 #include "drivers/v4l2/frame_split.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 Result<std::unique_ptr<BufferPool>> BufferPool::create(const VideoDevice &device, unsigned count,
                                                        const DeviceFormat &format, const PixelFormatInfo *info)
@@ -147,4 +147,4 @@ void BufferPool::attachDmabuf(unsigned index, unsigned memoryPlane, int fd)
     }
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -15,7 +15,7 @@
 #include "drivers/v4l2/video_device.h"
 #include "media/frame.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 struct Dequeued {
     unsigned index = 0;
@@ -68,4 +68,4 @@ private:
     unsigned queued_ = 0;
 };
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -27,7 +27,7 @@ std::string fourccName(uint32_t fourcc)
     return name;
 }
 
-std::vector<double> frameRates(v4l2::Syscalls &sys, int fd, uint32_t fourcc, uint32_t width, uint32_t height)
+std::vector<double> frameRates(Syscalls &sys, int fd, uint32_t fourcc, uint32_t width, uint32_t height)
 {
     std::vector<double> rates;
     for (unsigned i = 0; i < kMaxEntries; ++i) {
@@ -44,7 +44,7 @@ std::vector<double> frameRates(v4l2::Syscalls &sys, int fd, uint32_t fourcc, uin
     return rates;
 }
 
-CameraMode modeOf(v4l2::Syscalls &sys, int fd, uint32_t fourcc)
+CameraMode modeOf(Syscalls &sys, int fd, uint32_t fourcc)
 {
     const PixelFormatInfo *info = pixelFormatFromFourcc(fourcc);
     CameraMode mode{info ? std::string(info->name) : fourccName(fourcc), info || fourcc == V4L2_PIX_FMT_MJPEG, {}, {}};
@@ -73,7 +73,7 @@ CameraMode modeOf(v4l2::Syscalls &sys, int fd, uint32_t fourcc)
 
 std::vector<CameraDescription> listV4l2Cameras()
 {
-    v4l2::Syscalls &sys = v4l2::realSyscalls();
+    Syscalls &sys = realSyscalls();
     std::vector<CameraDescription> out;
     for (const std::string &path : sys.videoDevices()) {
         const int opened = sys.open(path, O_RDWR | O_NONBLOCK | O_CLOEXEC);

@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <utility>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 V4l2CaptureSource::V4l2CaptureSource(Syscalls &syscalls, SourceOptions options, LogFunction log)
     : syscalls_(syscalls), options_(std::move(options)), log_(std::move(log))
@@ -236,4 +236,4 @@ void V4l2CaptureSource::requeue(unsigned index)
         hub_->giveBack(index);
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

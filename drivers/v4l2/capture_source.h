@@ -17,7 +17,7 @@
 #include "media/frame_buffer.h"
 #include "media/sequence_counter.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 // Where the source's few log lines go (the adjustment line, once per distinct adjustment).
 using LogFunction = std::function<void(const std::string &)>;
@@ -73,4 +73,4 @@ private:
     bool exportFailureLogged_ = false;
 };
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -122,4 +122,4 @@ bool isMjpeg(uint32_t fourcc)
     return fourcc == V4L2_PIX_FMT_MJPEG || fourcc == V4L2_PIX_FMT_JPEG;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

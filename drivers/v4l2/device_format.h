@@ -10,7 +10,7 @@
 
 #include "media/pixel_format.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 struct DevicePlane {
     uint32_t bytesPerLine = 0;
@@ -46,4 +46,4 @@ uint32_t multiPlaneVariant(uint32_t fourcc);
 
 bool isMjpeg(uint32_t fourcc);
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -5,7 +5,7 @@
 #include <cerrno>
 #include <string>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 Result<std::unique_ptr<DmabufQueue>> DmabufQueue::create(const VideoDevice &device, unsigned count)
 {
@@ -56,4 +56,4 @@ int DmabufQueue::dequeue(unsigned &index)
     return 0;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -8,7 +8,7 @@
 #include "drivers/v4l2/buffer_pool.h"
 #include "drivers/v4l2/video_device.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 // One memory plane of a queued buffer: the dmabuf, where the data starts in it, the bytes used counted from the
 // start of the dmabuf (V4L2's multi-planar convention: data_offset included) and the dmabuf's usable length.
@@ -43,4 +43,4 @@ private:
     unsigned count_;
 };
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <string>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -53,4 +53,4 @@ Result<FrameView> splitFrame(const PixelFormatInfo &info, const DeviceFormat &fo
     return view;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

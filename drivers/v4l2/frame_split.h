@@ -10,7 +10,7 @@
 #include "drivers/v4l2/device_format.h"
 #include "media/frame.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 struct PlaneMemory {
     uint8_t *data = nullptr;
@@ -24,4 +24,4 @@ struct PlaneMemory {
 Result<FrameView> splitFrame(const PixelFormatInfo &info, const DeviceFormat &format,
                              std::span<const PlaneMemory> memory);
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include <cerrno>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 void LeaseHub::giveBack(unsigned index)
 {
@@ -47,4 +47,4 @@ void LeaseHub::detach()
     pool_ = nullptr;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -11,7 +11,7 @@
 #include "drivers/v4l2/buffer_pool.h"
 #include "media/stream.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 // A zero-copy sink drops its lease reference on its own thread, when the output device is done with the buffer, so
 // the give-back (VIDIOC_QBUF) runs there and not on the event loop: every use of the pool's queue goes through one
@@ -43,4 +43,4 @@ private:
     std::optional<Error> pendingError_;
 };
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

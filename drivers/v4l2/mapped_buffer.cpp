@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 Result<MappedBuffer> MappedBuffer::map(Syscalls &syscalls, int fd, size_t length, uint32_t offset)
 {
@@ -37,4 +37,4 @@ void MappedBuffer::reset()
         syscalls_->munmap(std::exchange(data_, nullptr), std::exchange(length_, 0));
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include "base/result.h"
 #include "drivers/v4l2/v4l2_syscalls.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 class MappedBuffer
 {
@@ -37,4 +37,4 @@ private:
     size_t length_ = 0;
 };
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -10,7 +10,7 @@
 #include "media/frame.h"
 #include "media/pixel_format.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 class MjpegDecoder
 {
@@ -27,4 +27,4 @@ Result<std::unique_ptr<MjpegDecoder>> makeMjpegDecoder();
 // What an MJPEG stream decodes to for a configured format: YUYV when that was asked for, else YUV420 (I420).
 const PixelFormatInfo &mjpegOutputFormat(const PixelFormatInfo *requested);
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

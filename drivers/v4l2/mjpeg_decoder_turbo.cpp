@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -138,4 +138,4 @@ Result<std::unique_ptr<MjpegDecoder>> makeMjpegDecoder()
     return std::unique_ptr<MjpegDecoder>(new TurboMjpegDecoder(handle));
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include <linux/videodev2.h>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 const PixelFormatInfo &mjpegOutputFormat(const PixelFormatInfo *requested)
 {
@@ -14,4 +14,4 @@ const PixelFormatInfo &mjpegOutputFormat(const PixelFormatInfo *requested)
     return *pixelFormatFromFourcc(V4L2_PIX_FMT_YUV420);
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -11,7 +11,7 @@
 
 #include "drivers/v4l2/device_format.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -140,4 +140,4 @@ std::string describeMode(unsigned width, unsigned height, double fps, const std:
     return formatted("%ux%u@%g %s", width, height, fps, format.c_str());
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

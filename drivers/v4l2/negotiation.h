@@ -9,7 +9,7 @@
 
 #include "media/pixel_format.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 // One VIDIOC_ENUM_FRAMESIZES answer: a discrete size has min == max.
 struct SizeRange {
@@ -55,4 +55,4 @@ std::string describeOffers(std::span<const OfferedFormat> offers);
 // "1920x1080@30 YUYV": one side of the adjustment log line.
 std::string describeMode(unsigned width, unsigned height, double fps, const std::string &format);
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

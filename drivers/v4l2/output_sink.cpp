@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -377,4 +377,4 @@ uint64_t V4l2OutputSink::heldLeases() const
     return held;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

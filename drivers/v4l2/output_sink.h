@@ -17,7 +17,7 @@
 #include "drivers/v4l2/dmabuf_queue.h"
 #include "drivers/v4l2/video_device.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 class V4l2OutputSink final : public FrameSink
 {
@@ -97,4 +97,4 @@ private:
     uint64_t dropped_ = 0, written_ = 0, zeroCopied_ = 0;
 };
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

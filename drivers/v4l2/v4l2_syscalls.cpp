@@ -13,7 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -72,4 +72,4 @@ Syscalls &realSyscalls()
     return instance;
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -11,7 +11,7 @@
 
 #include "base/unique_fd.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 // Every call returns -errno on failure (as the raw system calls do), so callers never read the global errno and a
 // fake can script any error. Modelled on sdbus-c++'s ISdBus seam.
@@ -34,4 +34,4 @@ public:
 // The kernel. Stateless, so one instance serves every device.
 Syscalls &realSyscalls();
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

@@ -9,7 +9,7 @@
 #include <optional>
 #include <utility>
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 namespace {
 
@@ -267,4 +267,4 @@ Result<std::unique_ptr<VideoDevice>> VideoDevice::open(Syscalls &syscalls, const
         new VideoDevice(syscalls, std::move(probed.fd), path, probed.card, probed.bufferType));
 }
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

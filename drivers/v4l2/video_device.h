@@ -13,7 +13,7 @@
 #include "drivers/v4l2/negotiation.h"
 #include "drivers/v4l2/v4l2_syscalls.h"
 
-namespace overlayd::v4l2 {
+namespace overlayd {
 
 enum class Direction { Capture, Output };
 
@@ -69,4 +69,4 @@ private:
 // An ioctl failure as an Error: ENODEV/EIO/ENXIO/EPIPE are DeviceLost, the rest Io; the message names the call.
 Error ioctlError(const std::string &what, int negativeErrno);
 
-} // namespace overlayd::v4l2
+} // namespace overlayd

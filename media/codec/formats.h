@@ -9,7 +9,7 @@
 #include "base/result.h"
 #include "media/codec/image_file.h"
 
-namespace overlayd::codec {
+namespace overlayd {
 
 bool isPng(std::span<const uint8_t> file);
 bool isJpeg(std::span<const uint8_t> file);
@@ -24,4 +24,4 @@ Result<DecodedImage> decodeJpeg(std::span<const uint8_t> file, ImageChannels cha
 // Unsupported, naming both sides, when the header says the image is larger than maxSide.
 Status checkSide(const ImageFileInfo &info, unsigned maxSide);
 
-} // namespace overlayd::codec
+} // namespace overlayd

@@ -17,7 +17,7 @@ Error neither()
 
 } // namespace
 
-Status codec::checkSide(const ImageFileInfo &info, unsigned maxSide)
+Status checkSide(const ImageFileInfo &info, unsigned maxSide)
 {
     if (info.width <= maxSide && info.height <= maxSide)
         return Ok{};
@@ -28,19 +28,19 @@ Status codec::checkSide(const ImageFileInfo &info, unsigned maxSide)
 
 Result<ImageFileInfo> readImageInfo(std::span<const uint8_t> file)
 {
-    if (codec::isPng(file))
-        return codec::pngInfo(file);
-    if (codec::isJpeg(file))
-        return codec::jpegInfo(file);
+    if (isPng(file))
+        return pngInfo(file);
+    if (isJpeg(file))
+        return jpegInfo(file);
     return neither();
 }
 
 Result<DecodedImage> decodeImage(std::span<const uint8_t> file, ImageChannels channels, unsigned maxSide)
 {
-    if (codec::isPng(file))
-        return codec::decodePng(file, channels, maxSide);
-    if (codec::isJpeg(file))
-        return codec::decodeJpeg(file, channels, maxSide);
+    if (isPng(file))
+        return decodePng(file, channels, maxSide);
+    if (isJpeg(file))
+        return decodeJpeg(file, channels, maxSide);
     return neither();
 }
 

@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-namespace overlayd::codec {
+namespace overlayd {
 
 namespace {
 
@@ -87,8 +87,7 @@ Result<DecodedImage> decodeJpeg(std::span<const uint8_t> file, ImageChannels cha
     return image;
 }
 
-} // namespace overlayd::codec
-
+} // namespace overlayd
 namespace overlayd {
 
 Result<std::vector<uint8_t>> encodeJpeg(const RgbImage &image, int quality)
@@ -97,9 +96,9 @@ Result<std::vector<uint8_t>> encodeJpeg(const RgbImage &image, int quality)
         return makeError(ErrorCode::InvalidArgument, "JPEG quality " + std::to_string(quality) + " is not in 1..100");
     if (image.width == 0 || image.height == 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
         return makeError(ErrorCode::InvalidArgument, "JPEG: an empty or inconsistent image");
-    codec::TurboHandle handle(tjInitCompress());
+    TurboHandle handle(tjInitCompress());
     if (!handle)
-        return codec::noTurbo();
+        return noTurbo();
     // Compressed straight into a buffer of the worst-case size, then trimmed: no copy, no TurboJPEG allocation.
     // ACCURATEDCT: libjpeg's default DCT (TurboJPEG's own default is the fast one), so that a snapshot is byte for
     // byte what OpenCV's imencode wrote at the same quality before.
@@ -108,7 +107,7 @@ Result<std::vector<uint8_t>> encodeJpeg(const RgbImage &image, int quality)
     unsigned long size = bytes.size();
     if (tjCompress2(handle.get(), image.rgb.data(), int(image.width), 0, int(image.height), TJPF_RGB, &out, &size,
                     TJSAMP_420, quality, TJFLAG_NOREALLOC | TJFLAG_ACCURATEDCT) != 0)
-        return codec::failed(handle.get(), ErrorCode::Io);
+        return failed(handle.get(), ErrorCode::Io);
     bytes.resize(size);
     return bytes;
 }

@@ -14,7 +14,7 @@
 #include <new>
 #include <string>
 
-namespace overlayd::codec {
+namespace overlayd {
 
 namespace {
 
@@ -215,8 +215,7 @@ Result<DecodedImage> decodePng(std::span<const uint8_t> file, ImageChannels chan
     return image;
 }
 
-} // namespace overlayd::codec
-
+} // namespace overlayd
 namespace overlayd {
 
 Result<std::vector<uint8_t>> encodePng(const RgbImage &image)
@@ -224,16 +223,16 @@ Result<std::vector<uint8_t>> encodePng(const RgbImage &image)
     if (image.rgb.size() != size_t(image.width) * image.height * 3)
         return makeError(ErrorCode::InvalidArgument, "PNG: the image's pixels do not match its size");
     std::vector<uint8_t> bytes;
-    codec::PngIo io;
+    PngIo io;
     io.out = &bytes;
-    codec::WriteHandles handles(io);
+    WriteHandles handles(io);
     if (!handles.info)
-        return codec::noLibpng();
+        return noLibpng();
     // libpng only reads the rows (no write transforms are set): its API just does not say const.
     std::vector<png_bytep> rows(image.height);
     for (unsigned y = 0; y < image.height; ++y)
         rows[y] = const_cast<png_bytep>(image.row(y));
-    if (!codec::writeRows(handles.png, handles.info, image.width, image.height, rows.data()))
+    if (!writeRows(handles.png, handles.info, image.width, image.height, rows.data()))
         return makeError(ErrorCode::Io, std::string("PNG encoding failed: ") + io.message);
     return bytes;
 }

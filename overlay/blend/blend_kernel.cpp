@@ -45,7 +45,6 @@ inline void blendMasked16(uint8_t *dst, const uint8_t *values, const uint8_t *in
 // lanes in one register. Reads 8 bytes at each pointer.
 inline void blendMasked8(uint8_t *dst, const uint8_t *values, const uint8_t *inverseAlpha, unsigned count)
 {
-    using namespace sink_lanes;
     static constexpr Words8 kLane = {0, 1, 2, 3, 4, 5, 6, 7};
     const Words8 in = lowWords(lowBytes(dst)), x = in * lowWords(lowBytes(inverseAlpha)) + 128;
     const Words8 out = lowWords(lowBytes(values)) + ((x + (x >> 8)) >> 8);

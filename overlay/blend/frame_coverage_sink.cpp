@@ -125,8 +125,6 @@ void FrameCoverageSink::end()
 // Chroma: a 4:2:0 chroma row's groups blended once each, when its last luma row has added its opacity (or the item
 // leaves the row), with the item's mean opacity over each macropixel.
 
-using namespace sink_lanes;
-
 namespace {
 
 template<unsigned Step>
@@ -290,9 +288,6 @@ void FrameCoverageSink::blendChromaRange(unsigned chromaRow, Interval interval)
 
 // The row paths: row() and rowRuns() (a thin line's run unstaged when the producer's row may be read past it),
 // packed 4:2:2 rows, luma with planar or semi-planar chroma, RGB.
-
-using namespace sink_lanes;
-using namespace sink_steps;
 
 void FrameCoverageSink::blendPackedRow(uint8_t *row, int y, int x0, const uint8_t *alpha, int count)
 {

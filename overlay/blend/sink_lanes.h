@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 
-namespace overlayd::sink_lanes {
+namespace overlayd {
 
 using Bytes16 = uint8_t __attribute__((vector_size(16)));
 using Bytes8 = uint8_t __attribute__((vector_size(8)));
@@ -57,4 +57,4 @@ inline Words8 lowWords(Bytes16 v)
     return (Words8)__builtin_shufflevector(v, Bytes16{}, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
 }
 
-} // namespace overlayd::sink_lanes
+} // namespace overlayd

@@ -11,9 +11,7 @@
 #include "overlay/blend/div255.h"
 #include "overlay/blend/sink_lanes.h"
 
-namespace overlayd::sink_steps {
-
-using namespace sink_lanes;
+namespace overlayd {
 
 // out = a * value / 255 + in * (255 - a) / 255, each term rounded as the cached path rounds it.
 inline uint8_t over(uint8_t in, unsigned a, unsigned value)
@@ -142,4 +140,4 @@ void rgbLoop(uint8_t *__restrict dst, const uint8_t *__restrict alpha, unsigned 
     __builtin_memcpy(bytes, &out, 16);
 }
 
-} // namespace overlayd::sink_steps
+} // namespace overlayd

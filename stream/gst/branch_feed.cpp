@@ -7,7 +7,7 @@
 
 #include "stream/fwht_header.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 bool isFwhtKeyframe(GstBuffer *buffer)
@@ -99,4 +99,4 @@ void BranchFeed::push(GstSample *sample)
         requestKeyframe_();
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

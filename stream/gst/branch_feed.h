@@ -11,7 +11,7 @@
 #include <functional>
 #include <mutex>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 // Access units waiting in a branch's appsrc beyond this are dropped up to the next keyframe (a few seconds of
 // video at 30 fps: a stalled disk or socket, not jitter).
@@ -47,4 +47,4 @@ private:
     uint64_t dropped_ = 0;
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

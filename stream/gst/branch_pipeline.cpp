@@ -3,7 +3,7 @@
 // callback returns.
 #include "stream/gst/branch_pipeline.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 void BranchPipeline::watch(GMainContext *context, GstBusFunc callback, gpointer data)
 {
@@ -41,4 +41,4 @@ void dropSource(GSource *&source)
     source = nullptr;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

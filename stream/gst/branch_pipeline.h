@@ -5,7 +5,7 @@
 
 #include <gst/gst.h>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 struct BranchPipeline {
     GstElement *pipeline = nullptr;
@@ -21,4 +21,4 @@ struct BranchPipeline {
 void replaceTimer(GSource *&timer, GMainContext *context, guint delayMs, GSourceFunc callback, gpointer data);
 void dropSource(GSource *&source);
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -8,7 +8,7 @@
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 class EncodedOutput
 {
@@ -22,4 +22,4 @@ public:
     virtual EncodedSinkState state() const = 0;
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

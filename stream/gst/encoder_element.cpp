@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 // The v4l2 plugin's encoders of `codec`: "v4l2h264enc" (or "v4l2fwhtenc") for the first device,
@@ -112,4 +112,4 @@ Result<EncoderElement> makeEncoderElement(const EncoderOptions &options, double 
     return out;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -10,7 +10,7 @@
 #include "base/result.h"
 #include "stream/stream_options.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 struct EncoderElement {
     GstElement *element = nullptr; // floating: the bin that adds it takes it
@@ -21,4 +21,4 @@ struct EncoderElement {
 
 Result<EncoderElement> makeEncoderElement(const EncoderOptions &options, double fps);
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -3,7 +3,7 @@
 // BranchFeed, which starts the file at a keyframe.
 #include "stream/gst/file_output.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 FileOutput::FileOutput(const EncodedSinkOptions &options, Codec codec, const EngineLog &log,
                        std::function<void()> requestKeyframe)
     : options_(options), log_(log), feed_(std::move(requestKeyframe), codec == Codec::Fwht)
@@ -79,4 +79,4 @@ EncodedSinkState FileOutput::state() const
     return out;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

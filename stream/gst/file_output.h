@@ -12,7 +12,7 @@
 #include "stream/gst/encoded_output.h"
 #include "stream/stream_options.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 class FileOutput : public EncodedOutput
 {
@@ -38,4 +38,4 @@ private:
     std::string lastError_;
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

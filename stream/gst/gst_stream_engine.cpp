@@ -15,7 +15,7 @@
 #include "stream/gst/push_output.h"
 #include "stream/gst/record_output.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 // The caps' colorimetry of the frames' matrix and range, with the transfer and primaries that go with each. Without
@@ -414,4 +414,4 @@ Status GstStreamEngine::removePeer(const std::string &id)
     return webrtc_->remove(id);
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -25,7 +25,7 @@
 #include "stream/gst/rtsp_output.h"
 #include "stream/gst/webrtc_peers.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 class GstStreamEngine : public EncodedStreamEngine
 {
@@ -72,4 +72,4 @@ private:
     std::deque<std::pair<GstClockTime, GstClockTime>> blendedAt_; // (PTS, blended) of the frames pushed last
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

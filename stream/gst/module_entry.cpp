@@ -5,10 +5,10 @@
 #include "stream/gst/encoder_element.h"
 #include "stream/gst/gst_stream_engine.h"
 
-using overlayd::stream::EncodedStreamEngine;
-using overlayd::stream::EncoderOptions;
-using overlayd::stream::EngineLog;
-using overlayd::stream::StreamOptions;
+using overlayd::EncodedStreamEngine;
+using overlayd::EncoderOptions;
+using overlayd::EngineLog;
+using overlayd::StreamOptions;
 
 namespace {
 
@@ -30,7 +30,7 @@ overlayd_stream_create_engine(const StreamOptions *options, const EngineLog *log
     if (!startGstreamer(error))
         return nullptr;
     try { // nothing may throw across the module's boundary
-        return new overlayd::stream::gst::GstStreamEngine(*options, *log);
+        return new overlayd::GstStreamEngine(*options, *log);
     } catch (const std::exception &e) {
         *error = e.what();
         return nullptr;
@@ -43,7 +43,7 @@ extern "C" __attribute__((visibility("default"))) bool overlayd_stream_check_enc
 {
     if (!startGstreamer(error))
         return false;
-    auto made = overlayd::stream::gst::makeEncoderElement(*options, 0.0);
+    auto made = overlayd::makeEncoderElement(*options, 0.0);
     if (!made) {
         *error = made.error().message;
         return false;

@@ -3,7 +3,7 @@
 // streaming thread only counts.
 #include "stream/gst/push_output.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 // The elements after h264parse for each protocol, the last one taking the URL in `property`.
@@ -183,4 +183,4 @@ EncodedSinkState PushOutput::state() const
     return out;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

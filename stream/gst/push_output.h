@@ -21,7 +21,7 @@
 #include "stream/gst/encoded_output.h"
 #include "stream/push_link.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 // How often a push looks whether its access units flow (connected) while it runs.
 inline constexpr guint kPushCheckMs = 500;
@@ -58,4 +58,4 @@ private:
     PushLink link_;
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

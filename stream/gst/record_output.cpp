@@ -9,7 +9,7 @@
 
 #include <cstdio>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 RetentionLimits limitsOf(const RecordSinkOptions &options)
@@ -244,4 +244,4 @@ EncodedSinkState RecordOutput::state() const
     return out;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -23,7 +23,7 @@
 #include "stream/gst/encoded_output.h"
 #include "stream/record_directory.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 // Fragments of a recording's MP4 files: what a power cut loses at most, after the picture group splitmuxsink holds.
 inline constexpr guint kFragmentMs = 1000;
@@ -74,4 +74,4 @@ private:
     std::string lastError_;
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

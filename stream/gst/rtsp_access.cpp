@@ -2,7 +2,7 @@
 // RtspAccess: the GstRTSPAuth of an RTSP sink, and the watch on its refusals.
 #include "stream/gst/rtsp_access.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 // The role every accepted credential carries, and the factory grants.
@@ -97,4 +97,4 @@ void RtspAccess::onSendMessage(GstRTSPClient *client, GstRTSPContext *context, G
         self->log_(kLogWarning, line); // the address, never what was sent
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

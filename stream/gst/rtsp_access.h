@@ -14,7 +14,7 @@
 #include "base/result.h"
 #include "stream/encoded_stream_engine.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 class RtspAccess
 {
@@ -43,4 +43,4 @@ private:
     AuthFailures failures_;
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -5,7 +5,7 @@
 
 #include <gst/app/gstappsrc.h>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 // At most this many access units wait in a media's appsrc: a media that cannot keep up drops the oldest, never
@@ -281,4 +281,4 @@ EncodedSinkState RtspOutput::state() const
     return out;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

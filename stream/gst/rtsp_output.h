@@ -18,7 +18,7 @@
 #include "stream/gst/rtsp_access.h"
 #include "stream/pending_clients.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 class RtspOutput
 {
@@ -65,4 +65,4 @@ private:
     PendingClients pending_; // the clients_ that have not asked to play yet
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -10,7 +10,7 @@
 
 #include <cstring>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 struct SdpMessage {
@@ -312,4 +312,4 @@ GstPadProbeReturn WebrtcPeer::onUpstreamEvent(GstPad *, GstPadProbeInfo *info, g
     return GST_PAD_PROBE_OK;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -24,7 +24,7 @@
 #include "stream/gst/webrtc_stats_poll.h"
 #include "stream/webrtc_options.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 class WebrtcPeer
 {
@@ -79,4 +79,4 @@ private:
 // preferred), or why the offer cannot be answered: "the offer is not SDP", "no m=video", "no H.264".
 Result<int> offeredH264PayloadType(const std::string &offer);
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

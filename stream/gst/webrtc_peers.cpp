@@ -7,7 +7,7 @@
 
 #include "stream/gst/branch_pipeline.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 WebrtcPeers::WebrtcPeers(const WebrtcOptions &options, const EngineLog &log, std::function<void()> requestKeyframe)
     : options_(options), log_(log), requestKeyframe_(std::move(requestKeyframe))
@@ -135,4 +135,4 @@ void WebrtcPeers::retire(const std::shared_ptr<WebrtcPeer> &peer)
     departed_ += peer->stats();
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

@@ -15,7 +15,7 @@
 #include "stream/encoded_stream_engine.h"
 #include "stream/gst/webrtc_peer.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 // How often failed peers are looked for.
 inline constexpr guint kWebrtcReapMs = 1000;
@@ -54,4 +54,4 @@ private:
     unsigned ticks_ = 0;       // of the reap timer: every kWebrtcStatsMs of them, the peers' statistics are polled
 };
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

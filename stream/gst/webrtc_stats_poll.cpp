@@ -6,7 +6,7 @@
 #define GST_USE_UNSTABLE_API // webrtcbin's library is marked unstable in 1.22
 #include <gst/webrtc/webrtc.h>
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 namespace {
 
 // A numeric field whatever its integer or floating type (they differ between GStreamer releases), or `fallback`.
@@ -79,4 +79,4 @@ WebrtcPeerStats WebrtcStatsPoll::latest() const
     return shared_->stats;
 }
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

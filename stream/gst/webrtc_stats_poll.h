@@ -11,7 +11,7 @@
 
 #include "stream/webrtc_peer_stats.h"
 
-namespace overlayd::stream::gst {
+namespace overlayd {
 
 // How often the engine's loop asks every peer's webrtcbin for its statistics: RTCP reports come about every
 // second or more, so polling faster shows nothing new.
@@ -41,4 +41,4 @@ private:
 // its "remote-inbound-rtp" round-trip-time.
 WebrtcPeerStats parseWebrtcStats(const GstStructure *reply);
 
-} // namespace overlayd::stream::gst
+} // namespace overlayd

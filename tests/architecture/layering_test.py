@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The folder layering of docs/architecture.md, checked: every #include "folder/..." in a production folder must name
 a folder that the table below lets it use, and inside a folder the includes between its files (a .cpp and its .h
-counted as one) form no cycle. A new edge is a design decision: change the table and the document together. Exit
+counted as one) form no cycle, and every namespace opened is one that docs/architecture.md names. A new edge is a design decision: change the table and the document together. Exit
 status 1 lists every offending include as file:line, and every cycle."""
 import os
 import re
@@ -46,6 +46,11 @@ NAMESPACE = re.compile(r'^\s*namespace\s+([\w:]+)')
 # fails too, so that the list only shrinks. (A `*_none.cpp` is the build's stand-in when an optional library is
 # missing, never built beside its counterpart: not counted.)
 KNOWN_SPREAD = set()
+# One namespace (docs/architecture.md): `overlayd`, anonymous ones, and named inner ones for two reasons only: a
+# source compiled once per instruction set, and support code that several tests share. Aliases are not counted.
+OPENED = re.compile(r'^\s*namespace\s+([\w:]+)\s*\{')
+PER_INSTRUCTION_SET = {"baseline", "avx2", "avx512", "OVERLAYD_LANES_NS"}
+TEST_SUPPORT = {"test", "bench"}
 
 
 def problems(root):
@@ -152,13 +157,39 @@ def spread(root):
     return found
 
 
+def namespaces(root):
+    """Namespaces other than `overlayd`, its per-instruction-set copies and (under tests/) its test support."""
+    found = []
+    for folder in list(ALLOWED) + ["tests"]:
+        inner = PER_INSTRUCTION_SET | (TEST_SUPPORT if folder == "tests" else set())
+        for directory, _, names in os.walk(os.path.join(root, folder)):
+            if os.path.relpath(directory, root).startswith(os.path.join("tests", "data")):
+                continue  # fixtures, planted faults among them
+            for name in sorted(names):
+                if not name.endswith((".h", ".cpp")):
+                    continue
+                relative = os.path.relpath(os.path.join(directory, name), root)
+                with open(os.path.join(root, relative), encoding="utf-8") as source:
+                    for number, line in enumerate(source, 1):
+                        if not (match := OPENED.match(line)):
+                            continue
+                        parts = match.group(1).split("::")
+                        if parts[0] == "overlayd":
+                            parts = parts[1:]
+                        if parts and (len(parts) > 1 or parts[0] not in inner) and parts != ["std"]:
+                            found.append(f"{relative}:{number}: namespace {match.group(1)}: overlayd's code is in "
+                                         "the one namespace overlayd (docs/architecture.md)")
+    return found
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
-    found = problems(os.path.abspath(root)) + cycles(os.path.abspath(root)) + spread(os.path.abspath(root))
+    root = os.path.abspath(root)
+    found = problems(root) + cycles(root) + spread(root) + namespaces(root)
     for problem in found:
         print(problem)
     if found:
-        print(f"{len(found)} include(s), cycle(s) or spread class(es) against docs/architecture.md")
+        print(f"{len(found)} include(s), cycle(s), spread class(es) or namespace(s) against docs/architecture.md")
         return 1
     print("layering ok: " + ", ".join(f"{folder} -> {{{', '.join(sorted(allowed))}}}" for folder, allowed in
                                       ALLOWED.items()))

@@ -13,17 +13,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size < 4)
         return 0;
-    overlayd::inputs::CanSignalLayout layout;
+    overlayd::CanSignalLayout layout;
     layout.startBit = data[0] % 64;
     layout.length = 1 + data[1] % 64;
     layout.bigEndian = data[2] & 1;
     layout.isSigned = data[2] & 2;
     layout.scale = 0.1 * (1 + data[3]);
-    if (!overlayd::inputs::canLayoutProblem(layout).empty())
+    if (!overlayd::canLayoutProblem(layout).empty())
         return 0;
-    const std::span<const uint8_t> frame(data + 4, std::min<size_t>(size - 4, overlayd::inputs::kCanDataBytes));
-    const auto value = overlayd::inputs::canDecode(layout, frame);
-    if (value.has_value() != (frame.size() >= overlayd::inputs::canBytesNeeded(layout)))
+    const std::span<const uint8_t> frame(data + 4, std::min<size_t>(size - 4, overlayd::kCanDataBytes));
+    const auto value = overlayd::canDecode(layout, frame);
+    if (value.has_value() != (frame.size() >= overlayd::canBytesNeeded(layout)))
         __builtin_trap(); // a frame long enough must decode, a short one must not
     return 0;
 }

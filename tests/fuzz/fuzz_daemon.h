@@ -36,8 +36,7 @@ struct FuzzDaemon {
                                                     overlayd::DaemonOptions{path, std::nullopt, 0});
         if (!daemon->start())
             std::abort(); // the fixed config must start: a fuzz run over a daemon that did not is no run
-        api = std::make_unique<overlayd::HttpApi>(daemon->scene(), *daemon,
-                                                  [] { return overlayd::http::HttpCounters{}; });
+        api = std::make_unique<overlayd::HttpApi>(daemon->scene(), *daemon, [] { return overlayd::HttpCounters{}; });
     }
     ~FuzzDaemon() { std::filesystem::remove_all(folder); }
 };

@@ -41,9 +41,9 @@ position = [4.0, 4.0]
 kind = "null"
 )";
 
-overlayd::http::HttpRequest request(std::string_view input)
+overlayd::HttpRequest request(std::string_view input)
 {
-    overlayd::http::HttpRequest request;
+    overlayd::HttpRequest request;
     const size_t lineEnd = std::min(input.find('\n'), input.size());
     const std::string_view line = input.substr(0, lineEnd);
     request.body = std::string(input.substr(std::min(lineEnd + 1, input.size())));

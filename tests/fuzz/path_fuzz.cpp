@@ -8,6 +8,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    (void)overlayd::inputs::parsePointList(std::string_view(reinterpret_cast<const char *>(data), size), "fuzz.txt");
+    (void)overlayd::parsePointList(std::string_view(reinterpret_cast<const char *>(data), size), "fuzz.txt");
     return 0;
 }

@@ -8,6 +8,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    (void)overlayd::alignment::parsePoints(std::string(reinterpret_cast<const char *>(data), size), "fuzz.csv");
+    (void)overlayd::parsePoints(std::string(reinterpret_cast<const char *>(data), size), "fuzz.csv");
     return 0;
 }

@@ -62,10 +62,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     write(running.folder / "route.txt", input);
     running.daemon->textInputs().showAll();
     running.daemon->pathInputs().showAll();
-    overlayd::http::HttpRequest request;
+    overlayd::HttpRequest request;
     request.method = "GET";
     request.path = "/state";
-    const overlayd::http::HttpResponse state = running.api->handle(request);
+    const overlayd::HttpResponse state = running.api->handle(request);
     if (state.status != 200)
         std::abort();
     // Throws (and so fails the run) on anything that is not JSON, invalid UTF-8 in a string included.

@@ -12,7 +12,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 constexpr int kWidth = 640, kHeight = 480;
@@ -78,4 +78,4 @@ TEST(Alignment, ShiftedGridIsCaughtByTheSameMeasure)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

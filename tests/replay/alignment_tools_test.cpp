@@ -13,7 +13,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 // config/examples/distorted_pinhole.toml: calibration.yaml with fx overridden, and its rvec/tvec.
@@ -402,4 +402,4 @@ TEST(Unproject, ARayThatMissesThePlaneSaysWhy)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -7,7 +7,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 struct BadConfig {
@@ -115,4 +115,4 @@ show_layers = ["guides"]
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -9,7 +9,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 TEST(BrokenPipe, ReaderGoingAwayDoesNotKillTheDaemon)
@@ -32,4 +32,4 @@ TEST(BrokenPipe, ReaderGoingAwayDoesNotKillTheDaemon)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

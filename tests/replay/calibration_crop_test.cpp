@@ -12,7 +12,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string config(const std::string &crop)
@@ -63,4 +63,4 @@ TEST(CalibrationCrop, CheckConfigRefusesARegionOfAnotherAspectAtItsKey)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

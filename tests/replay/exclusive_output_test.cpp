@@ -10,7 +10,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string config(const std::string &sinks)
@@ -75,4 +75,4 @@ TEST(ExclusiveOutputs, ASecondDaemonOnTheSameFileIsRefusedNamingTheFirst)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

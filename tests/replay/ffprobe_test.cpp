@@ -10,7 +10,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string ffprobe(const std::string &path)
@@ -59,4 +59,4 @@ INSTANTIATE_TEST_SUITE_P(Formats, Ffprobe,
                          [](const auto &param) { return std::string(param.param.scene); });
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

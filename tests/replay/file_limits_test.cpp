@@ -16,7 +16,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 // ROS camera_info at its shortest (rows, cols and the model are optional).
@@ -197,4 +197,4 @@ TEST(FileLimits, ManyImageAnnotationsAreBoundedAsAWhole)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -20,7 +20,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 struct Scene {
@@ -99,4 +99,4 @@ TEST(Origins, BottomLeftSceneEqualsTopLeftSceneOutsideTheText)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

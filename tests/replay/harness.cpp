@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::replay {
+namespace overlayd::test {
 
 namespace fs = std::filesystem;
 
@@ -172,4 +172,4 @@ cv::Mat renderFrameBgr(const std::string &config, const std::string &format, int
     return rawToBgr(bytes, frameSize * index, format, width, height);
 }
 
-} // namespace overlayd::replay
+} // namespace overlayd::test

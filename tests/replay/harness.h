@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-namespace overlayd::replay {
+namespace overlayd::test {
 
 struct RunResult {
     int exitStatus = -1;  // the process's exit status; -1 when it did not exit normally
@@ -44,4 +44,4 @@ std::string pointArguments(const std::vector<cv::Point3d> &points);
 std::vector<uint8_t> readFile(const std::string &path);
 void writeFile(const std::string &path, const std::string &text);
 
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -14,7 +14,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 constexpr int kWidth = 1280, kHeight = 720;
@@ -194,4 +194,4 @@ TEST(ImageAnnotation, TheGroundSignLiesOnTheProjectedCornersOfItsWorldRectangle)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

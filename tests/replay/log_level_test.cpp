@@ -8,7 +8,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 // A golden scene's config with its log level replaced.
@@ -48,4 +48,4 @@ TEST(LogLevel, CommandLineOverridesTheConfig)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

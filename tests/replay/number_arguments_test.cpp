@@ -8,7 +8,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string example()
@@ -93,4 +93,4 @@ TEST(NumberArguments, PointsFilesRefuseHugeNumbersAtTheirLine)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

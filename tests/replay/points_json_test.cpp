@@ -8,7 +8,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 std::string examples(const std::string &name)
@@ -106,4 +106,4 @@ TEST(PointsJson, RefusesBadFilesNamingTheLineAndElement)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

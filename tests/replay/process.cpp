@@ -13,7 +13,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 
 pid_t startDaemon(const std::string &dir, const std::string &config, bool blockStopSignals)
 {
@@ -87,4 +87,4 @@ std::string fileText(const std::string &path)
     return std::string(bytes.begin(), bytes.end());
 }
 
-} // namespace overlayd::replay
+} // namespace overlayd::test

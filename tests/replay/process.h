@@ -10,7 +10,7 @@
 
 #include <sys/types.h>
 
-namespace overlayd::replay {
+namespace overlayd::test {
 
 // `overlayd run --config CONFIG` in `dir`, stderr to dir/overlayd.stderr, with JOURNAL_STREAM set (so log lines carry
 // syslog priority prefixes). Returns once the child has exec'd the binary, so that a signal sent from then on is
@@ -33,4 +33,4 @@ bool waitFor(const std::function<bool()> &condition, std::chrono::seconds limit 
 // A whole file as text; empty when it cannot be read.
 std::string fileText(const std::string &path);
 
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -11,7 +11,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 struct Expected {
@@ -150,4 +150,4 @@ TEST(ProjectJson, OutsideTheScissorAndOutsideTheImageCircleSaySo)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

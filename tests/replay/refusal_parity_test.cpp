@@ -16,7 +16,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -174,4 +174,4 @@ TEST(BoundedSuggestions, HugeAndManyUnknownKeysGetAShortAnswer)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -14,7 +14,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -184,4 +184,4 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto &param) { return std::string(param.param.name); });
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -14,7 +14,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -88,4 +88,4 @@ TEST(SceneControl, ReloadedPoseMovesTheMarkerWhereProjectSays)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -12,7 +12,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -62,4 +62,4 @@ TEST(Sighup, BadConfigIsRefusedAndGoodConfigSwitchesSinks)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

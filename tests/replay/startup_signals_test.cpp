@@ -16,7 +16,7 @@
 #include "harness.h"
 #include "process.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -156,4 +156,4 @@ TEST(StopWhileStarting, AFifoAsTheConfigNoLongerBlocks)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

@@ -16,7 +16,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 constexpr int kWidth = 640, kHeight = 360;
@@ -169,4 +169,4 @@ TEST(AxisLabels, ContrastWithABlackGround)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

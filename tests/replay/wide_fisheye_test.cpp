@@ -13,7 +13,7 @@
 
 #include "harness.h"
 
-namespace overlayd::replay {
+namespace overlayd::test {
 namespace {
 
 // theta_d = theta (1 + k2 theta^4): grows up to 121 degrees from the axis (1 - 0.05 theta^4 = 0).
@@ -145,4 +145,4 @@ TEST(WideFisheye, ProjectSaysWhyAPointHasNoPixel)
 }
 
 } // namespace
-} // namespace overlayd::replay
+} // namespace overlayd::test

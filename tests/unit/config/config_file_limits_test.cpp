@@ -18,9 +18,6 @@
 namespace overlayd::test {
 namespace {
 
-using config::findTooDeep;
-using config::TextSyntax;
-
 class ConfigFileLimitsTest : public ::testing::Test
 {
 protected:

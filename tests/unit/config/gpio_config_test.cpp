@@ -25,14 +25,14 @@ class GpioConfig : public ::testing::Test
 protected:
     void SetUp() override
     {
-        if (!gpio::haveLibgpiod())
+        if (!haveLibgpiod())
             GTEST_SKIP() << "built without libgpiod (OVERLAYD_GPIOD=OFF): [gpio] is refused whole";
     }
 };
 
 TEST(GpioConfigWithoutLibgpiod, GpioIsRefusedAtItsKey)
 {
-    if (gpio::haveLibgpiod())
+    if (haveLibgpiod())
         GTEST_SKIP() << "built with libgpiod";
     const auto problems = loadInvalid(kScene + "[[gpio.input]]\nchip = \"gpiochip0\"\nline = 3\nshow = [\"guides\"]\n");
     ASSERT_EQ(problems.size(), 1u) << formatProblems(problems);
@@ -61,18 +61,18 @@ signal = "frame-toggle"
 active_low = true
 )");
     ASSERT_EQ(config.gpio.inputs.size(), 1u);
-    const gpio::InputOptions &in = config.gpio.inputs[0];
+    const GpioInputOptions &in = config.gpio.inputs[0];
     EXPECT_EQ(in.name, "reverse");
-    EXPECT_EQ(in.line, (gpio::LineAddress{"gpiochip0", "", 17}));
+    EXPECT_EQ(in.line, (LineAddress{"gpiochip0", "", 17}));
     EXPECT_TRUE(in.activeLow);
-    EXPECT_EQ(in.bias, gpio::Bias::PullUp);
+    EXPECT_EQ(in.bias, Bias::PullUp);
     EXPECT_EQ(in.debounceMs, 30u);
     EXPECT_EQ(in.showLayers, std::vector<std::string>{"guides"});
     EXPECT_EQ(in.hideLayers, std::vector<std::string>{"logo"});
     ASSERT_EQ(config.gpio.outputs.size(), 1u);
-    const gpio::OutputOptions &out = config.gpio.outputs[0];
-    EXPECT_EQ(out.line, (gpio::LineAddress{"/dev/gpiochip1", "STATUS", 0}));
-    EXPECT_EQ(out.signal, gpio::OutputSignal::FrameToggle);
+    const OutputOptions &out = config.gpio.outputs[0];
+    EXPECT_EQ(out.line, (LineAddress{"/dev/gpiochip1", "STATUS", 0}));
+    EXPECT_EQ(out.signal, OutputSignal::FrameToggle);
     EXPECT_TRUE(out.activeLow);
 }
 
@@ -81,12 +81,12 @@ TEST_F(GpioConfig, DefaultsAreTheDocumentedOnes)
     const DaemonConfig config =
         loadValid(kScene + "[[gpio.input]]\nchip = \"c\"\nline = 1\nshow_layers = [\"guides\"]\n"
                            "[[gpio.output]]\nchip = \"c\"\nline = 2\n");
-    const gpio::InputOptions &in = config.gpio.inputs.at(0);
+    const GpioInputOptions &in = config.gpio.inputs.at(0);
     EXPECT_EQ(in.name, "gpio.input[0]");
     EXPECT_FALSE(in.activeLow);
-    EXPECT_EQ(in.bias, gpio::Bias::AsIs);
+    EXPECT_EQ(in.bias, Bias::AsIs);
     EXPECT_EQ(in.debounceMs, 20u);
-    EXPECT_EQ(config.gpio.outputs.at(0).signal, gpio::OutputSignal::Streaming);
+    EXPECT_EQ(config.gpio.outputs.at(0).signal, OutputSignal::Streaming);
 }
 
 TEST_F(GpioConfig, AnUnknownLayerIsRefusedAtItsKeyWithASuggestion)
@@ -159,7 +159,7 @@ TEST_F(GpioConfig, OneLineUnderTwoSpellingsOfItsChipIsUsedTwice)
         ASSERT_EQ(problems.size(), 1u) << other << "\n" << test::formatProblems(problems);
         EXPECT_EQ(problems[0].key, "gpio.output[0].line") << other;
     }
-    gpio::LineAddress byName{"gpiochip0", "", 5}, otherChip{"/dev/gpiochip1", "", 5}, label{"pinctrl", "", 5};
+    LineAddress byName{"gpiochip0", "", 5}, otherChip{"/dev/gpiochip1", "", 5}, label{"pinctrl", "", 5};
     EXPECT_FALSE(byName.sameLine(otherChip));
     EXPECT_FALSE(byName.sameLine(label)); // a label is known only on the machine
     EXPECT_FALSE(byName.sameLine({"gpiochip0", "", 6}));
@@ -182,7 +182,7 @@ TEST_F(GpioConfig, AnInputCannotShowAndHideOneLayerOrSwitchAnEmptyList)
 TEST_F(GpioConfig, InputsAreLimited)
 {
     std::string text = kScene;
-    for (size_t i = 0; i <= gpio::kMaxInputs; ++i)
+    for (size_t i = 0; i <= kMaxInputs; ++i)
         text += "[[gpio.input]]\nchip = \"c\"\nline = " + std::to_string(i) + "\nshow_layers = [\"guides\"]\n";
     const auto problems = loadInvalid(text);
     EXPECT_NE(

@@ -58,7 +58,7 @@ std::string fileText(const std::string &path)
 
 TEST(HttpConfig, AbsentMeansNoServerAndTheDefaultsAreTheDocumentedOnes)
 {
-    if (!http::httpBuiltIn())
+    if (!httpBuiltIn())
         GTEST_SKIP() << kWithoutServer;
     EXPECT_FALSE(loadValid(kBase).http.enabled);
     const DaemonConfig config = loadValid(kBase + "[http]\ncontrol = \"off\"\n");
@@ -71,7 +71,7 @@ TEST(HttpConfig, AbsentMeansNoServerAndTheDefaultsAreTheDocumentedOnes)
 
 TEST(HttpConfig, EveryBadValueIsRefusedAtItsKey)
 {
-    if (!http::httpBuiltIn())
+    if (!httpBuiltIn())
         GTEST_SKIP() << kWithoutServer;
     const auto problems = loadInvalid(kBase + R"([http]
 listen = "0.0.0.0:http"
@@ -92,7 +92,7 @@ streem_fps = 3
 
 TEST(HttpConfig, AnOpenControlApiOnlyListensLocally)
 {
-    if (!http::httpBuiltIn())
+    if (!httpBuiltIn())
         GTEST_SKIP() << kWithoutServer;
     EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"127.0.0.1:9000\"\ncontrol = \"open\"\n").http.enabled);
     EXPECT_TRUE(loadValid(kBase + "[http]\nlisten = \"unix:/run/o.sock\"\ncontrol = \"open\"\n").http.enabled);
@@ -104,7 +104,7 @@ TEST(HttpConfig, AnOpenControlApiOnlyListensLocally)
 
 TEST(HttpConfig, TheTokenFileIsResolvedBesideTheConfigAndMustBeReadable)
 {
-    if (!http::httpBuiltIn())
+    if (!httpBuiltIn())
         GTEST_SKIP() << kWithoutServer;
     const auto dir = scratch("token");
     std::ofstream(dir / "front.token") << "abc\n";
@@ -116,7 +116,7 @@ TEST(HttpConfig, TheTokenFileIsResolvedBesideTheConfigAndMustBeReadable)
 
 TEST(HttpConfig, WithoutTheServerHttpIsRefusedAtItsKey)
 {
-    if (http::httpBuiltIn())
+    if (httpBuiltIn())
         GTEST_SKIP() << "built with the HTTP server";
     const auto problems = loadInvalid(kBase + "[http]\ncontrol = \"off\"\n");
     ASSERT_EQ(problems.size(), 1u) << test::formatProblems(problems);
@@ -126,15 +126,15 @@ TEST(HttpConfig, WithoutTheServerHttpIsRefusedAtItsKey)
 
 TEST(ListenAddress, ParsesEveryFormAndRefusesTheRest)
 {
-    EXPECT_EQ(http::parseListenAddress("127.0.0.1:8080")->port, 8080u);
-    EXPECT_EQ(http::parseListenAddress("[::1]:80")->kind, http::ListenAddress::Kind::Ipv6);
-    EXPECT_EQ(http::parseListenAddress("unix:/run/x.sock")->host, "/run/x.sock");
-    EXPECT_EQ(http::parseListenAddress("localhost:1")->host, "127.0.0.1");
+    EXPECT_EQ(parseListenAddress("127.0.0.1:8080")->port, 8080u);
+    EXPECT_EQ(parseListenAddress("[::1]:80")->kind, ListenAddress::Kind::Ipv6);
+    EXPECT_EQ(parseListenAddress("unix:/run/x.sock")->host, "/run/x.sock");
+    EXPECT_EQ(parseListenAddress("localhost:1")->host, "127.0.0.1");
     for (const char *bad : {"", "8080", "127.0.0.1", "127.0.0.1:0", "127.0.0.1:65536", "host.example:80", "[::1:80",
                             "unix:relative.sock", "1.2.3:80", "127.0.0.1:80x"})
-        EXPECT_FALSE(http::parseListenAddress(bad).ok()) << bad;
-    EXPECT_TRUE(http::parseListenAddress("127.5.0.1:1")->isLocal());
-    EXPECT_FALSE(http::parseListenAddress("10.0.0.1:1")->isLocal());
+        EXPECT_FALSE(parseListenAddress(bad).ok()) << bad;
+    EXPECT_TRUE(parseListenAddress("127.5.0.1:1")->isLocal());
+    EXPECT_FALSE(parseListenAddress("10.0.0.1:1")->isLocal());
 }
 
 // The API's camera requests go through [camera]'s readers: any pose form, intrinsics over the live camera.

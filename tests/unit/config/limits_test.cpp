@@ -53,7 +53,7 @@ TEST(Limits, ViewportEntriesStayFarInsideInt)
 TEST(Limits, CountsAreRefusedAtTheFirstEntryOver)
 {
     std::string sinks;
-    for (size_t i = 0; i <= config::kMaxSinks; ++i)
+    for (size_t i = 0; i <= kMaxSinks; ++i)
         sinks += "[[sink]]\nkind = \"null\"\n"; // sink[i] starts on line 2i + 1
     EXPECT_REFUSED(sinks, "test.toml:33:1: sink[16]: too many [[sink]] tables: at most 16 (got 17)\n");
 
@@ -67,7 +67,7 @@ TEST(Limits, CountsAreRefusedAtTheFirstEntryOver)
                    "test.toml:3:51: annotation[0].style.dash[16]: too many numbers: at most 16 (got 17)\n");
 
     std::string annotations;
-    for (size_t i = 0; i <= config::kMaxAnnotations; ++i)
+    for (size_t i = 0; i <= kMaxAnnotations; ++i)
         annotations += "[[annotation]]\ntype = \"axes\"\n";
     EXPECT_REFUSED(annotations, "test.toml:2049:1: annotation[1024]: too many [[annotation]] tables: at most 1024 "
                                 "(got 1025)\n");
@@ -75,9 +75,10 @@ TEST(Limits, CountsAreRefusedAtTheFirstEntryOver)
 
 TEST(Limits, TextAndNamesHaveAMaximumLength)
 {
-    EXPECT_REFUSED("[[annotation]]\ntype = \"text\"\ntext = \"" + std::string(config::kMaxTextBytes + 1, 'x') + "\"\n",
+    EXPECT_REFUSED("[[annotation]]\ntype = \"text\"\ntext = \"" + std::string(kMaxAnnotationTextBytes + 1, 'x') +
+                       "\"\n",
                    "test.toml:3:8: annotation[0].text: too long: at most 1024 bytes (got 1025)\n");
-    EXPECT_REFUSED("[[frame]]\nname = \"" + std::string(config::kMaxNameBytes + 1, 'f') + "\"\n",
+    EXPECT_REFUSED("[[frame]]\nname = \"" + std::string(kMaxNameBytes + 1, 'f') + "\"\n",
                    "test.toml:2:8: frame[0].name: too long: at most 256 bytes (got 257)\n");
 }
 
@@ -132,13 +133,13 @@ TEST(Limits, SuggestionsAndProblemListsAreBounded)
     for (int i = 0; i < 10000; ++i)
         many += "unknown_" + std::to_string(i) + std::string(200, 'z') + " = 1\n";
     const auto listed = loadInvalid(many);
-    ASSERT_EQ(listed.size(), config::kMaxListedProblems + 1);
+    ASSERT_EQ(listed.size(), kMaxListedProblems + 1);
     EXPECT_EQ(listed.back().message, "9900 more problem(s) not listed");
     for (const ConfigProblem &problem : listed)
         EXPECT_LT(problem.format().size(), 300u);
 
-    EXPECT_EQ(config::closestMatch(std::string(1000, 'a'), {std::string(1000, 'a')}), "");
-    EXPECT_EQ(config::closestMatch("widht", {"height", "width"}), "width");
+    EXPECT_EQ(closestMatch(std::string(1000, 'a'), {std::string(1000, 'a')}), "");
+    EXPECT_EQ(closestMatch("widht", {"height", "width"}), "width");
 }
 
 } // namespace

@@ -21,7 +21,7 @@ class EncodedSinkConfig : public ::testing::Test
 protected:
     void SetUp() override
     {
-        if (!stream::streamBuiltIn())
+        if (!streamBuiltIn())
             GTEST_SKIP() << "built without the encoded outputs";
         directory_ =
             std::filesystem::temp_directory_path() / ("overlayd-record-config-" + std::to_string(getpid()) + "-" +
@@ -51,11 +51,11 @@ TEST_F(EncodedSinkConfig, ARecordWithEveryKey)
     EXPECT_EQ(config.sinks.size(), 1u); // the null sink; the recording is not a frame sink
     ASSERT_EQ(config.stream.sinks.size(), 1u);
     EXPECT_EQ(config.stream.sinks[0].key, "sink[1]");
-    EXPECT_EQ(config.stream.sinks[0].kind, stream::EncodedSinkKind::Record);
-    const stream::RecordSinkOptions &options = config.stream.sinks[0].record;
+    EXPECT_EQ(config.stream.sinks[0].kind, EncodedSinkKind::Record);
+    const RecordSinkOptions &options = config.stream.sinks[0].record;
     EXPECT_EQ(options.directory, directory_.string());
     EXPECT_EQ(options.segmentSec, 2.5);
-    EXPECT_EQ(options.container, stream::RecordContainer::Matroska);
+    EXPECT_EQ(options.container, RecordContainer::Matroska);
     EXPECT_EQ(options.keepBytes, 2000000000u);
     EXPECT_EQ(options.keepDays, 7.0);
 }
@@ -64,9 +64,9 @@ TEST_F(EncodedSinkConfig, DefaultsAreAMinuteOfMp4KeptForever)
 {
     const DaemonConfig config = loadValid(record(""));
     ASSERT_EQ(config.stream.sinks.size(), 1u);
-    const stream::RecordSinkOptions &options = config.stream.sinks[0].record;
+    const RecordSinkOptions &options = config.stream.sinks[0].record;
     EXPECT_EQ(options.segmentSec, 60.0);
-    EXPECT_EQ(options.container, stream::RecordContainer::Mp4);
+    EXPECT_EQ(options.container, RecordContainer::Mp4);
     EXPECT_EQ(options.keepBytes, 0u);
     EXPECT_EQ(options.keepDays, 0.0);
 }
@@ -89,7 +89,7 @@ TEST_F(EncodedSinkConfig, TheLimitsAreTheNamedOnes)
 {
     EXPECT_TRUE(loadValid(record("segment_s = 1\nkeep_days = 36500\n")).stream.sinks.size() == 1);
     EXPECT_TRUE(loadValid(record("segment_s = 86400\nkeep_bytes = 1125899906842624\n")).stream.sinks.size() == 1);
-    EXPECT_EQ(stream::kMaxKeepBytes, 1125899906842624u);
+    EXPECT_EQ(kMaxKeepBytes, 1125899906842624u);
     EXPECT_TRUE(hasProblem(loadInvalid(record("segment_s = 86401\n")), "sink[1].segment_s", ""));
     EXPECT_TRUE(hasProblem(loadInvalid(record("keep_bytes = 1125899906842625\n")), "sink[1].keep_bytes", ""));
 }
@@ -123,24 +123,24 @@ TEST_F(EncodedSinkConfig, TwoRecordingsCannotShareADirectory)
 
 TEST(PushConfig, EachSchemeAndItsProtocol)
 {
-    if (!stream::streamBuiltIn())
+    if (!streamBuiltIn())
         GTEST_SKIP() << "built without the encoded outputs";
     const DaemonConfig config = loadValid("[[sink]]\nkind = \"push\"\nurl = \"rtsp://127.0.0.1:8554/cam\"\n"
                                           "[[sink]]\nkind = \"push\"\nurl = \"rtmp://127.0.0.1/live/cam\"\n"
                                           "[[sink]]\nkind = \"push\"\nurl = \"srt://127.0.0.1:9000\"\n");
     ASSERT_EQ(config.stream.sinks.size(), 3u);
-    EXPECT_EQ(config.stream.sinks[0].push.protocol, stream::PushProtocol::Rtsp);
-    EXPECT_EQ(config.stream.sinks[1].push.protocol, stream::PushProtocol::Rtmp);
-    EXPECT_EQ(config.stream.sinks[2].push.protocol, stream::PushProtocol::Srt);
+    EXPECT_EQ(config.stream.sinks[0].push.protocol, PushProtocol::Rtsp);
+    EXPECT_EQ(config.stream.sinks[1].push.protocol, PushProtocol::Rtmp);
+    EXPECT_EQ(config.stream.sinks[2].push.protocol, PushProtocol::Srt);
     EXPECT_EQ(config.stream.sinks[2].push.url, "srt://127.0.0.1:9000");
-    EXPECT_EQ(config.stream.sinks[2].kind, stream::EncodedSinkKind::Push);
+    EXPECT_EQ(config.stream.sinks[2].kind, EncodedSinkKind::Push);
     EXPECT_EQ(config.stream.sinks[2].key, "sink[2]");
     EXPECT_TRUE(config.sinks.empty());
 }
 
 TEST(PushConfig, ABadSchemeOrNoUrlIsRefused)
 {
-    if (!stream::streamBuiltIn())
+    if (!streamBuiltIn())
         GTEST_SKIP() << "built without the encoded outputs";
     auto problems = loadInvalid("[[sink]]\nkind = \"push\"\nurl = \"http://127.0.0.1/cam\"\n");
     ASSERT_EQ(problems.size(), 1u) << formatProblems(problems);

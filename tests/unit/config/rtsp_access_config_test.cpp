@@ -22,7 +22,7 @@ class RtspAccessConfig : public ::testing::Test
 protected:
     void SetUp() override
     {
-        if (!stream::streamBuiltIn())
+        if (!streamBuiltIn())
             GTEST_SKIP() << "built without the encoded outputs";
         folder_ =
             std::filesystem::temp_directory_path() / ("overlayd-rtsp-access-" + std::to_string(getpid()) + "-" +
@@ -44,10 +44,7 @@ protected:
                "viewer_token_file = \"viewer.token\"\nviewer = \"" + viewer + "\"\n[[sink]]\nkind = \"rtsp\"\n" +
                sinkKeys;
     }
-    const stream::RtspAccessOptions &access(const DaemonConfig &loaded) const
-    {
-        return loaded.stream.sinks.at(0).rtsp.access;
-    }
+    const RtspAccessOptions &access(const DaemonConfig &loaded) const { return loaded.stream.sinks.at(0).rtsp.access; }
 
     std::filesystem::path folder_;
 };
@@ -55,8 +52,7 @@ protected:
 TEST_F(RtspAccessConfig, FollowsHttpViewerByDefault)
 {
     const DaemonConfig closed = loadValid(config("credential", ""), folder_.string());
-    const std::vector<stream::RtspUser> expected{
-        {"watcher", "see:it"}, {"boss", "c0ntrol"}, {stream::kRtspTokenUser, "viewer-token"}};
+    const std::vector<RtspUser> expected{{"watcher", "see:it"}, {"boss", "c0ntrol"}, {kRtspTokenUser, "viewer-token"}};
     EXPECT_EQ(access(closed).users, expected);
     EXPECT_TRUE(access(closed).certPem.empty());
     EXPECT_TRUE(access(loadValid(config("open", ""), folder_.string())).users.empty());

@@ -305,12 +305,12 @@ TEST(Schema, FarInfinityOnlyWhereTheModelAllowsIt)
 
 TEST(Problems, EditDistanceAndSuggestions)
 {
-    EXPECT_EQ(config::editDistance("kitten", "sitting"), 3u);
-    EXPECT_EQ(config::editDistance("widht", "width"), 1u); // a transposition is one edit
-    EXPECT_EQ(config::editDistance("", "abc"), 3u);
-    EXPECT_EQ(config::editDistance("width", "width"), 0u);
-    EXPECT_EQ(config::closestMatch("widht", {"height", "width", "fps"}), "width");
-    EXPECT_EQ(config::closestMatch("zzzzzz", {"height", "width", "fps"}), "");
+    EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
+    EXPECT_EQ(editDistance("widht", "width"), 1u); // a transposition is one edit
+    EXPECT_EQ(editDistance("", "abc"), 3u);
+    EXPECT_EQ(editDistance("width", "width"), 0u);
+    EXPECT_EQ(closestMatch("widht", {"height", "width", "fps"}), "width");
+    EXPECT_EQ(closestMatch("zzzzzz", {"height", "width", "fps"}), "");
     const ConfigProblem p{"a.toml", 3, 7, "source.fps", "must be > 0"};
     EXPECT_EQ(p.format(), "a.toml:3:7: source.fps: must be > 0");
 }

@@ -5,7 +5,6 @@
 #include "stream/stream_options.h"
 
 using namespace overlayd;
-using namespace overlayd::stream;
 using overlayd::test::loadInvalid;
 using overlayd::test::loadValid;
 

@@ -18,7 +18,7 @@ class WebrtcConfig : public ::testing::Test
 protected:
     void SetUp() override
     {
-        if (!stream::streamBuiltIn())
+        if (!streamBuiltIn())
             GTEST_SKIP() << "built without the encoded outputs";
     }
 };
@@ -31,7 +31,7 @@ TEST_F(WebrtcConfig, EnabledAloneRunsTheEncoderWithItsDefaults)
     EXPECT_EQ(config.stream.webrtc.maxPeers, 8u);
     EXPECT_TRUE(config.stream.sinks.empty());
     EXPECT_TRUE(config.stream.enabled());
-    EXPECT_EQ(config.stream.encoder, stream::EncoderOptions{});
+    EXPECT_EQ(config.stream.encoder, EncoderOptions{});
 }
 
 TEST_F(WebrtcConfig, EveryKey)

@@ -26,9 +26,9 @@ OverlayScene reverseScene()
 }
 
 // The steering wheel: 16-bit signed big-endian at DBC start bit 7, 0.1 deg per bit, +-540 deg.
-inputs::CanInputOptions steering()
+CanInputOptions steering()
 {
-    inputs::CanInputOptions options;
+    CanInputOptions options;
     options.name = "steering";
     options.interface = "overlayd-test-none"; // never exists: the socket is retried, frames come from the test
     options.id = {0x25, false};
@@ -37,13 +37,13 @@ inputs::CanInputOptions steering()
     options.min = -540.0, options.max = 540.0;
     options.timeoutMs = 500;
     options.step = 0.5;
-    options.target = {inputs::CanTarget::Kind::Steering, "guide lines"};
+    options.target = {CanTarget::Kind::Steering, "guide lines"};
     return options;
 }
 
-inputs::CanFrame frame(std::initializer_list<uint8_t> bytes)
+CanFrame frame(std::initializer_list<uint8_t> bytes)
 {
-    inputs::CanFrame out;
+    CanFrame out;
     out.id = {0x25, false};
     for (uint8_t b : bytes)
         out.data[out.length++] = b;
@@ -51,7 +51,7 @@ inputs::CanFrame frame(std::initializer_list<uint8_t> bytes)
 }
 
 // The raw 16-bit value, high byte first.
-inputs::CanFrame angleFrame(int16_t raw)
+CanFrame angleFrame(int16_t raw)
 {
     return frame({uint8_t(uint16_t(raw) >> 8), uint8_t(raw & 0xFF)});
 }
@@ -147,7 +147,7 @@ TEST_F(CanInputsTest, ARoadWheelAngleTheGeometryCannotDrawIsUnknown)
 
 TEST_F(CanInputsTest, SlotTargetShowsTheValueWithUnitOrTheStaleText)
 {
-    inputs::CanInputOptions speed = steering();
+    CanInputOptions speed = steering();
     speed.name = "speed";
     speed.layout = {0, 8, false, false, 0.5, -10.0}; // Intel byte 0
     speed.unit = "km/h";
@@ -155,7 +155,7 @@ TEST_F(CanInputsTest, SlotTargetShowsTheValueWithUnitOrTheStaleText)
     speed.min = -10.0, speed.max = 120.0;
     speed.step = 0.0;
     speed.staleText = "no speed";
-    speed.target = {inputs::CanTarget::Kind::Slot, "speed"};
+    speed.target = {CanTarget::Kind::Slot, "speed"};
     can.configure({speed});
     EXPECT_EQ(control.slotText("speed"), "no speed");
     can.onFrame(0, frame({101}), t0); // 101 * 0.5 - 10
@@ -185,12 +185,12 @@ TEST_F(CanInputsTest, AReloadKeepsAnUnchangedInputsValueAndShowsItOnTheNewScene)
 TEST_F(CanInputsTest, AMissingInterfaceIsWaitingAndItsErrorCountedOncePerReason)
 {
     can.configure({steering()});
-    std::vector<inputs::InputHealth> health = can.health();
+    std::vector<InputHealth> health = can.health();
     ASSERT_EQ(health.size(), 1u);
     EXPECT_EQ(health[0].kind, "can");
     EXPECT_EQ(health[0].name, "steering");
     EXPECT_EQ(health[0].source, "overlayd-test-none");
-    EXPECT_EQ(health[0].state, inputs::InputHealth::State::Waiting);
+    EXPECT_EQ(health[0].state, InputHealth::State::Waiting);
     EXPECT_EQ(health[0].errors, 1u);
     EXPECT_EQ(health[0].lastError, can.reading(0).error);
     EXPECT_FALSE(health[0].lastError.empty());

@@ -6,7 +6,7 @@ namespace overlayd::test {
 
 namespace {
 
-std::string nameOf(const gpio::LineAddress &address)
+std::string nameOf(const LineAddress &address)
 {
     return address.name.empty() ? std::to_string(address.offset) : address.name;
 }
@@ -16,7 +16,7 @@ Error lostError()
     return makeError(ErrorCode::DeviceLost, "No such device");
 }
 
-class FakeInput final : public gpio::InputLine
+class FakeInput final : public InputLine
 {
 public:
     explicit FakeInput(FakeGpio::Line &line) : line_(line) {}
@@ -40,7 +40,7 @@ private:
     FakeGpio::Line &line_;
 };
 
-class FakeOutput final : public gpio::OutputLine
+class FakeOutput final : public OutputLine
 {
 public:
     explicit FakeOutput(FakeGpio::Line &line) : line_(line) {}
@@ -58,34 +58,33 @@ private:
     FakeGpio::Line &line_;
 };
 
-class FakeProvider final : public gpio::LineProvider
+class FakeProvider final : public LineProvider
 {
 public:
     explicit FakeProvider(FakeGpio &gpio) : gpio_(gpio) {}
 
-    Result<std::unique_ptr<gpio::InputLine>> requestInput(const gpio::InputRequest &request,
-                                                          const std::string &consumer) override
+    Result<std::unique_ptr<InputLine>> requestInput(const InputRequest &request, const std::string &consumer) override
     {
         auto line = claim(request.line, consumer);
         if (!line)
             return line.error();
         (*line)->activeLow = request.activeLow;
         (*line)->bias = request.bias;
-        return std::unique_ptr<gpio::InputLine>(std::make_unique<FakeInput>(**line));
+        return std::unique_ptr<InputLine>(std::make_unique<FakeInput>(**line));
     }
-    Result<std::unique_ptr<gpio::OutputLine>> requestOutput(const gpio::OutputRequest &request,
-                                                            const std::string &consumer) override
+    Result<std::unique_ptr<OutputLine>> requestOutput(const OutputRequest &request,
+                                                      const std::string &consumer) override
     {
         auto line = claim(request.line, consumer);
         if (!line)
             return line.error();
         (*line)->activeLow = request.activeLow;
         (*line)->physical = request.active != request.activeLow;
-        return std::unique_ptr<gpio::OutputLine>(std::make_unique<FakeOutput>(**line));
+        return std::unique_ptr<OutputLine>(std::make_unique<FakeOutput>(**line));
     }
 
 private:
-    Result<FakeGpio::Line *> claim(const gpio::LineAddress &address, const std::string &consumer)
+    Result<FakeGpio::Line *> claim(const LineAddress &address, const std::string &consumer)
     {
         if (address.chip == gpio_.missingChip)
             return makeError(ErrorCode::NotFound, "GPIO chip '" + address.chip + "' not found");
@@ -104,7 +103,7 @@ private:
 
 } // namespace
 
-std::unique_ptr<gpio::LineProvider> FakeGpio::provider()
+std::unique_ptr<LineProvider> FakeGpio::provider()
 {
     return std::make_unique<FakeProvider>(*this);
 }

@@ -23,7 +23,7 @@ public:
         std::string consumer;   // who holds it; empty: free
         bool lost = false;      // the chip went away: every call fails
         bool activeLow = false; // as requested
-        gpio::Bias bias = gpio::Bias::AsIs;
+        Bias bias = Bias::AsIs;
         UniqueFd events{::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)};
         unsigned requests = 0;
     };
@@ -46,7 +46,7 @@ public:
     }
     std::string missingChip; // requests on this chip fail as NotFound
 
-    std::unique_ptr<gpio::LineProvider> provider();
+    std::unique_ptr<LineProvider> provider();
 
 private:
     std::map<std::string, Line> lines_;

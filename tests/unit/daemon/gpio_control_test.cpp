@@ -24,9 +24,9 @@ OverlayScene layeredScene()
     return scene;
 }
 
-gpio::InputOptions input(const std::string &line, std::vector<std::string> show, std::vector<std::string> hide = {})
+GpioInputOptions input(const std::string &line, std::vector<std::string> show, std::vector<std::string> hide = {})
 {
-    gpio::InputOptions o;
+    GpioInputOptions o;
     o.name = line;
     o.line = {"chip0", line, 0};
     o.debounceMs = 0;
@@ -35,9 +35,9 @@ gpio::InputOptions input(const std::string &line, std::vector<std::string> show,
     return o;
 }
 
-gpio::OutputOptions output(const std::string &line, gpio::OutputSignal signal, bool activeLow = false)
+OutputOptions output(const std::string &line, OutputSignal signal, bool activeLow = false)
 {
-    gpio::OutputOptions o;
+    OutputOptions o;
     o.name = line;
     o.line = {"chip0", line, 0};
     o.signal = signal;
@@ -60,7 +60,7 @@ struct GpioControlTest : ::testing::Test {
         scene.load(layeredScene(), CameraSpec{});
         gpio.setProvider(lines.provider());
     }
-    void start(const gpio::GpioOptions &options)
+    void start(const GpioOptions &options)
     {
         ASSERT_TRUE(gpio.configure(options).ok());
         gpio.applyLayers();
@@ -102,13 +102,13 @@ TEST_F(GpioControlTest, ShowLayersAreVisibleOnlyWhileTheLineIsActive)
 
 TEST_F(GpioControlTest, ActiveLowInvertsThePhysicalLevel)
 {
-    gpio::InputOptions reverse = input("reverse", {"guides"});
+    GpioInputOptions reverse = input("reverse", {"guides"});
     reverse.activeLow = true;
-    reverse.bias = gpio::Bias::PullUp;
+    reverse.bias = Bias::PullUp;
     lines.set("chip0", "reverse", true); // pulled up: inactive
     start({{reverse}, {}});
     EXPECT_TRUE(lines.line("chip0", "reverse").activeLow);
-    EXPECT_EQ(lines.line("chip0", "reverse").bias, gpio::Bias::PullUp);
+    EXPECT_EQ(lines.line("chip0", "reverse").bias, Bias::PullUp);
     EXPECT_FALSE(scene.layerVisible("guides"));
     edge(0, "reverse", false); // the switch closes to ground
     EXPECT_TRUE(scene.layerVisible("guides"));
@@ -145,7 +145,7 @@ TEST_F(GpioControlTest, OnlyChangesAreAppliedSoOtherControlsKeepTheirChoiceBetwe
 
 TEST_F(GpioControlTest, BouncesShorterThanTheDebounceChangeNothing)
 {
-    gpio::InputOptions reverse = input("reverse", {"guides"});
+    GpioInputOptions reverse = input("reverse", {"guides"});
     reverse.debounceMs = 20;
     start({{reverse}, {}});
     edge(0, "reverse", true);
@@ -161,7 +161,7 @@ TEST_F(GpioControlTest, BouncesShorterThanTheDebounceChangeNothing)
 
 TEST_F(GpioControlTest, TheDebounceTimerFiresThroughTheLoop)
 {
-    gpio::InputOptions reverse = input("reverse", {"guides"});
+    GpioInputOptions reverse = input("reverse", {"guides"});
     reverse.debounceMs = 5;
     start({{reverse}, {}});
     auto loop = EventLoop::create();
@@ -178,7 +178,7 @@ TEST_F(GpioControlTest, TheDebounceTimerFiresThroughTheLoop)
 
 TEST_F(GpioControlTest, OutputsFollowTheDaemonsStateAndGoInactiveOnStop)
 {
-    start({{}, {output("led", gpio::OutputSignal::Streaming), output("nosig", gpio::OutputSignal::NoSignal, true)}});
+    start({{}, {output("led", OutputSignal::Streaming), output("nosig", OutputSignal::NoSignal, true)}});
     EXPECT_FALSE(lines.logical("chip0", "led"));
     EXPECT_FALSE(lines.logical("chip0", "nosig"));
     EXPECT_TRUE(lines.line("chip0", "nosig").physical); // active-low: inactive is high
@@ -198,7 +198,7 @@ TEST_F(GpioControlTest, OutputsFollowTheDaemonsStateAndGoInactiveOnStop)
 
 TEST_F(GpioControlTest, FrameToggleFlipsOncePerFrameAndErrorFollowsSinkFailures)
 {
-    start({{}, {output("toggle", gpio::OutputSignal::FrameToggle), output("err", gpio::OutputSignal::Error)}});
+    start({{}, {output("toggle", OutputSignal::FrameToggle), output("err", OutputSignal::Error)}});
     EXPECT_TRUE(gpio.wantsSinkFailures());
     std::vector<bool> levels;
     for (int frame = 0; frame < 4; ++frame) {
@@ -224,8 +224,8 @@ TEST_F(GpioControlTest, ALineHeldByAnotherProcessIsRefusedNamingTheHolder)
 
 TEST_F(GpioControlTest, AReloadKeepsUnchangedLinesAndReRequestsChangedOnes)
 {
-    start({{input("reverse", {"guides"}), input("parking", {"logo"})}, {output("led", gpio::OutputSignal::Streaming)}});
-    gpio::InputOptions parking = input("parking", {"logo"});
+    start({{input("reverse", {"guides"}), input("parking", {"logo"})}, {output("led", OutputSignal::Streaming)}});
+    GpioInputOptions parking = input("parking", {"logo"});
     parking.activeLow = true;
     ASSERT_TRUE(gpio.configure({{input("reverse", {"guides"}), parking}, {}}).ok());
     EXPECT_EQ(lines.line("chip0", "reverse").requests, 1u);   // kept
@@ -235,12 +235,12 @@ TEST_F(GpioControlTest, AReloadKeepsUnchangedLinesAndReRequestsChangedOnes)
 
 TEST_F(GpioControlTest, AFailedReloadKeepsEveryOldLine)
 {
-    start({{input("reverse", {"guides"})}, {output("led", gpio::OutputSignal::Streaming)}});
+    start({{input("reverse", {"guides"})}, {output("led", OutputSignal::Streaming)}});
     lines.line("chip0", "busy").consumer = "someone";
-    gpio::InputOptions changed = input("reverse", {"guides"});
+    GpioInputOptions changed = input("reverse", {"guides"});
     changed.activeLow = true;
-    const Status status = gpio.configure(
-        {{changed}, {output("led", gpio::OutputSignal::Streaming), output("busy", gpio::OutputSignal::Error)}});
+    const Status status =
+        gpio.configure({{changed}, {output("led", OutputSignal::Streaming), output("busy", OutputSignal::Error)}});
     ASSERT_FALSE(status.ok());
     EXPECT_EQ(lines.line("chip0", "reverse").consumer, "overlayd");
     EXPECT_FALSE(lines.line("chip0", "reverse").activeLow); // as before the reload

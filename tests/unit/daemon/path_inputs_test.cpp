@@ -82,7 +82,7 @@ TEST_F(PathInputsTest, AFileOverTheByteLimitIsRefused)
     write("0 0 0\n");
     ASSERT_TRUE(paths.configure({{"route", file}}));
     paths.showAll();
-    write(std::string(inputs::kMaxPathFileBytes + 1, '#'));
+    write(std::string(kMaxPathFileBytes + 1, '#'));
     paths.showAll();
     EXPECT_EQ(shown().size(), 1u);
     EXPECT_NE(paths.readings()[0].error.find("more than"), std::string::npos) << paths.readings()[0].error;

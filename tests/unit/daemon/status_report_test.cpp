@@ -50,7 +50,7 @@ struct StatusReportTest : ::testing::Test {
             return std::unique_ptr<OverlayRenderer>();
         }};
     HttpApi api{scene, status, [] {
-                    return http::HttpCounters{};
+                    return HttpCounters{};
                 }};
 
     void SetUp() override
@@ -60,12 +60,12 @@ struct StatusReportTest : ::testing::Test {
         status.reporters_ = {&first, &second};
         scene.load(OverlayScene{}, CameraSpec{});
     }
-    http::HttpResponse get(const std::string &path) { return api.handle({"GET", path, {}, "", "127.0.0.1", ""}); }
+    HttpResponse get(const std::string &path) { return api.handle({"GET", path, {}, "", "127.0.0.1", ""}); }
 };
 
 TEST_F(StatusReportTest, StateCarriesWhatEachPartReports)
 {
-    const http::HttpResponse response = get("/state");
+    const HttpResponse response = get("/state");
     ASSERT_EQ(response.status, 200u);
     const json state = json::parse(response.body);
     EXPECT_EQ(state["inputs"], json::parse(R"([{"kind": "new", "name": "a"}, {"kind": "new", "name": "b"}])"));
@@ -78,7 +78,7 @@ TEST_F(StatusReportTest, StateCarriesWhatEachPartReports)
 
 TEST_F(StatusReportTest, MetricFamiliesAreWrittenWholeOnce)
 {
-    const http::HttpResponse response = get("/metrics");
+    const HttpResponse response = get("/metrics");
     ASSERT_EQ(response.status, 200u);
     // Two parts, two families each: each family once, its samples together (the Prometheus text format).
     const std::string expected = "# HELP overlayd_new_value A new kind's value.\n"
@@ -96,7 +96,7 @@ TEST_F(StatusReportTest, MetricFamiliesAreWrittenWholeOnce)
 TEST(StatusReport, InputHealthIsOneEntryAndTwoSamples)
 {
     const auto now = std::chrono::steady_clock::now();
-    inputs::InputHealth health("text", "speed", "/run/speed.txt", inputs::InputHealth::State::Waiting, now);
+    InputHealth health("text", "speed", "/run/speed.txt", InputHealth::State::Waiting, now);
     health.errors = 3;
     StatusReport report(now);
     report.health(health);

@@ -12,7 +12,7 @@
 namespace overlayd {
 namespace {
 
-using State = inputs::InputHealth::State;
+using State = InputHealth::State;
 
 struct WatchedFilesTest : ::testing::Test {
     // One folder per test and process: CTest runs the tests of this file in parallel.
@@ -33,8 +33,8 @@ struct WatchedFilesTest : ::testing::Test {
     void TearDown() override { std::filesystem::remove_all(dir.parent_path()); }
     void watch(const std::string &name)
     {
-        std::vector<inputs::TextFileWatch> watches;
-        auto opened = inputs::TextFileWatch::open(file, 64);
+        std::vector<TextFileWatch> watches;
+        auto opened = TextFileWatch::open(file, 64);
         ASSERT_TRUE(opened.ok()) << opened.error().message;
         watches.push_back(std::move(*opened));
         files.replace(std::move(watches), {name});
@@ -51,14 +51,14 @@ struct WatchedFilesTest : ::testing::Test {
 TEST_F(WatchedFilesTest, WaitingWhileTheFolderIsGoneFollowingOnceItIsBack)
 {
     watch("status");
-    const inputs::InputHealth &health = files.health()[0];
+    const InputHealth &health = files.health()[0];
     EXPECT_EQ(health.kind, "text");
     EXPECT_EQ(health.name, "status");
     EXPECT_EQ(health.source, file);
     EXPECT_EQ(health.state, State::Following);
     EXPECT_EQ(health.errors, 0u);
 
-    const auto before = inputs::InputHealth::WallClock::now();
+    const auto before = InputHealth::WallClock::now();
     std::filesystem::remove_all(dir);
     nextEvent();
     EXPECT_EQ(files.health()[0].state, State::Waiting);

@@ -297,36 +297,36 @@ TEST(ZeroCopyConfig, OnlyOneSinkHoldsTheCamerasBuffers)
 TEST(ZeroCopyConfig, AV4l2EncoderMakesTheSourceExportUnlessAnOutputHoldsTheBuffers)
 {
     DaemonConfig config;
-    config.stream.sinks.push_back({stream::EncodedSinkKind::File, "sink[0]", {}, {}, {}, {}});
-    config.stream.encoder.kind = stream::EncoderKind::V4l2;
+    config.stream.sinks.push_back({EncodedSinkKind::File, "sink[0]", {}, {}, {}, {}});
+    config.stream.encoder.kind = EncoderKind::V4l2;
     EXPECT_TRUE(wantsZeroCopy(config));
-    config.stream.encoder.zeroCopy = stream::EncoderZeroCopy::Off;
+    config.stream.encoder.zeroCopy = EncoderZeroCopy::Off;
     EXPECT_FALSE(wantsZeroCopy(config));
-    config.stream.encoder.zeroCopy = stream::EncoderZeroCopy::Auto;
-    config.stream.encoder.kind = stream::EncoderKind::OpenH264; // a software encoder only ever gets copies
+    config.stream.encoder.zeroCopy = EncoderZeroCopy::Auto;
+    config.stream.encoder.kind = EncoderKind::OpenH264; // a software encoder only ever gets copies
     EXPECT_FALSE(wantsZeroCopy(config));
 
     SinkOptions output;
     output.kind = SinkKind::V4l2Output;
     output.path = "/dev/video10";
     std::vector<std::string> notices;
-    stream::EncoderOptions encoder;
+    EncoderOptions encoder;
     ASSERT_TRUE(limitEncoderZeroCopy({output}, encoder, notices).ok());
-    EXPECT_EQ(encoder.zeroCopy, stream::EncoderZeroCopy::Off);
+    EXPECT_EQ(encoder.zeroCopy, EncoderZeroCopy::Off);
     EXPECT_EQ(notices, (std::vector<std::string>{
                            "encoder: copying (zero_copy \"auto\"): /dev/video10 already takes the camera's buffers"}));
-    encoder.zeroCopy = stream::EncoderZeroCopy::On;
+    encoder.zeroCopy = EncoderZeroCopy::On;
     auto refused = limitEncoderZeroCopy({output}, encoder, notices);
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.error().code, ErrorCode::ConfigError);
     output.zeroCopy = ZeroCopy::Off; // an output that copies leaves the buffers to the encoder
     ASSERT_TRUE(limitEncoderZeroCopy({output}, encoder, notices).ok());
-    EXPECT_EQ(encoder.zeroCopy, stream::EncoderZeroCopy::On);
+    EXPECT_EQ(encoder.zeroCopy, EncoderZeroCopy::On);
 }
 
 TEST(ZeroCopyConfig, TheEncodersOnNeedsAV4l2Encoder)
 {
-    if (!stream::streamBuiltIn())
+    if (!streamBuiltIn())
         GTEST_SKIP() << "built without the encoded outputs: [encoder] itself is refused (config.StreamConfig)";
     std::vector<ConfigProblem> problems;
     (void)loadText("[encoder]\nencoder = \"openh264\"\nzero_copy = \"on\"\n[[sink]]\nkind = \"file\"\n"

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-using namespace overlayd::http;
+using namespace overlayd;
 
 namespace {
 

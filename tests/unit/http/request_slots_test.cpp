@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-using namespace overlayd::http;
+using namespace overlayd;
 using Clock = RequestSlots::Clock;
 using std::chrono::seconds;
 

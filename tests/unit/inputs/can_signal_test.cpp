@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-using namespace overlayd::inputs;
+using namespace overlayd;
 
 namespace {
 

@@ -15,7 +15,7 @@
 
 #include "inputs/text_file_watch.h"
 
-using namespace overlayd::inputs;
+using namespace overlayd;
 namespace fs = std::filesystem;
 
 namespace {

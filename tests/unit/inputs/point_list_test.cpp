@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::inputs {
+namespace overlayd {
 namespace {
 
 TEST(PointList, ReadsSpacesCommasCommentsAndSigns)
@@ -68,4 +68,4 @@ TEST(PointList, HoldsAtMostTheLimit)
 }
 
 } // namespace
-} // namespace overlayd::inputs
+} // namespace overlayd

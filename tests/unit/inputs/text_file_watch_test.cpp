@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-using namespace overlayd::inputs;
+using namespace overlayd;
 namespace fs = std::filesystem;
 
 namespace {

@@ -8,7 +8,7 @@
 
 #include "drivers/libcamera/libcamera_controls.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 namespace c = libcamera::controls;
@@ -95,4 +95,4 @@ TEST(Controls, ValuesNoCameraCouldTakeAreRefusedWithoutACamera)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -8,7 +8,7 @@
 
 #include "drivers/libcamera/libcamera_formats.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 // "XRGB8888" -> "XRGB": the components from the word's top bits down.
@@ -77,4 +77,4 @@ TEST(Formats, FormatsOverlaydCannotUseHaveNoEntry)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

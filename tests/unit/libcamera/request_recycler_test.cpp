@@ -11,7 +11,7 @@
 
 #include "drivers/libcamera/request_recycler.h"
 
-namespace overlayd::lc {
+namespace overlayd {
 namespace {
 
 struct QueueLog {
@@ -87,4 +87,4 @@ TEST(RequestRecycler, GiveBacksFromManyThreadsEachQueueOnce)
 }
 
 } // namespace
-} // namespace overlayd::lc
+} // namespace overlayd

@@ -12,8 +12,6 @@
 namespace overlayd {
 namespace {
 
-using namespace sink_lanes;
-
 constexpr unsigned kMaxSum = 4 * 255; // four pixels' opacity
 
 // The mean opacity s / 4, rounded half to even as lrintf rounds it on the cached path.

@@ -54,7 +54,7 @@ const glm::dvec3 kCw{0.3, -0.2, -kFocal};
 
 TEST(ViewingPipeline, ShearMovesTheWindowCentreOntoTheMinusZAxis)
 {
-    const glm::dmat4 h = viewing_pipeline::shear(kCw);
+    const glm::dmat4 h = ViewingPipeline::shear(kCw);
     expectVecNear(divide(h * glm::dvec4(kCw, 1.0)), {0.0, 0.0, -kFocal}, kTolerance, "H CW");
     // The seed's matrix as printed: third column -CW_x / CW_z, -CW_y / CW_z.
     expectMatNear(h, fromRows({1, 0, -kCw.x / kCw.z, 0}, {0, 1, -kCw.y / kCw.z, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}),
@@ -66,7 +66,7 @@ TEST(ViewingPipeline, ShearMovesTheWindowCentreOntoTheMinusZAxis)
 
 TEST(ViewingPipeline, ScaleXYOpensTheWindowEdgesAt45Degrees)
 {
-    const glm::dmat4 sh = viewing_pipeline::scaleXY(kFocal, kWidth, kHeight) * viewing_pipeline::shear(kCw);
+    const glm::dmat4 sh = ViewingPipeline::scaleXY(kFocal, kWidth, kHeight) * ViewingPipeline::shear(kCw);
     for (double sx : {-1.0, 1.0}) {
         for (double sy : {-1.0, 1.0}) {
             const glm::dvec3 corner = kCw + glm::dvec3(sx * kWidth / 2.0, sy * kHeight / 2.0, 0.0);
@@ -81,7 +81,7 @@ TEST(ViewingPipeline, ScaleXYOpensTheWindowEdgesAt45Degrees)
 
 TEST(ViewingPipeline, ScaleFarPutsTheFarPlaneAtMinusOne)
 {
-    const glm::dmat4 s = viewing_pipeline::scaleFar(kFar);
+    const glm::dmat4 s = ViewingPipeline::scaleFar(kFar);
     EXPECT_NEAR((s * glm::dvec4(3.0, -2.0, -kFar, 1.0)).z, -1.0, kTolerance);
     EXPECT_NEAR((s * glm::dvec4(3.0, -2.0, -kNear, 1.0)).z, -kNear / kFar, kTolerance);
     // Uniform: the 45-degree edges stay at 45 degrees.
@@ -93,7 +93,7 @@ TEST(ViewingPipeline, ScaleFarPutsTheFarPlaneAtMinusOne)
 TEST(ViewingPipeline, PerspectiveMapsNearToZeroAndFarToOne)
 {
     const double n = kNear / kFar;
-    const glm::dmat4 p = viewing_pipeline::perspective(n);
+    const glm::dmat4 p = ViewingPipeline::perspective(n);
     EXPECT_NEAR(divide(p * glm::dvec4(0, 0, -n, 1)).z, 0.0, kTolerance);
     EXPECT_NEAR(divide(p * glm::dvec4(0, 0, -1, 1)).z, 1.0, kTolerance);
     // x' = x / -z and y' = y / -z: the 45-degree cone becomes the box [-1, 1]^2.
@@ -117,7 +117,7 @@ TEST(ViewingPipeline, PerspectiveMapsNearToZeroAndFarToOne)
 
 TEST(ViewingPipeline, NormalizeMapsTheSquareToTheUnitSquare)
 {
-    const glm::dmat4 n = viewing_pipeline::normalize();
+    const glm::dmat4 n = ViewingPipeline::normalize();
     expectVecNear(divide(n * glm::dvec4(-1, -1, 0.25, 1)), {0.0, 0.0, 0.25}, kTolerance, "N(-1, -1)");
     expectVecNear(divide(n * glm::dvec4(1, 1, 0.75, 1)), {1.0, 1.0, 0.75}, kTolerance, "N(1, 1)");
     expectVecNear(divide(n * glm::dvec4(0, 0, 0, 1)), {0.5, 0.5, 0.0}, kTolerance, "N(0, 0)");
@@ -126,9 +126,9 @@ TEST(ViewingPipeline, NormalizeMapsTheSquareToTheUnitSquare)
 TEST(ViewingPipeline, ParallelDropsOrKeepsDepth)
 {
     const glm::dvec4 p(0.2, -0.3, 0.6, 1.0);
-    EXPECT_EQ((viewing_pipeline::parallel(false) * p).z, 0.0);
-    EXPECT_EQ((viewing_pipeline::parallel(true) * p).z, 0.6);
-    EXPECT_EQ((viewing_pipeline::parallel(false) * p).x, 0.2);
+    EXPECT_EQ((ViewingPipeline::parallel(false) * p).z, 0.0);
+    EXPECT_EQ((ViewingPipeline::parallel(true) * p).z, 0.6);
+    EXPECT_EQ((ViewingPipeline::parallel(false) * p).x, 0.2);
 }
 
 // T_camera = T_raster S_raster N P_parallel P_persp S_far S_xy H R T: the derivation's corner-based raster coordinates
@@ -152,10 +152,10 @@ TEST(ViewingPipeline, FullChainEqualsCameraPixelsPlusHalf)
     glm::dmat4 t(1.0);
     t[3] = glm::dvec4(-prp, 1.0);
 
-    const glm::dmat4 chain = viewing_pipeline::rasterTranslate(posx, posy) * viewing_pipeline::rasterScale(xres, yres) *
-                             viewing_pipeline::normalize() * viewing_pipeline::parallel(true) *
-                             viewing_pipeline::perspective(kNear / kFar) * viewing_pipeline::scaleFar(kFar) *
-                             viewing_pipeline::scaleXY(kFocal, kWidth, kHeight) * viewing_pipeline::shear(kCw) * r * t;
+    const glm::dmat4 chain = ViewingPipeline::rasterTranslate(posx, posy) * ViewingPipeline::rasterScale(xres, yres) *
+                             ViewingPipeline::normalize() * ViewingPipeline::parallel(true) *
+                             ViewingPipeline::perspective(kNear / kFar) * ViewingPipeline::scaleFar(kFar) *
+                             ViewingPipeline::scaleXY(kFocal, kWidth, kHeight) * ViewingPipeline::shear(kCw) * r * t;
 
     auto projection =
         Projection::window({kFocal, {kCw.x, kCw.y}, kWidth / 2.0, kHeight / 2.0, kNear, kFar}, DepthRange::ZeroToOne);
@@ -186,7 +186,7 @@ TEST(ViewingPipeline, FullChainEqualsCameraPixelsPlusHalf)
 TEST(SeedMappings, WindowOrthographicEqualsOrthoRHZOForACentredWindow)
 {
     const double width = 4.0, height = 3.0, near = 0.5, far = 30.0;
-    expectMatNear(viewing_pipeline::orthographic(width, height, near, far),
+    expectMatNear(ViewingPipeline::orthographic(width, height, near, far),
                   glm::orthoRH_ZO(-width / 2, width / 2, -height / 2, height / 2, near, far), kTolerance);
     auto projection = Projection::windowOrthographic(width, height, near, far, DepthRange::MinusOneToOne);
     ASSERT_TRUE(projection.ok());

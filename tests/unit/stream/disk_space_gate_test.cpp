@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 TEST(DiskSpaceGate, StopsOnceAndResumesWhenASegmentFits)
@@ -32,4 +32,4 @@ TEST(DiskSpaceGate, SmallSegmentsStillWaitForTheFloor)
 }
 
 } // namespace
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -8,7 +8,6 @@
 #include "stream/encoded_stream.h"
 
 using namespace overlayd;
-using namespace overlayd::stream;
 
 namespace {
 

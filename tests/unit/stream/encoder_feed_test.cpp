@@ -9,7 +9,6 @@
 #include "stream/encoder_feed.h"
 
 using namespace overlayd;
-using namespace overlayd::stream;
 
 namespace {
 

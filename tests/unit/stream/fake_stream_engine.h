@@ -9,25 +9,25 @@
 
 namespace overlayd::test {
 
-class FakeStreamEngine : public stream::EncodedStreamEngine
+class FakeStreamEngine : public EncodedStreamEngine
 {
 public:
     struct Calls {
         unsigned opens = 0, closes = 0;
-        stream::EngineFormat format;
-        std::vector<stream::EncoderInput> held; // pushed and not yet released
+        EngineFormat format;
+        std::vector<EncoderInput> held; // pushed and not yet released
         uint64_t pushed = 0;
         bool importsDmabuf = false; // as a V4L2 encoder: takes DMABUF frames when opened for them
     };
     explicit FakeStreamEngine(Calls &calls) : calls_(calls) {}
 
-    Status open(const stream::EngineFormat &format) override
+    Status open(const EngineFormat &format) override
     {
         ++calls_.opens;
         calls_.format = format;
         return Ok{};
     }
-    void push(stream::EncoderInput frame) override
+    void push(EncoderInput frame) override
     {
         ++calls_.pushed;
         calls_.held.push_back(std::move(frame));
@@ -37,9 +37,9 @@ public:
         ++calls_.closes;
         calls_.held.clear(); // as a pipeline set to NULL drops every buffer
     }
-    stream::EngineState state() const override
+    EngineState state() const override
     {
-        stream::EngineState state;
+        EngineState state;
         state.encoder = "fake";
         state.framesIn = calls_.pushed;
         state.dmabufImport = calls_.importsDmabuf && calls_.format.dmabuf;

@@ -9,7 +9,7 @@
 
 #include "stream/fwht_header.h"
 
-using overlayd::stream::fwhtIsKeyframe;
+using overlayd::fwhtIsKeyframe;
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include "stream/latency_histogram.h"
 
-using overlayd::stream::LatencyHistogram;
+using overlayd::LatencyHistogram;
 
 TEST(LatencyHistogram, BucketsByUpperBoundAndQuantilesFromTheCounts)
 {

@@ -7,7 +7,7 @@
 
 #include "stream/segment_store.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 
 class MemorySegmentStore : public SegmentStore
 {
@@ -42,4 +42,4 @@ public:
     uint64_t free = 0;
 };
 
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 using namespace std::chrono_literals;
@@ -93,4 +93,4 @@ TEST(PendingClients, AStormStaysWithinTheCaps)
 }
 
 } // namespace
-} // namespace overlayd::stream
+} // namespace overlayd

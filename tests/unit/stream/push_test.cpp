@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 using std::chrono::milliseconds;
@@ -60,4 +60,4 @@ TEST(PushLink, BacksOffWhileDownAndStartsOverAfterAConnection)
 }
 
 } // namespace
-} // namespace overlayd::stream
+} // namespace overlayd

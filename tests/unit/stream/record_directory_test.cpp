@@ -14,7 +14,7 @@
 #include "memory_segment_store.h"
 #include "stream/directory_segment_store.h"
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 using std::chrono::seconds;
@@ -165,4 +165,4 @@ TEST_F(RealDirectory, WritableChecksNameTheDirectory)
 }
 
 } // namespace
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 using std::chrono::seconds;
@@ -70,4 +70,4 @@ TEST(Retention, TheRepeatOfASecondIsNewerThanItsFirst)
 }
 
 } // namespace
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace overlayd::stream {
+namespace overlayd {
 namespace {
 
 WallClock::time_point at(time_t seconds)
@@ -57,4 +57,4 @@ TEST(SegmentName, OrdersByStartThenRepeat)
 }
 
 } // namespace
-} // namespace overlayd::stream
+} // namespace overlayd

@@ -4,7 +4,7 @@
 
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 using std::chrono::microseconds;
@@ -124,4 +124,4 @@ TEST(V4l2CaptureStart, MissingDeviceIsNotFound)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -5,7 +5,7 @@
 
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 using std::chrono::microseconds;
@@ -159,4 +159,4 @@ TEST(V4l2MultiPlanarCapture, StreamsThroughTheMplaneApi)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -5,7 +5,7 @@
 #include "drivers/v4l2/video_device.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 TEST(V4l2DeviceOpen, ByPathAndByLink)
@@ -85,4 +85,4 @@ TEST(V4l2DeviceOpen, MultiPlanarDeviceUsesTheMplaneBufferType)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

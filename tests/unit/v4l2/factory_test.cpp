@@ -7,7 +7,7 @@
 #include "drivers/v4l2/v4l2_factory.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 TEST(V4l2Factory, BufferCountsOutOfRangeAreConfigErrors)
@@ -58,4 +58,4 @@ TEST(V4l2Factory, RealKernelOutputSinkOnANonV4l2NodeFailsAtOpen)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 int FakeDevice::requestBuffers(v4l2_requestbuffers &r)
 {
@@ -169,4 +169,4 @@ bool FakeDevice::produce(uint32_t sequence, std::chrono::microseconds timestamp,
     return true;
 }
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -6,7 +6,7 @@
 
 #include <cerrno>
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 FakeDevice &FakeSyscalls::add(const std::string &path, const std::vector<std::string> &aliases)
 {
@@ -121,4 +121,4 @@ std::vector<std::string> FakeSyscalls::videoDevices()
     return nodes_;
 }
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -10,7 +10,7 @@
 #include "drivers/v4l2/device_format.h"
 #include "media/pixel_format.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 namespace {
 
@@ -198,4 +198,4 @@ int FakeDevice::parm(v4l2_streamparm &p, bool set)
     return 0;
 }
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

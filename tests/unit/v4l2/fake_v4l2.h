@@ -16,7 +16,7 @@
 
 #include "drivers/v4l2/v4l2_syscalls.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 struct FakeFormat {
     uint32_t fourcc = 0;
@@ -136,4 +136,4 @@ inline uint32_t fakeOffset(unsigned index, unsigned plane)
     return (index * 4 + plane) << 12;
 }
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

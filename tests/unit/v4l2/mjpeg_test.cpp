@@ -10,7 +10,7 @@
 #include "media/frame_buffer.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 constexpr int kWidth = 96, kHeight = 64;
@@ -183,4 +183,4 @@ TEST(V4l2Mjpeg, YuyvRequestDecodesToYuyv)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

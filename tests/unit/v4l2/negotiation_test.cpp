@@ -5,7 +5,7 @@
 #include "drivers/v4l2/negotiation.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 TEST(V4l2Negotiation, ValidRequestIsUsedAsItIsAndNotLogged)
@@ -125,4 +125,4 @@ TEST(V4l2Negotiation, MjpegIsPickedOnlyWhenTheFormatIsNotOffered)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -6,7 +6,7 @@
 #include "fake_v4l2.h"
 #include "media/frame_buffer.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 struct Output : ::testing::Test {
@@ -160,4 +160,4 @@ TEST_F(Output, FrameOfAnotherFormatIsRefused)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

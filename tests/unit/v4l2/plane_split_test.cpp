@@ -5,7 +5,7 @@
 #include "drivers/v4l2/frame_split.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 // Starts a capture of `format` 640x480 on a fake with the given per-plane bytesperline padding.
@@ -153,4 +153,4 @@ TEST(V4l2PlaneSplit, BufferTooSmallForTheFormatIsRefused)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

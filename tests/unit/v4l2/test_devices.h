@@ -9,7 +9,7 @@
 #include "drivers/v4l2/capture_source.h"
 #include "fake_v4l2.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 // A webcam offering YUYV at 640x480 and 1280x720, 15 and 30 fps.
 inline FakeDevice &addYuyvCamera(FakeSyscalls &kernel, const std::string &path = "/dev/video0")
@@ -45,4 +45,4 @@ struct CaptureRig {
     }
 };
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -8,7 +8,7 @@
 
 #include "zero_copy_rig.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 struct ZeroCopyCapture : ZeroCopyRig, ::testing::Test {};
@@ -94,4 +94,4 @@ TEST_F(ZeroCopyCapture, LeaseGivenBackOnAnotherThreadRequeuesAndAfterStopDoesNot
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -8,7 +8,7 @@
 #include "media/frame_buffer.h"
 #include "zero_copy_rig.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 namespace {
 
 struct ZeroCopyOutput : ZeroCopyRig, ::testing::Test {};
@@ -200,4 +200,4 @@ TEST_F(ZeroCopyOutput, VanishedOutputIsDeviceLostAndGivesEveryLeaseBack)
 }
 
 } // namespace
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test

@@ -13,7 +13,7 @@
 #include "drivers/v4l2/output_sink.h"
 #include "test_devices.h"
 
-namespace overlayd::v4l2::test {
+namespace overlayd::test {
 
 struct ZeroCopyRig {
     CaptureRig rig;
@@ -66,4 +66,4 @@ struct ZeroCopyRig {
     }
 };
 
-} // namespace overlayd::v4l2::test
+} // namespace overlayd::test
