@@ -65,14 +65,14 @@ uint64_t BranchFeed::dropped() const
     return dropped_;
 }
 
-void BranchFeed::push(GstSample *sample)
+bool BranchFeed::push(GstSample *sample)
 {
     GstBuffer *buffer = gst_sample_get_buffer(sample);
-    bool askKeyframe = false;
+    bool askKeyframe = false, pushed = false;
     {
         std::lock_guard lock(mutex_);
         if (appsrc_ == nullptr || buffer == nullptr)
-            return;
+            return false;
         const bool keyframe =
             fwht_ ? isFwhtKeyframe(buffer) : !GST_BUFFER_FLAG_IS_SET(buffer, GST_BUFFER_FLAG_DELTA_UNIT);
         if (gst_app_src_get_current_level_buffers(GST_APP_SRC(appsrc_)) >= kBranchBacklogBuffers) {
@@ -91,12 +91,13 @@ void BranchFeed::push(GstSample *sample)
                     *time = *time > offset_ ? *time - offset_ : 0;
             GstSample *moved = gst_sample_new(shifted, gst_sample_get_caps(sample), nullptr, nullptr);
             gst_buffer_unref(shifted);
-            gst_app_src_push_sample(GST_APP_SRC(appsrc_), moved);
+            pushed = gst_app_src_push_sample(GST_APP_SRC(appsrc_), moved) == GST_FLOW_OK;
             gst_sample_unref(moved);
         }
     }
     if (askKeyframe)
         requestKeyframe_();
+    return pushed;
 }
 
 } // namespace overlayd

@@ -30,8 +30,9 @@ public:
     void attach(GstElement *appsrc);
     // Access units are dropped until the next attach().
     void detach();
-    // On the encoder's streaming thread; never blocks.
-    void push(GstSample *sample);
+    // On the encoder's streaming thread; never blocks. True when the access unit went into the appsrc (false while
+    // detached or waiting for a keyframe).
+    bool push(GstSample *sample);
     // Sends end-of-stream into the attached appsrc (the muxer finishes its file), then detaches.
     void endOfStream();
 

@@ -316,15 +316,18 @@ GstFlowReturn GstStreamEngine::onEncoded(GstAppSink *sink, gpointer data)
     bool sent = false;
     for (const auto &output : self->rtsp_)
         sent = output->push(sample) || sent;
-    for (const auto &output : self->outputs_) // record, push and WebRTC: "sent" times the RTSP hand-off only
+    const GstClockTime sentAt = nowNs();
+    // WebRTC after RTSP: its peers' feeds queue the access unit for their own threads (payloader and DTLS-SRTP).
+    const bool toPeers = self->webrtc_ && self->webrtc_->push(sample);
+    const GstClockTime peersAt = nowNs();
+    for (const auto &output : self->outputs_) // record and push: not a viewer's latency
         output->push(sample);
-    if (self->webrtc_)
-        self->webrtc_->push(sample);
-    if (sent && captured > 0) {
-        const GstClockTime now = nowNs();
+    if (captured > 0 && (sent || toPeers)) {
         std::lock_guard lock(self->mutex_);
-        if (now >= captured)
-            self->sent_.add(double(now - captured) / GST_SECOND);
+        if (sent && sentAt >= captured)
+            self->sent_.add(double(sentAt - captured) / GST_SECOND);
+        if (toPeers && peersAt >= captured)
+            self->webrtcSent_.add(double(peersAt - captured) / GST_SECOND);
     }
     gst_sample_unref(sample);
     return GST_FLOW_OK;
@@ -375,7 +378,7 @@ void GstStreamEngine::close()
     std::lock_guard lock(mutex_);
     state_.running = false;
     lastSecond_.clear();
-    encoderIn_ = encoded_ = sent_ = LatencyHistogram{};
+    encoderIn_ = encoded_ = sent_ = webrtcSent_ = LatencyHistogram{};
     blendedAt_.clear();
 }
 
@@ -390,6 +393,8 @@ EngineState GstStreamEngine::state() const
             bytes += size;
         out.bitrateKbps = double(bytes) * 8 / 1000;
         out.latency = {{"encoder_in", encoderIn_}, {"encoded", encoded_}, {"sent", sent_}};
+        if (webrtc_)
+            out.latency.emplace_back("webrtc_sent", webrtcSent_);
     }
     for (const auto &output : rtsp_)
         out.sinks.push_back(output->state());

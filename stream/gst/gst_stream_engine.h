@@ -68,7 +68,7 @@ private:
     mutable std::mutex mutex_;
     EngineState state_;
     std::deque<std::pair<GstClockTime, size_t>> lastSecond_; // (arrival, bytes) of the last second's access units
-    LatencyHistogram encoderIn_, encoded_, sent_;
+    LatencyHistogram encoderIn_, encoded_, sent_, webrtcSent_;
     std::deque<std::pair<GstClockTime, GstClockTime>> blendedAt_; // (PTS, blended) of the frames pushed last
 };
 

@@ -13,6 +13,12 @@
 namespace overlayd {
 namespace {
 
+int64_t steadyMs()
+{
+    return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
 struct SdpMessage {
     GstSDPMessage *message = nullptr;
     ~SdpMessage()
@@ -94,7 +100,7 @@ Result<int> offeredH264PayloadType(const std::string &offer)
 
 WebrtcPeer::WebrtcPeer(std::string id, std::string address, std::function<void()> requestKeyframe)
     : id_(std::move(id)), address_(std::move(address)), requestKeyframe_(requestKeyframe),
-      feed_(std::move(requestKeyframe))
+      feed_(std::move(requestKeyframe)), heardAtMs_(steadyMs())
 {}
 
 WebrtcPeer::~WebrtcPeer()
@@ -200,10 +206,12 @@ Result<std::string> WebrtcPeer::negotiate(GMainContext *context, const WebrtcOpt
     }
     g_signal_connect(webrtc_, "notify::ice-gathering-state", G_CALLBACK(&WebrtcPeer::onGatheringState), this);
     g_signal_connect(webrtc_, "notify::connection-state", G_CALLBACK(&WebrtcPeer::onConnectionState), this);
-    // A viewer that vanishes without DELETE (a closed tab, a pulled cable) stops sending RTCP: its source in
-    // webrtcbin's rtpbin times out (RTCP's five report intervals), and so does the peer.
+    // A viewer that vanishes without DELETE (a closed tab, a pulled cable) stops sending RTCP: kWebrtcSilenceMs
+    // after its last report the peer is reaped (failed()); its source in webrtcbin's rtpbin timing out (RTCP's five
+    // report intervals) or saying BYE ends it too.
     if (GstElement *rtpbin = gst_bin_get_by_name(GST_BIN(webrtc_), "rtpbin")) {
         rtpbin_ = rtpbin;
+        g_signal_connect(rtpbin, "on-ssrc-active", G_CALLBACK(&WebrtcPeer::onViewerReport), this);
         g_signal_connect(rtpbin, "on-timeout", G_CALLBACK(&WebrtcPeer::onViewerGone), this);
         g_signal_connect(rtpbin, "on-bye-ssrc", G_CALLBACK(&WebrtcPeer::onViewerGone), this);
     }
@@ -302,6 +310,16 @@ void WebrtcPeer::onConnectionState(GstElement *webrtc, GParamSpec *, gpointer da
 void WebrtcPeer::onViewerGone(GstElement *, guint, guint, gpointer data)
 {
     static_cast<WebrtcPeer *>(data)->failed_ = true;
+}
+
+void WebrtcPeer::onViewerReport(GstElement *, guint, guint, gpointer data)
+{
+    static_cast<WebrtcPeer *>(data)->heardAtMs_ = steadyMs();
+}
+
+bool WebrtcPeer::failed() const
+{
+    return failed_ || steadyMs() - heardAtMs_ > kWebrtcSilenceMs;
 }
 
 GstPadProbeReturn WebrtcPeer::onUpstreamEvent(GstPad *, GstPadProbeInfo *info, gpointer data)

@@ -38,9 +38,9 @@ public:
     Result<std::string> negotiate(GMainContext *context, const WebrtcOptions &options, const std::string &offer,
                                   std::chrono::steady_clock::time_point deadline);
     // On the encoder's streaming thread; never blocks.
-    void push(GstSample *sample) { feed_.push(sample); }
-    // ICE or DTLS failed, or the viewer closed: the peer is to be reaped.
-    bool failed() const { return failed_; }
+    bool push(GstSample *sample) { return feed_.push(sample); }
+    // ICE or DTLS failed, the viewer closed, or its reports stopped (kWebrtcSilenceMs): the peer is to be reaped.
+    bool failed() const;
     // On the engine's loop, once negotiated: asks webrtcbin for its statistics (stats() has them a moment later).
     void pollStats() { stats_.request(webrtc_); }
     WebrtcPeerStats stats() const { return stats_.latest(); }
@@ -57,6 +57,7 @@ private:
     static void onGatheringState(GstElement *, GParamSpec *, gpointer self);
     static void onConnectionState(GstElement *, GParamSpec *, gpointer self);
     static void onViewerGone(GstElement *, guint session, guint ssrc, gpointer self);
+    static void onViewerReport(GstElement *, guint session, guint ssrc, gpointer self);
     static GstPadProbeReturn onUpstreamEvent(GstPad *, GstPadProbeInfo *info, gpointer self);
 
     std::string id_, address_;
@@ -67,6 +68,7 @@ private:
     GstElement *webrtc_ = nullptr; // in branch_'s pipeline
     GstElement *rtpbin_ = nullptr; // webrtcbin's own (a reference)
     std::atomic<bool> failed_{false};
+    std::atomic<int64_t> heardAtMs_; // steady clock: the viewer's last RTCP report, or the peer's start
     WebrtcStatsPoll stats_;
 
     std::mutex mutex_; // guards the two below, signalled by webrtcbin's threads
@@ -74,6 +76,11 @@ private:
     bool replied_ = false;  // the promise of the call() under way
     bool gathered_ = false; // ICE gathering complete
 };
+
+// A viewer whose RTCP reports stop for this long is gone (a closed tab, a pulled cable), as ICE consent freshness
+// would find (RFC 7675: 30 s), which webrtcbin 1.22 does not turn on. Browsers report every second, GStreamer's
+// rtpbin every 5 s at most 7.5 s apart: two of its reports may go missing first.
+inline constexpr int64_t kWebrtcSilenceMs = 15000;
 
 // The payload type of the offer's first H.264 video format with packetization-mode=1 (constrained baseline
 // preferred), or why the offer cannot be answered: "the offer is not SDP", "no m=video", "no H.264".

@@ -83,11 +83,13 @@ Status WebrtcPeers::remove(const std::string &id)
     return Ok{};
 }
 
-void WebrtcPeers::push(GstSample *sample)
+bool WebrtcPeers::push(GstSample *sample)
 {
     std::lock_guard lock(mutex_);
+    bool taken = false;
     for (const auto &peer : peers_)
-        peer->push(sample);
+        taken = peer->push(sample) || taken;
+    return taken;
 }
 
 gboolean WebrtcPeers::onReap(gpointer data)

@@ -32,8 +32,8 @@ public:
 
     Result<WebrtcAnswer> add(const std::string &offer, const std::string &address);
     Status remove(const std::string &id);
-    // On the encoder's streaming thread; never blocks.
-    void push(GstSample *sample);
+    // On the encoder's streaming thread; never blocks. True when at least one peer took the access unit.
+    bool push(GstSample *sample);
     EncodedSinkState state() const;
 
 private:
