@@ -27,7 +27,7 @@ from cpu_per_frame import CONFIG_720P30  # noqa: E402
 from devtools import Chromium, Page  # noqa: E402
 from encoded import ANNOTATIONS  # noqa: E402
 from latency_run import histograms, quantile  # noqa: E402
-from whep_browser_test import CONNECT, STATS  # noqa: E402
+from whep_browser_test import CONNECT, STATS, close_all  # noqa: E402
 
 # The receiver's track into a <video>; each presented frame's metadata kept (ms, the page's clock).
 PLAY = """(() => {
@@ -87,11 +87,7 @@ def main():
             metrics_after = histograms(response.read().decode())
         load = open("/proc/loadavg").read().split()[:3]
     finally:
-        if page:
-            page.close()
-        if browser:
-            browser.stop()
-        status = daemon.stop()
+        status = close_all(page, browser, daemon)
     print(f"{args.seconds:.0f} s, video {played}, overlayd exit {status}, load average {' '.join(load)}")
     p99s = {}
     for stage in ("blended", "webrtc_sent"):

@@ -75,6 +75,15 @@ def peers(daemon):
     return None
 
 
+def close_all(page, browser, daemon):
+    """Closes the tab and the browser when they were opened, then stops the daemon: its exit status."""
+    if page:
+        page.close()
+    if browser:
+        browser.stop()
+    return daemon.stop()
+
+
 def browser_arguments():
     """(the arguments, the work folder made with no old browser profile); exits 77 without chromium."""
     parser = argparse.ArgumentParser()
@@ -137,11 +146,7 @@ def main():
         check(status == 200 and peers(daemon) == 0, f"DELETE from the page: {status}, then {peers(daemon)} peers")
         check(not page.problems, f"no error in the page ({page.problems[:3]})")
     finally:
-        if page:
-            page.close()
-        if browser:
-            browser.stop()
-        code = daemon.stop()
+        code = close_all(page, browser, daemon)
         check(code == 0, f"overlayd stopped cleanly (exit {code})")
         if failures:
             print(daemon.log_tail(30))
