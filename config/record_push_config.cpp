@@ -10,8 +10,6 @@
 
 namespace overlayd {
 
-using namespace overlayd;
-
 namespace {
 
 // Two recordings in one directory would delete each other's segments by their own budgets.

@@ -5,10 +5,9 @@
 
 #include "http/credentials.h"
 #include "http/token_file.h"
+#include "stream/engine_loader.h"
 
 namespace overlayd {
-
-using namespace overlayd;
 
 void readRtspAccess(TableReader &sink, RtspAccessOptions &out)
 {
@@ -55,6 +54,10 @@ void resolveRtspAccess(TableReader &root, const HttpOptions &http, StreamOptions
                                "token_file): without one nobody could watch");
         if (access.tls == RtspTls::Http && http.enabled)
             access.certPem = http.tls.certPem, access.keyPem = http.tls.keyPem;
+        if (!access.certPem.empty())
+            if (auto served = checkRtspsCertificate(access.certPem, access.keyPem); !served)
+                root.problemAtPath(sink.key + ".tls",
+                                   served.error().message + " (tls = \"off\" serves plain RTSP beside [http]'s HTTPS)");
     }
 }
 

@@ -12,8 +12,6 @@
 
 namespace overlayd {
 
-using namespace overlayd;
-
 namespace {
 
 const char *const kBuiltWithout = "this overlayd was built without the encoded outputs (CMake option "

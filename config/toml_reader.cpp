@@ -4,7 +4,7 @@
 #include "config/toml_reader.h"
 
 #include <algorithm>
-#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -81,8 +81,22 @@ void TableReader::problemAtPath(std::string_view dottedKey, std::string message)
     const toml::node *at = table_;
     for (size_t begin = 0; at && begin <= dottedKey.size();) {
         const size_t end = std::min(dottedKey.find('.', begin), dottedKey.size());
+        std::string_view part = dottedKey.substr(begin, end - begin);
+        // "sink[2]": the third entry of an array of tables.
+        size_t index = std::string_view::npos;
+        if (const size_t open = part.find('['); open != std::string_view::npos && part.ends_with(']')) {
+            const std::string_view digits = part.substr(open + 1, part.size() - open - 2);
+            if (std::from_chars(digits.data(), digits.data() + digits.size(), index).ptr !=
+                digits.data() + digits.size())
+                index = std::string_view::npos;
+            part = part.substr(0, open);
+        }
         const toml::table *table = at->as_table();
-        const toml::node *next = table ? table->get(dottedKey.substr(begin, end - begin)) : nullptr;
+        const toml::node *next = table ? table->get(part) : nullptr;
+        if (next && index != std::string_view::npos) {
+            const toml::array *array = next->as_array();
+            next = array && index < array->size() ? array->get(index) : nullptr;
+        }
         if (!next)
             break;
         at = next;

@@ -5,8 +5,6 @@
 
 namespace overlayd {
 
-using namespace overlayd;
-
 void readWebrtc(TableReader &root, bool httpEnabled, WebrtcOptions &out)
 {
     auto table = root.table("webrtc");

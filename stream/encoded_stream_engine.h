@@ -155,6 +155,10 @@ inline constexpr const char *kCreateEngineSymbol = "overlayd_stream_create_engin
 // false with the reason in `error`; for the config loader, so that check-config refuses what run would.
 using CheckEncoderFunction = bool (*)(const EncoderOptions *options, std::string *error);
 inline constexpr const char *kCheckEncoderSymbol = "overlayd_stream_check_encoder";
+// Its third: whether GLib can serve RTSPS with this certificate and key (PEM): a TLS backend (glib-networking) is
+// installed and takes them, as the RTSP server will; false with the reason in `error`.
+using CheckTlsFunction = bool (*)(const std::string *certPem, const std::string *keyPem, std::string *error);
+inline constexpr const char *kCheckTlsSymbol = "overlayd_stream_check_tls";
 // The module's file name, next to the binary in the build tree or in the library folder when installed.
 inline constexpr const char *kModuleFileName = "overlayd-stream.so";
 // Where the Debian package puts the module, relative to the binary's folder (/usr/bin -> /usr/lib/overlayd), looked

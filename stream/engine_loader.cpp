@@ -29,6 +29,7 @@ struct Module {
     void *handle = nullptr;
     CreateEngineFunction create = nullptr;
     CheckEncoderFunction check = nullptr;
+    CheckTlsFunction checkTls = nullptr;
     std::string error;
 };
 
@@ -58,7 +59,8 @@ Module openModule()
         }
         module.create = reinterpret_cast<CreateEngineFunction>(dlsym(module.handle, kCreateEngineSymbol));
         module.check = reinterpret_cast<CheckEncoderFunction>(dlsym(module.handle, kCheckEncoderSymbol));
-        if (module.create == nullptr || module.check == nullptr)
+        module.checkTls = reinterpret_cast<CheckTlsFunction>(dlsym(module.handle, kCheckTlsSymbol));
+        if (module.create == nullptr || module.check == nullptr || module.checkTls == nullptr)
             module.error = place + " has no " + kCreateEngineSymbol + ": not an overlayd stream module";
         return module;
     }
@@ -106,6 +108,19 @@ Status checkEncoder(const EncoderOptions &options)
     std::string error;
     if (!module.check(&options, &error))
         return makeError(ErrorCode::NotFound, error);
+    return Ok{};
+}
+
+Status checkRtspsCertificate(const std::string &certPem, const std::string &keyPem)
+{
+    const Module &module = theModule();
+    if (module.checkTls == nullptr && moduleRequired)
+        return makeError(ErrorCode::NotFound, module.error);
+    if (module.checkTls == nullptr)
+        return Ok{}; // as checkEncoder()
+    std::string error;
+    if (!module.checkTls(&certPem, &keyPem, &error))
+        return makeError(ErrorCode::Unsupported, error);
     return Ok{};
 }
 

@@ -21,9 +21,13 @@ Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOption
 // when the module itself is not found, unless requireStreamModule() was called, or the build has no encoded outputs.
 Status checkEncoder(const EncoderOptions &options);
 
-// From now on checkEncoder() refuses a module that cannot be loaded, with loadStreamEngine's message: the binary's
-// `check-config` and `run` call it, so that check-config refuses what run would not start. A unit test of the
-// config loader leaves it off: its binary has no module beside it, and what it tests is the parsing.
+// Whether GLib can serve RTSPS with this certificate and key (PEM), asked of the module: the config loader refuses a
+// sink that run could not start at its `tls` key. Ok when the module is not found, as checkEncoder().
+Status checkRtspsCertificate(const std::string &certPem, const std::string &keyPem);
+
+// From now on checkEncoder() and checkRtspsCertificate() refuse a module that cannot be loaded, with loadStreamEngine's
+// message: the binary's `check-config` and `run` call it, so that check-config refuses what run would not start. A unit
+// test of the config loader leaves it off: its binary has no module beside it, and what it tests is the parsing.
 void requireStreamModule();
 
 } // namespace overlayd

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The module's exported functions: the binary finds them by name (engine_loader.cpp) after dlopen().
+#include <gio/gio.h>
 #include <gst/gst.h>
 
 #include "stream/gst/encoder_element.h"
@@ -35,6 +36,28 @@ overlayd_stream_create_engine(const StreamOptions *options, const EngineLog *log
         *error = e.what();
         return nullptr;
     }
+}
+
+// The certificate made as RtspAccess makes it, and a TLS backend asked for: without glib-networking GLib has none,
+// and the RTSP server could not start.
+extern "C" __attribute__((visibility("default"))) bool
+overlayd_stream_check_tls(const std::string *certPem, const std::string *keyPem, std::string *error)
+{
+    if (!startGstreamer(error))
+        return false;
+    if (!g_tls_backend_supports_tls(g_tls_backend_get_default())) {
+        *error = "GLib has no TLS backend for RTSPS (install glib-networking)";
+        return false;
+    }
+    GError *failure = nullptr;
+    GTlsCertificate *certificate = g_tls_certificate_new_from_pem((*certPem + "\n" + *keyPem).c_str(), -1, &failure);
+    if (certificate == nullptr) {
+        *error = std::string("RTSPS certificate: ") + (failure ? failure->message : "?");
+        g_clear_error(&failure);
+        return false;
+    }
+    g_object_unref(certificate);
+    return true;
 }
 
 // The element made as the engine would make it, and dropped: what is not installed is found without a pipeline.

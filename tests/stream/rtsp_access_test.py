@@ -127,12 +127,34 @@ def decode(url, frames):
     return len(done.stdout) // (rtsp_test.WIDTH * rtsp_test.HEIGHT)
 
 
+def no_tls_backend(overlayd, workdir, files):
+    """Without a GLib TLS backend (glib-networking's module hidden) RTSPS cannot start: check-config and run both
+    refuse the sink at its `tls` key with the same line, rather than run failing when the server opens."""
+    empty = os.path.join(workdir, "no-gio-modules")
+    os.makedirs(empty, exist_ok=True)
+    config = write(workdir, "no-backend.toml", rtsp_test.SCENE + daemon_fixture.http_section(
+        daemon_fixture.free_port(), control="off", **files) + '[encoder]\nencoder = "openh264"\n' +
+        sink(daemon_fixture.free_port(), ""))
+    hidden = dict(os.environ, GIO_MODULE_DIR=empty, GIO_EXTRA_MODULES=empty)
+    checked = subprocess.run([overlayd, "check-config", config], capture_output=True, text=True, timeout=30,
+                             env=hidden)
+    line = next((l for l in checked.stdout.splitlines() if "sink[0].tls: GLib has no TLS backend" in l), "")
+    ran = subprocess.run([overlayd, "run", "--config", config, "--frames", "1"], capture_output=True, text=True,
+                         timeout=30, env=hidden)
+    check(checked.returncode == 2 and ran.returncode == 2 and line and line in ran.stderr,
+          f"no GLib TLS backend: check-config exit {checked.returncode}, run exit {ran.returncode}, both at the "
+          f"sink's tls key: {line or checked.stdout.strip()[-300:]}")
+    checked = subprocess.run([overlayd, "check-config", config], capture_output=True, text=True, timeout=30)
+    check(checked.returncode == 0, f"with glib-networking the same config passes: {checked.stdout.strip()[-200:]}")
+
+
 def rtsps(overlayd, workdir):
     """[http] with tls_cert and tls_key: the RTSP sink is RTSPS with the same certificate (tls = "http")."""
     folder = os.path.join(workdir, "tls")
     os.makedirs(folder, exist_ok=True)
     tls_test.make_certificates(folder)
     files = {"tls_cert": "tls/server.pem", "tls_key": "tls/server.key"}
+    no_tls_backend(overlayd, workdir, files)
     daemon, port = serve(overlayd, workdir, "rtsps.toml", {"viewer": "credential", **files}, tls=True)
     try:
         url = f"127.0.0.1:{port}/cam"
