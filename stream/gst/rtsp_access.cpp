@@ -2,11 +2,15 @@
 // RtspAccess: the GstRTSPAuth of an RTSP sink, and the watch on its refusals.
 #include "stream/gst/rtsp_access.h"
 
+#include <set>
+
 namespace overlayd {
 namespace {
 
 // The role every accepted credential carries, and the factory grants.
 constexpr const char *kViewerRole = "viewer";
+// The realm of both challenges, as the HTTP server's Basic one.
+constexpr const char *kRtspRealm = "overlayd";
 
 GstRTSPToken *viewerToken()
 {
@@ -56,10 +60,24 @@ Status RtspAccess::apply(GstRTSPServer *server, GstRTSPMediaFactory *factory)
     GstRTSPToken *token = viewerToken();
     if (access.users.empty())
         gst_rtsp_auth_set_default_token(auth_, token); // TLS alone: anyone may watch
+    // Digest beside basic, so that over plain RTSP a digest client never sends the password itself; but
+    // gst-rtsp-server keeps one digest entry per user name, and a viewer and a control token both go by
+    // kRtspTokenUser: then basic alone, or a digest client (ffmpeg picks digest when offered) could use one of them.
+    std::set<std::string> names;
+    for (const RtspUser &user : access.users)
+        names.insert(user.name);
+    const bool digest = names.size() == access.users.size();
     for (const RtspUser &user : access.users) {
         gchar *basic = gst_rtsp_auth_make_basic(user.name.c_str(), user.password.c_str());
         gst_rtsp_auth_add_basic(auth_, basic, token);
         g_free(basic);
+        if (digest)
+            gst_rtsp_auth_add_digest(auth_, user.name.c_str(), user.password.c_str(), token);
+    }
+    for (GstRTSPAuth *auth : {auth_, refuser_}) {
+        gst_rtsp_auth_set_supported_methods(
+            auth, GstRTSPAuthMethod(GST_RTSP_AUTH_BASIC | (digest ? GST_RTSP_AUTH_DIGEST : 0)));
+        gst_rtsp_auth_set_realm(auth, kRtspRealm);
     }
     gst_rtsp_token_unref(token);
     gst_rtsp_media_factory_add_role(factory, kViewerRole, GST_RTSP_PERM_MEDIA_FACTORY_ACCESS, G_TYPE_BOOLEAN, TRUE,

@@ -14,8 +14,11 @@ gst-rtsp-server):
 
     rtsp_access_test.py --overlayd build/daemon/overlayd --workdir /tmp/rtsp-access-test
 Exit 0 when every check passed, 1 when any failed."""
+import hashlib
 import json
 import os
+import re
+import socket
 import ssl
 import subprocess
 import sys
@@ -75,6 +78,39 @@ def serve(overlayd, workdir, name, http_options, sink_extra="", tls=False):
     return daemon, rtsp_port
 
 
+def digest_describe(port, path, user, password):
+    """A DESCRIBE without a credential, then with RFC 2617's digest answer to the server's challenge (MD5, no qop):
+    (the WWW-Authenticate challenges of the first reply, the status of the second)."""
+    url = f"rtsp://127.0.0.1:{port}{path}"
+
+    def exchange(sock, cseq, authorization=""):
+        sock.sendall(f"DESCRIBE {url} RTSP/1.0\r\nCSeq: {cseq}\r\nAccept: application/sdp\r\n{authorization}\r\n"
+                     .encode())
+        reply = b""
+        while b"\r\n\r\n" not in reply:
+            chunk = sock.recv(4096)
+            if not chunk:
+                break
+            reply += chunk
+        head = reply.split(b"\r\n\r\n")[0].decode(errors="replace").split("\r\n")
+        return int(head[0].split()[1]), [line.split(":", 1)[1].strip() for line in head[1:]
+                                          if line.lower().startswith("www-authenticate:")]
+
+    with socket.create_connection(("127.0.0.1", port), timeout=10) as sock:
+        status, challenges = exchange(sock, 1)
+        digest = next((c for c in challenges if c.startswith("Digest ")), "")
+        fields = dict(re.findall(r'(\w+)="([^"]*)"', digest))
+        if status != 401 or "nonce" not in fields:
+            return challenges, status
+        def md5(text):
+            return hashlib.md5(text.encode()).hexdigest()
+        realm, nonce = fields["realm"], fields["nonce"]
+        answer = md5(f"{md5(f'{user}:{realm}:{password}')}:{nonce}:{md5(f'DESCRIBE:{url}')}")
+        status, _ = exchange(sock, 2, f'Authorization: Digest username="{user}", realm="{realm}", nonce="{nonce}", '
+                                      f'uri="{url}", response="{answer}"\r\n')
+        return challenges, status
+
+
 def credentials(overlayd, workdir):
     daemon, port = serve(overlayd, workdir, "credential.toml", {"viewer": "credential"})
     try:
@@ -83,6 +119,12 @@ def credentials(overlayd, workdir):
             name = who.split(":")[0]
             got = probe(f"rtsp://{who}@{url}")
             check(got == "h264", f"{name} (users_file or token) reads h264: {got}")
+        challenges, status = digest_describe(port, "/cam", "watcher", "see-it:all")
+        check(any(c.startswith("Digest ") for c in challenges) and any(c.startswith("Basic ") for c in challenges)
+              and status == 200, f"a digest client (RFC 2617, its response computed here) reads the stream: "
+              f"challenged with {[c.split()[0] for c in challenges]}, DESCRIBE answered {status}")
+        _, status = digest_describe(port, "/cam", "watcher", WRONG)
+        check(status == 401, f"digest with a wrong password: {status}")
         for who, what in (("", "no credential"), (f"watcher:{WRONG}@", "a wrong password"),
                           (f"nobody:{WRONG}@", "an unknown user")):
             got = probe(f"rtsp://{who}{url}")
@@ -99,6 +141,28 @@ def credentials(overlayd, workdir):
     check("RTSP: refused a credential from 127.0.0.1 (RTSP basic)" in log, "the refusal is logged with the address")
     check("RTSP: 10 refused credentials from 127.0.0.1" in log, "and the block, once")
     check(WRONG not in log and "see-it" not in log, "and no password is")
+
+
+def two_tokens(overlayd, workdir):
+    """A viewer and a control token both go by the user name "token": gst-rtsp-server keeps one digest entry per
+    name, so the sink offers basic alone, and a client that would pick digest (ffmpeg) reads with either token."""
+    write(workdir, "viewer.token", VIEWER_TOKEN + "\n")
+    write(workdir, "control.token", "control-token-456\n")
+    http_port, rtsp_port = daemon_fixture.free_port(), daemon_fixture.free_port()
+    config = write(workdir, "tokens.toml", rtsp_test.SCENE + daemon_fixture.http_section(
+        http_port, control="token", token_file="control.token", viewer="credential",
+        viewer_token_file="viewer.token") + '[encoder]\nencoder = "openh264"\n' + sink(rtsp_port))
+    daemon = WatchedDaemon(overlayd, config, workdir, http_port)
+    try:
+        daemon.wait_ready()
+        challenges, _ = digest_describe(rtsp_port, "/cam", "token", VIEWER_TOKEN)
+        check([c.split()[0] for c in challenges] == ["Basic"], f"with two tokens the 401 offers basic alone: "
+              f"{challenges}")
+        for secret in (VIEWER_TOKEN, "control-token-456"):
+            got = probe(f"rtsp://token:{secret}@127.0.0.1:{rtsp_port}/cam")
+            check(got == "h264", f"ffmpeg reads with the token {secret[:7]}...: {got}")
+    finally:
+        daemon.stop()
 
 
 def open_sink(overlayd, workdir):
@@ -189,6 +253,7 @@ def main():
     refused(overlayd, workdir)
     rtsps(overlayd, workdir)
     credentials(overlayd, workdir)
+    two_tokens(overlayd, workdir)
     open_sink(overlayd, workdir)
     return 1 if rtsp_test.failures else 0
 
