@@ -148,6 +148,15 @@ Role Credentials::bearer(std::string_view token) const
     return control ? Role::Control : viewer ? Role::Viewer : Role::None;
 }
 
+const BasicUser *Credentials::user(std::string_view name) const
+{
+    const BasicUser *found = nullptr;
+    for (const BasicUser &user : users_)
+        if (sameSecret(name, user.name) && found == nullptr)
+            found = &user;
+    return found;
+}
+
 Role Credentials::basic(std::string_view name, std::string_view password) const
 {
     Role role = Role::None;

@@ -41,6 +41,9 @@ public:
     Role bearer(std::string_view token) const;
     Role basic(std::string_view name, std::string_view password) const;
     bool hasUsers() const { return !users_.empty(); }
+    // The users_file user of that name (for a Digest answer, which libmicrohttpd checks against its password), or
+    // null.
+    const BasicUser *user(std::string_view name) const;
 
 private:
     std::string controlToken_, viewerToken_;

@@ -27,6 +27,12 @@ inline constexpr unsigned kKeptForRequests = 4;      // max_streams' default lea
 inline constexpr int kListenBacklog = 1024;          // connections the kernel queues before the server accepts them
 // Credentials (http/credentials.h; the refusals' limits are base/auth_failures.h's).
 inline constexpr size_t kMaxUsers = 64; // users in users_file
+// users_file users may answer a Digest challenge (MD5, RFC 2617/7616) instead of sending Basic: its nonce is good
+// for kDigestNonceSec (then "stale": the client answers a fresh one without asking its user), and libmicrohttpd
+// remembers the counts of the last kDigestNonces nonces, so a replayed answer is refused.
+inline constexpr unsigned kDigestNonceSec = 300;
+inline constexpr unsigned kDigestNonces = 1024;
+inline constexpr const char *kAuthRealm = "overlayd"; // Basic's and Digest's, and the RTSP sinks' too
 
 enum class ControlMode {
     Off,   // the control API answers 403

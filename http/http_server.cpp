@@ -11,6 +11,7 @@
 #include <microhttpd.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/random.h>
 #include <sys/socket.h>
 
 #include "http/page_files.h"
@@ -261,6 +262,9 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
                        " without TLS: the control token, viewer credentials and the video cross the network in "
                        "clear text, for anyone on the path to read and replay (set http.tls_cert and http.tls_key)");
     }
+    if (getrandom(server->digestRandom_.data(), server->digestRandom_.size(), 0) !=
+        ssize_t(server->digestRandom_.size()))
+        return makeError(ErrorCode::Io, "http: no random bytes for the Digest nonces (getrandom)");
     auto socket = openListeningSocket(*address, kListenBacklog);
     if (!socket)
         return socket.error();
@@ -271,9 +275,11 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
         MHD_OPTION_CONNECTION_LIMIT, options.maxClients + kSpareConnections, MHD_OPTION_CONNECTION_TIMEOUT,
         kIdleTimeoutSec, MHD_OPTION_CONNECTION_MEMORY_LIMIT, kConnectionMemoryBytes, MHD_OPTION_NOTIFY_COMPLETED,
         &MhdCallbacks::completed, server.get(), MHD_OPTION_NOTIFY_CONNECTION, &MhdCallbacks::connection, server.get(),
-        MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(), MHD_OPTION_UNESCAPE_CALLBACK,
-        &MhdCallbacks::keepEscaped, nullptr, options.tls.empty() ? MHD_OPTION_END : MHD_OPTION_HTTPS_CERT_CALLBACK,
-        TlsCertificate::callback(), MHD_OPTION_END);
+        MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(), MHD_OPTION_DIGEST_AUTH_RANDOM,
+        server->digestRandom_.size(), server->digestRandom_.data(), MHD_OPTION_NONCE_NC_SIZE, kDigestNonces,
+        MHD_OPTION_UNESCAPE_CALLBACK, &MhdCallbacks::keepEscaped, nullptr,
+        options.tls.empty() ? MHD_OPTION_END : MHD_OPTION_HTTPS_CERT_CALLBACK, TlsCertificate::callback(),
+        MHD_OPTION_END);
     if (!server->daemon_)
         return makeError(ErrorCode::Io, "http: libmicrohttpd could not start on " + address->describe());
     [[maybe_unused]] const int owned = socket->release(); // libmicrohttpd closes it when it stops
@@ -429,7 +435,7 @@ HttpCounters HttpServer::counters() const
     return out;
 }
 
-int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
+int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response, DigestChallenge challenge)
 {
     MHD_Response *r = MHD_create_response_from_buffer(response.body.size(), const_cast<char *>(response.body.data()),
                                                       MHD_RESPMEM_MUST_COPY);
@@ -444,7 +450,12 @@ int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
     }
     if (!cacheSet)
         MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
-    const MHD_Result queued = MHD_queue_response(connection, response.status, r);
+    const MHD_Result queued =
+        challenge == DigestChallenge::None
+            ? MHD_queue_response(connection, response.status, r)
+            : MHD_queue_auth_fail_response2(connection, kAuthRealm, kAuthRealm, r,
+                                            challenge == DigestChallenge::Stale ? MHD_YES : MHD_NO,
+                                            MHD_DIGEST_ALG_MD5); // what browsers and curl answer
     MHD_destroy_response(r);
     ++counters_.requests;
     if (response.status >= 400)
@@ -452,7 +463,23 @@ int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
     return queued;
 }
 
-std::optional<HttpResponse> HttpServer::refuse(MHD_Connection *connection, const HttpRequest &request)
+Role HttpServer::digest(MHD_Connection *connection, bool &stale) const
+{
+    char *name = MHD_digest_auth_get_username(connection);
+    if (name == nullptr)
+        return Role::None;
+    const BasicUser *user = credentials_.user(name);
+    MHD_free(name);
+    if (user == nullptr)
+        return Role::None;
+    const int checked = MHD_digest_auth_check2(connection, kAuthRealm, user->name.c_str(), user->password.c_str(),
+                                               kDigestNonceSec, MHD_DIGEST_ALG_MD5);
+    stale = checked == MHD_INVALID_NONCE;
+    return checked == MHD_YES ? user->role : Role::None;
+}
+
+std::optional<HttpResponse> HttpServer::refuse(MHD_Connection *connection, const HttpRequest &request,
+                                               DigestChallenge &challenge)
 {
     const Role need = requiredRole(request.method, request.path);
     if (need == Role::Viewer && options_.viewerOpen)
@@ -467,8 +494,12 @@ std::optional<HttpResponse> HttpServer::refuse(MHD_Connection *connection, const
     if (!authorization.empty()) {
         if (authFailures_.blocked(request.peer, now))
             return HttpResponse::error(429, "too many refused credentials from this address: try again later");
-        role = credentials_.fromHeader(authorization);
-        if (role == Role::None)
+        bool stale = false;
+        role = authorization.starts_with("Digest ") && credentials_.hasUsers() ? digest(connection, stale)
+                                                                               : credentials_.fromHeader(authorization);
+        if (stale) // not a wrong credential: the client answers a fresh nonce without asking its user
+            challenge = DigestChallenge::Stale;
+        else if (role == Role::None)
             if (const std::string line = authFailures_.failed(
                     request.peer, request.method + (need == Role::Control ? ", a change" : ", watching"), now);
                 !line.empty())
@@ -479,9 +510,12 @@ std::optional<HttpResponse> HttpServer::refuse(MHD_Connection *connection, const
             401, need == Role::Control ? "control needs the token: Authorization: Bearer TOKEN (or a control user)"
                                        : "watching needs a credential: a viewer or control token or user");
         refused.headers.emplace_back(MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer");
-        if (credentials_.hasUsers())
+        if (credentials_.hasUsers()) {
             refused.headers.emplace_back(MHD_HTTP_HEADER_WWW_AUTHENTICATE,
-                                         "Basic realm=\"overlayd\", charset=\"UTF-8\"");
+                                         std::string("Basic realm=\"") + kAuthRealm + "\", charset=\"UTF-8\"");
+            if (challenge == DigestChallenge::None)
+                challenge = DigestChallenge::Fresh;
+        }
         return refused;
     }
     if (int(role) < int(need))
@@ -525,8 +559,9 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
     if (!reading && (url == "/stream" || url == "/snapshot")) // before the credential check: none makes it right
         return answer(connection, HttpResponse::error(405, "GET " + url));
     request.peer = peerOf(connection);
-    if (auto refused = refuse(connection, request))
-        return answer(connection, *refused);
+    DigestChallenge challenge = DigestChallenge::None;
+    if (auto refused = refuse(connection, request, challenge))
+        return answer(connection, *refused, challenge);
     if (reading && url == "/stream")
         return startStream(connection);
     if (reading && url == "/snapshot") {

@@ -4,6 +4,7 @@
 // and the page itself and hands every other request to the daemon's API handler, after the control check.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -50,6 +51,10 @@ struct HttpResponse {
     // written as \xNN).
     static HttpResponse error(unsigned status, const std::string &message);
 };
+
+// A Digest challenge libmicrohttpd adds to a 401 (with a nonce of its own making): none, a fresh one, or one that
+// says the client's nonce was only too old (stale).
+enum class DigestChallenge { None, Fresh, Stale };
 
 // The daemon's endpoints (/state, /metrics, /api/...), called on the loop thread.
 using ApiHandler = std::function<HttpResponse(const HttpRequest &)>;
@@ -103,11 +108,15 @@ private:
     friend struct MhdCallbacks; // libmicrohttpd's C callbacks, in http_server.cpp
 
     int access(MHD_Connection *connection, const std::string &url, const std::string &method, Exchange &exchange);
-    int answer(MHD_Connection *connection, const HttpResponse &response);
+    int answer(MHD_Connection *connection, const HttpResponse &response,
+               DigestChallenge challenge = DigestChallenge::None);
     int answerSnapshot(MHD_Connection *connection, Exchange &exchange);
     int startStream(MHD_Connection *connection);
     int serveFile(MHD_Connection *connection, const std::string &path);
-    std::optional<HttpResponse> refuse(MHD_Connection *connection, const HttpRequest &request);
+    std::optional<HttpResponse> refuse(MHD_Connection *connection, const HttpRequest &request,
+                                       DigestChallenge &challenge);
+    // The role a Digest answer proves (None when it proves none; `stale` when only its nonce was too old).
+    Role digest(MHD_Connection *connection, bool &stale) const;
     ssize_t fillStream(StreamClient &client, char *buffer, size_t max);
     void resumeAll();
     bool closeHungUp();
@@ -121,6 +130,7 @@ private:
     Logger &logger_;
     Credentials credentials_;
     AuthFailures authFailures_{"http"};
+    std::array<unsigned char, 32> digestRandom_{}; // libmicrohttpd's key for the Digest nonces it makes
     MHD_Daemon *daemon_ = nullptr;
     bool stopping_ = false;
 

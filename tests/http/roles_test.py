@@ -4,8 +4,8 @@
 
     tests/http/roles_test.py --overlayd build/daemon/overlayd --workdir /tmp/roles
 
-[http] with a control token (token_file), a viewer token (viewer_token_file) and basic users (users_file: a viewer
-and a controller). Every credential against every kind of request, with raw requests on loopback:
+[http] with a control token (token_file), a viewer token (viewer_token_file) and users (users_file: a viewer and a
+controller, by Basic or, through curl, by Digest). Every credential against every kind of request, with raw requests on loopback:
   watching (the page, /state, /metrics, /snapshot, /stream, /api/project, POST /api/unproject): 401 without a
   credential or with a wrong one, 200 with any right one;
   changing (PUT /api/camera, PUT /api/layers/NAME): 401 without or with a wrong one, 403 with a viewer's, 200 with
@@ -16,6 +16,7 @@ is ever in the log. Bounded: about 10 s.
 """
 import base64
 import os
+import subprocess
 import sys
 import time
 
@@ -79,6 +80,27 @@ def matrix(port):
         print(f"matrix: {name}: watch {watch}, change {change}: as expected")
 
 
+def digest(port):
+    """curl answering the Digest challenge (MD5) with a users_file user's password, which it never sends."""
+    def curl(method, path, user, body=None):
+        done = subprocess.run(["curl", "-s", "-o", "/dev/null", "-w", "%{http_code}", "--digest", "-u", user, "-X",
+                               method, f"http://127.0.0.1:{port}{path}"] + (["-d", body] if body else []),
+                              capture_output=True, text=True, timeout=20)
+        return int(done.stdout or 0)
+    _, _, answer = raw_client.get(port, "/state", "127.0.4.1", timeout=5.0)
+    challenges = [line.split(":", 1)[1].strip() for line in answer.split(b"\r\n\r\n")[0].decode().split("\r\n")
+                  if line.lower().startswith("www-authenticate:")]
+    check(any("Digest" in str(c) for c in challenges) and any("Basic" in str(c) for c in challenges),
+          f"the 401 offers Digest beside Basic and Bearer: {challenges}")
+    results = {"viewer /state": curl("GET", "/state", "alice:alice-password"),
+               "viewer PUT /api/camera": curl("PUT", "/api/camera", "alice:alice-password", POSE),
+               "control PUT /api/camera": curl("PUT", "/api/camera", "bob:bob:password with colon", POSE),
+               "wrong password /state": curl("GET", "/state", "alice:bob:password with colon")}
+    check(results == {"viewer /state": 200, "viewer PUT /api/camera": 403, "control PUT /api/camera": 200,
+                      "wrong password /state": 401}, f"curl --digest: {results}")
+    print(f"digest: challenged with {[c.split()[0] for c in challenges]}; curl --digest: {results}")
+
+
 def guessing(port, daemon):
     guesser, other = "127.0.3.1", "127.0.3.2"
     statuses = [request(port, "PUT", "/api/camera", POSE, f"Bearer guess-{i}", guesser) for i in range(10)]
@@ -115,6 +137,7 @@ def run(overlayd, workdir, args):
                   f"overlayd did not serve /state:\n{daemon.log_tail()}")
             time.sleep(0.2)
         matrix(port)
+        digest(port)
         guessing(port, daemon)
 
 

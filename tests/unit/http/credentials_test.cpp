@@ -42,6 +42,21 @@ TEST(Credentials, TokensAndUsersGiveTheirRoles)
     EXPECT_EQ(credentials->fromHeader("Digest x"), Role::None);
 }
 
+TEST(Credentials, DigestLooksTheUserUpByNameOnly)
+{
+    HttpOptions options;
+    options.usersFile = file("digest-users", "alice:viewer:a:b\nbob:control:pw\n");
+    const auto credentials = Credentials::load(options);
+    ASSERT_TRUE(credentials) << credentials.error().message;
+    const BasicUser *bob = credentials->user("bob");
+    ASSERT_NE(bob, nullptr);
+    EXPECT_EQ(bob->password, "pw");
+    EXPECT_EQ(bob->role, Role::Control);
+    EXPECT_EQ(credentials->user("alice")->password, "a:b");
+    EXPECT_EQ(credentials->user("bo"), nullptr);
+    EXPECT_EQ(credentials->user(""), nullptr);
+}
+
 TEST(Credentials, WhatARequestNeeds)
 {
     EXPECT_EQ(requiredRole("GET", "/stream"), Role::Viewer);
