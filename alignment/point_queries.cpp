@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The projection queries of alignment/point_queries.h: `project`'s and `unproject`'s output, and /api/project's.
 #include "alignment/point_queries.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The projection queries `overlayd project` and `unproject` print and the HTTP API's /api/project and /api/unproject
 // answer: where world points land in a Camera and why a point has no visible pixel, and the world ray behind a pixel
 // and where it meets a plane. Here, below both, so that neither includes the other.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // readPointsFile: five finite numbers (each within kAnyMagnitude) per non-empty line after an optional header row,
 // every problem at file:line.
 #include "alignment/points_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The points file of `overlayd solve-pose` and `overlayd project --points`: one point per line, "x y z u v" (world
 // metres, then the pixel in the viewport's origin convention; project reads "x y z" too and ignores u v),
 // separated by commas and/or spaces; '#' starts a comment; the first line may be a header row naming the columns

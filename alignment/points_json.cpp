@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // parsePointsJson: nlohmann::json parses; a scan of the text beforehand finds where each element starts (for
 // file:line in errors, which the parser does not keep) and refuses deep nesting.
 #include "alignment/points_json.h"

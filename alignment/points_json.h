@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The JSON form of solve-pose's points file: what `overlayd project --json` prints, so its output can go back in.
 //
 //   [{"world": [x, y, z], "pixel": [u, v]}, ...]

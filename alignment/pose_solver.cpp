@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // solvePose: unproject every pixel through the Camera, solve PnP on the normalized directions with OpenCV (SQPnP,
 // refined by Levenberg-Marquardt), reproject through the solved pose to report the error in pixels.
 #include "alignment/pose_solver.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // solvePose: the camera pose from world points and the pixels they were seen at (PnP), for any lens the Camera
 // models: each pixel goes back through the Camera's own exact unprojection to a normalized direction, so OpenCV's
 // solver sees an ideal pinhole (K = I, no distortion) whatever the lens.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The event loop's kernel objects: epoll, timerfd and signalfd, each owned by a UniqueFd.
 #include "base/event_loop.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The daemon's event loop: epoll over owned file descriptors, with timerfd and signalfd wrappers.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // jsonString: the escapes RFC 8259 requires (quote, backslash, control characters); valid UTF-8 passes through, and
 // each byte that is not (a device's card name, a file name) becomes U+FFFD, so the output is always JSON.
 #include "base/json_text.h"

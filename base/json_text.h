@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JSON text for the commands that print --json: strings (names and ids come from drivers and may hold anything)
 // and numbers.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Logger: formatting (journald priorities or local timestamps) and the repeat counter.
 #include "base/logger.h"
 

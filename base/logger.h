@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Logger: the daemon's log lines on stderr, with syslog priority prefixes under journald and rate-limited repeats.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Range's refusal text: limits print short (1e+06), a value given with every digit a user may have typed.
 #include "base/number_range.h"
 

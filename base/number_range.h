@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Range: the interval a number from outside (a config key, a command-line argument, a points file, an API body)
 // must lie in, with the refusal that names it. One definition, so that every door applies the config file's ranges.
 #pragma once

@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
 // formatted(): vsnprintf asked for the length first, then into a string of that length.
 #include "base/number_text.h"
 
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 
@@ -27,6 +29,15 @@ std::string formatted(const char *format, ...)
 std::string shortNumber(double value, int precision)
 {
     return formatted("%.*g", precision, value);
+}
+
+double roundedTo(double value, int decimals)
+{
+    const double scale = std::pow(10.0, decimals);
+    // Dividing the rounded integer by an exact power of ten gives the double nearest the decimal, as parsing it would.
+    if (!std::isfinite(value) || std::abs(value * scale) >= 0x1p52)
+        return value;
+    return std::round(value * scale) / scale + 0.0;
 }
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // readRegularFile: stat, open non-blocking, fstat again (the path may have changed in between), read at most one byte
 // more than allowed.
 #include "base/regular_file.h"

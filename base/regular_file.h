@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // readRegularFile: the one way a file the daemon reads whole (a config, a calibration, an image) is opened. Only a
 // regular file is read: a directory, a device or a FIFO named where a file is meant is refused with what it is,
 // without blocking (a FIFO with no writer would block an ordinary open), and a file over the caller's limit is

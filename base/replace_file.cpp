@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The temporary's name is random (getrandom), so that a file or link planted at a predictable "NAME.tmp" can neither
 // redirect the write (O_NOFOLLOW, O_EXCL) nor make it fail; renameat within one folder is atomic.
 #include "base/replace_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // replaceFileContents: a file (the live drop-in, a snapshot) written whole or not at all, and never through a name
 // someone else planted: the temporary is created exclusively, without following a link, in the target's folder.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Names for error codes, used in messages and tests.
 #include "base/result.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Result<T>: a value or an Error, returned instead of throwing where bad input is expected.
 #pragma once
 

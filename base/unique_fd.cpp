@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // UniqueFd: moves and closing.
 #include "base/unique_fd.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // UniqueFd: the one owner of a file descriptor in the project (the event loop's kernel objects, V4L2 devices and
 // their exported buffers).
 #pragma once

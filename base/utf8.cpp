@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A table-free strict decoder: the second byte's range depends on the first (RFC 3629 section 4), which is what
 // refuses overlong forms (C0, C1, E0 80-9F, F0 80-8F), surrogates (ED A0-BF) and code points above U+10FFFF
 // (F4 90-BF, F5-FF).

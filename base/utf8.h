@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Outside text (files other programs write, API bodies, config strings) checked against one policy: strict UTF-8
 // (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF) and no control characters but those a
 // format needs. Text that breaks it is refused where it enters; what quotes it in a message makes it safe first.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # overlayd_optional_package(OPTION PREFIX MODULE DOC): a cache option AUTO | ON | OFF for a pkg-config dependency that
 # a feature can be built without (AUTO: when found; ON: required; OFF: never). Sets PREFIX_FOUND and the imported
 # target PkgConfig::PREFIX as pkg_check_modules does.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # overlayd_resolve_test_part(OPTION PACKAGE OUT): OUT is TRUE when the part OPTION (AUTO | ON | OFF, or any CMake
 # boolean) is built: AUTO when find_package(PACKAGE) finds it, ON requiring it (an error when it is missing), OFF
 # never. The tests' GoogleTest and the benchmarks' Google Benchmark; the daemon alone needs neither.

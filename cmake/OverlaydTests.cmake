@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # overlayd_add_gtests(TARGET PREFIX [TIMEOUT seconds]): registers a GoogleTest program with CTest.
 #
 # Natively every test is its own CTest (gtest_discover_tests), so one failure names itself and CTest spreads the

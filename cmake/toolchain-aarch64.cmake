@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Cross build for arm64 (aarch64) with Debian 12's crossbuild-essential-arm64 against the sysroot that
 # scripts/arm64/sysroot.sh unpacks from Debian's own arm64 packages. CTest runs the built programs under
 # qemu-aarch64 in that sysroot (CMAKE_CROSSCOMPILING_EMULATOR), so `ctest` works as it does natively.

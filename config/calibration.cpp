@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration import: picks the reader for a file and turns its camera matrix and coefficients into our types.
 #include "config/calibration.h"
 
@@ -9,7 +10,6 @@
 #include "config/nesting_depth.h"
 
 namespace overlayd {
-
 
 Error calibrationError(const std::string &path, const std::string &what, unsigned line)
 {
@@ -39,7 +39,6 @@ std::string openCvMatrixProblem(const std::string &field, const DeclaredMatrix &
                std::to_string(matrix.count.value_or(0));
     return {};
 }
-
 
 namespace {
 
@@ -106,7 +105,7 @@ Result<Calibration> loadCalibrationText(const std::string &path, const std::stri
     // cv::FileStorage reads the text as C strings and crashes (SIGSEGV) on a NUL byte in an XML file.
     if (const size_t nul = text.find('\0'); nul != std::string::npos)
         return calibrationError(path, "holds a NUL byte: not a text file",
-                                        unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
+                                unsigned(1 + std::count(text.begin(), text.begin() + long(nul), '\n')));
     const std::string extension = std::filesystem::path(path).extension().string();
     // The content decides first: OpenCV's YAML header, then an XML declaration or the .xml name.
     const bool openCvYaml = text.starts_with("%YAML:");
@@ -114,10 +113,9 @@ Result<Calibration> loadCalibrationText(const std::string &path, const std::stri
     // cv::FileStorage recurses once per level and overflows the stack on a few thousand; yaml-cpp stops at its own
     // limit with a message that does not say why ("bad file").
     if (auto deep = findTooDeep(text, xml ? TextSyntax::Xml : TextSyntax::Yaml))
-        return calibrationError(path,
-                                        "nested deeper than " + std::to_string(kMaxNestingDepth) +
-                                            " levels (a calibration file needs 3)",
-                                        deep->line);
+        return calibrationError(
+            path, "nested deeper than " + std::to_string(kMaxNestingDepth) + " levels (a calibration file needs 3)",
+            deep->line);
     if (xml)
         return loadOpenCvXmlCalibration(path, text);
     return loadYamlCalibration(path, text, openCvYaml);

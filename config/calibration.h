@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration import: OpenCV calibration files (XML through tinyxml2, YAML through yaml-cpp) and ROS camera_info YAML.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera changes from outside the config file (the HTTP API) read by [camera]'s own readers.
 #pragma once
 

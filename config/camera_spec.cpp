@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraSpec::build: the configured camera, composed through projection/ for one stream size.
 #include "config/camera_spec.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraSpec: the camera as configured (pose, intrinsics, distortion, viewport), resolved to a Camera once the
 // stream's frame size is known (a V4L2 device may adjust the size; intrinsics then scale with it).
 #pragma once
@@ -28,6 +29,18 @@ struct CalibrationRegion {
     double x = 0, y = 0, width = 0, height = 0;
 
     bool operator==(const CalibrationRegion &) const = default;
+};
+
+// The pose keys a config wrote (config/pose_config.cpp): a save writes the live pose back in them, in the user's own
+// units and axes, rather than in a form the user did not choose.
+enum class PoseForm { LookAt, Gaze, PrpVpnVup, Orientation, YawPitchRoll, Rodrigues, Rt };
+
+struct PoseKeysUsed {
+    PoseForm form = PoseForm::Rt;
+    CameraAxes axes = CameraAxes::Body; // the orientation form's `axes`
+    double targetDistance = 1.0;        // look-at: how far the target was from the eye
+
+    bool operator==(const PoseKeysUsed &) const = default;
 };
 
 enum class IntrinsicsForm {
@@ -64,6 +77,7 @@ public:
     // Filled by the config loader.
     Pose pose{}; // mount frame to camera
     std::string mountFrame = "world";
+    PoseKeysUsed poseKeys{};        // the config's pose form; the API's edits keep it
     glm::dmat4 worldFromMount{1.0}; // resolved from the scene graph when loading
 
     IntrinsicsForm form = IntrinsicsForm::FieldOfView;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // loadConfigFile / loadConfigText: parse with toml++, read every section, then check what spans sections (frame
 // names, the camera composed through projection/), collecting every problem in one pass.
 #include "config/daemon_config.h"
@@ -90,7 +91,7 @@ bool readCamera(TableReader &root, const std::string &baseDirectory, DaemonConfi
     auto camera = root.table("camera");
     if (camera) {
         config.camera.mountFrame = camera->string("frame").value_or(SceneGraph::kWorld);
-        readPose(*camera, config.camera.pose);
+        readPose(*camera, config.camera.pose, &config.camera.poseKeys);
         readIntrinsics(*camera, baseDirectory, config.camera, keys);
         camera->finish();
     }
@@ -146,11 +147,14 @@ Result<DaemonConfig> readRoot(const toml::table &root, const std::string &name, 
     CameraKeys keys;
     readDaemon(reader, result.daemon);
     readSource(reader, baseDirectory, result.source);
-    readSinks(reader, result.sinks);
+    readSinks(reader, result.sinks, result.stream);
+    readEncoder(reader, result.stream);
     readFrames(reader, result.scene.frames);
     readAnnotations(reader, baseDirectory, result.scene.annotations);
     readGpio(reader, result.scene.annotations, result.gpio);
     readHttp(reader, baseDirectory, result.http);
+    resolveRtspAccess(reader, result.http, result.stream);
+    readWebrtc(reader, result.http.enabled, result.stream.webrtc);
     readInputs(reader, baseDirectory, result.scene, result.inputs);
     const bool cameraRead = readCamera(reader, baseDirectory, result, keys);
     reader.finish();
@@ -255,8 +259,7 @@ Result<DaemonConfig> loadConfigFile(const std::string &path, std::vector<ConfigP
         return loadConfigText(*text, path, base, problems);
     toml::table root, dropIn;
     const auto dropInText = readConfigText(dropInPath, found);
-    if (!dropInText || !parseToml(*text, path, root, found) ||
-        !parseToml(*dropInText, dropInPath, dropIn, found))
+    if (!dropInText || !parseToml(*text, path, root, found) || !parseToml(*dropInText, dropInPath, dropIn, found))
         return summarize(found, problems);
     mergeDropIn(root, dropIn);
     return readRoot(root, path, base, found, problems);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The readers of each section of the config file, shared by the loader. Private to config/.
 #pragma once
 
@@ -31,17 +32,31 @@ std::string resolvePath(const std::string &baseDirectory, const std::string &pat
 
 void readDaemon(TableReader &root, DaemonSettings &out);
 void readSource(TableReader &root, const std::string &baseDirectory, SourceOptions &out);
-void readSinks(TableReader &root, std::vector<SinkOptions> &out);
+// [[sink]]: the raw kinds into `out`, the encoded kinds (stream_config.cpp) into `encoded`.
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, StreamOptions &encoded);
+// [encoder]: the one encode the encoded sinks share; an encoded [[sink]] (kind = "rtsp").
+void readEncoder(TableReader &root, StreamOptions &out);
+bool isEncodedSink(TableReader &sink);
+void readEncodedSink(TableReader &sink, StreamOptions &out);
+// kind = "record" and kind = "push" (record_push_config.cpp); `sofar` holds the encoded sinks read before.
+void readRecord(TableReader &sink, const StreamOptions &sofar, RecordSinkOptions &out);
+void readPush(TableReader &sink, PushSinkOptions &out);
+// [webrtc] (webrtc_config.cpp), after [http], which serves it.
+void readWebrtc(TableReader &root, bool httpEnabled, WebrtcOptions &out);
 // [[gpio.input]] / [[gpio.output]], after the annotations (their layers are what inputs may switch).
 void readGpio(TableReader &root, const std::vector<Annotation> &annotations, GpioOptions &out);
 // [[input.text]] (after the annotations: their text slots are what inputs may feed).
-void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
-                InputOptions &out);
+void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene, InputOptions &out);
 // [http]: the server's options (see http/http_options.h).
 void readHttp(TableReader &root, const std::string &baseDirectory, HttpOptions &out);
+// An RTSP sink's `auth` and `tls` keys (rtsp_access_config.cpp); after [http], what they resolve to: its users and
+// tokens, its certificate.
+void readRtspAccess(TableReader &sink, RtspAccessOptions &out);
+void resolveRtspAccess(TableReader &root, const HttpOptions &http, StreamOptions &stream);
 
 // The pose keys of a camera table (one of the forms projection/pose.h offers); false after reporting a problem.
-bool readPose(TableReader &camera, Pose &out);
+// `used`, when given, learns which form the keys were in.
+bool readPose(TableReader &camera, Pose &out, PoseKeysUsed *used = nullptr);
 // Intrinsics, near/far, depth range, distortion and calibration of [camera].
 void readIntrinsics(TableReader &camera, const std::string &baseDirectory, CameraSpec &out, CameraKeys &keys);
 void readViewport(TableReader &viewport, ViewportSpec &out);

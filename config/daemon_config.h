@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DaemonConfig: everything one overlayd instance runs from, loaded from a TOML file and validated in one pass.
 #pragma once
 
@@ -14,6 +15,7 @@
 #include "http/http_options.h"
 #include "inputs/input_options.h"
 #include "overlay/shapes/annotation.h"
+#include "stream/stream_options.h"
 
 namespace overlayd {
 
@@ -28,6 +30,7 @@ struct DaemonConfig {
     OverlayScene scene;
     SourceOptions source; // source.synthetic.camera is filled by the daemon from `camera`
     std::vector<SinkOptions> sinks;
+    StreamOptions stream; // [encoder] and the encoded [[sink]]s
     GpioOptions gpio;
     HttpOptions http;
     InputOptions inputs;

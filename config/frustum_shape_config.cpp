@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frustum annotation: another camera, described with the same pose and intrinsics keys as [camera].
 #include "config/config_sections.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[gpio.input]] and [[gpio.output]]: lines checked for shape here (chips and lines themselves only exist on the
 // running machine), layers against the scene's, and no line named twice.
 #include "config/config_sections.h"
@@ -47,6 +48,20 @@ void checkLayers(TableReader &table, std::string_view key, const std::vector<std
     }
 }
 
+// A privacy mask cannot be hidden: an input whose layer holds one is refused, shown or hidden alike (an input that
+// shows a layer hides it while the line is inactive).
+void checkMaskLayers(TableReader &table, std::string_view key, const std::vector<std::string> &layers,
+                     const std::vector<Annotation> &annotations)
+{
+    for (const std::string &layer : layers)
+        for (const Annotation &annotation : annotations)
+            if (isMask(annotation) && annotation.style.layer == layer) {
+                table.problem(key, "layer '" + layer + "' holds the privacy mask '" + annotation.name +
+                                       "', which nothing may hide (give the mask a layer of its own)");
+                break;
+            }
+}
+
 // An input must switch something, and no layer both ways: shown only while the line is active and hidden while it
 // is, the layer could never be seen (layer_rules.h), whatever the line does.
 void checkSwitches(TableReader &input, const GpioInputOptions &in)
@@ -86,27 +101,29 @@ void claimLine(TableReader &table, const LineAddress &line, const std::string &w
     claims.push_back({line, who});
 }
 
-void readInput(TableReader &input, size_t index, const std::vector<std::string> &layers, std::vector<Claim> &claims,
-               GpioInputOptions &out)
+void readInput(TableReader &input, size_t index, const std::vector<Annotation> &annotations,
+               const std::vector<std::string> &layers, std::vector<Claim> &claims, GpioInputOptions &out)
 {
     out.name = input.string("name").value_or("gpio.input[" + std::to_string(index) + "]");
     readLine(input, out.line);
     if (auto low = input.boolean("active_low"))
         out.activeLow = *low;
     if (auto bias = input.choice<Bias>("bias", {{"as-is", Bias::AsIs},
-                                                      {"disable", Bias::Disable},
-                                                      {"pull-up", Bias::PullUp},
-                                                      {"pull-down", Bias::PullDown}}))
+                                                {"disable", Bias::Disable},
+                                                {"pull-up", Bias::PullUp},
+                                                {"pull-down", Bias::PullDown}}))
         out.bias = *bias;
     if (auto debounce = input.integer("debounce_ms", 0, kMaxDebounceMs))
         out.debounceMs = unsigned(*debounce);
     if (auto show = input.strings("show_layers", kMaxLayersPerInput)) {
         out.showLayers = *show;
         checkLayers(input, "show_layers", out.showLayers, layers);
+        checkMaskLayers(input, "show_layers", out.showLayers, annotations);
     }
     if (auto hide = input.strings("hide_layers", kMaxLayersPerInput)) {
         out.hideLayers = *hide;
         checkLayers(input, "hide_layers", out.hideLayers, layers);
+        checkMaskLayers(input, "hide_layers", out.hideLayers, annotations);
     }
     checkSwitches(input, out);
     claimLine(input, out.line, "input '" + out.name + "'", claims);
@@ -118,9 +135,9 @@ void readOutput(TableReader &output, size_t index, std::vector<Claim> &claims, O
     out.name = output.string("name").value_or("gpio.output[" + std::to_string(index) + "]");
     readLine(output, out.line);
     if (auto signal = output.choice<OutputSignal>("signal", {{"streaming", OutputSignal::Streaming},
-                                                                   {"no-signal", OutputSignal::NoSignal},
-                                                                   {"error", OutputSignal::Error},
-                                                                   {"frame-toggle", OutputSignal::FrameToggle}}))
+                                                             {"no-signal", OutputSignal::NoSignal},
+                                                             {"error", OutputSignal::Error},
+                                                             {"frame-toggle", OutputSignal::FrameToggle}}))
         out.signal = *signal;
     if (auto low = output.boolean("active_low"))
         out.activeLow = *low;
@@ -148,7 +165,7 @@ void readGpio(TableReader &root, const std::vector<Annotation> &annotations, Gpi
     std::vector<TableReader> inputs = gpio->tables("input", kMaxInputs);
     std::vector<TableReader> outputs = gpio->tables("output", kMaxOutputs);
     for (size_t i = 0; i < inputs.size(); ++i)
-        readInput(inputs[i], i, layers, claims, out.inputs.emplace_back());
+        readInput(inputs[i], i, annotations, layers, claims, out.inputs.emplace_back());
     for (size_t i = 0; i < outputs.size(); ++i)
         readOutput(outputs[i], i, claims, out.outputs.emplace_back());
     gpio->finish();

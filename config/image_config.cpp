@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // type = "image": the file is decoded at load time by SceneImages (check-config decodes it too, so a file run would
 // refuse is refused there); here, where and how large it is drawn.
 #include "config/config_sections.h"

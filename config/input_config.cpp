@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[input.text]]: text slots fed by files; [[input.path]]: the points of a polyline or markers annotation from a
 // file; [[input.can]]: signals on a CAN bus, into the guide lines' steering or
 // a text slot. A target must exist in the scene (a typo would feed nothing, silently) and is fed by one input; a
@@ -196,8 +197,7 @@ void readCanInput(TableReader &table, const OverlayScene &scene, const std::vect
 
 } // namespace
 
-void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene,
-                InputOptions &out)
+void readInputs(TableReader &root, const std::string &baseDirectory, const OverlayScene &scene, InputOptions &out)
 {
     auto input = root.table("input");
     if (!input)

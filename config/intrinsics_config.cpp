@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [camera] intrinsics: field of view, frustum, pinhole (or a calibration file), the viewing-pipeline window,
 // orthographic; near/far, depth range and lens distortion.
 #include "config/config_sections.h"

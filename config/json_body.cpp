@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // parseJsonBody: nlohmann's exceptions become a Malformed error; writeJson: nlohmann never throws for bad text.
 #include "config/json_body.h"
 
@@ -8,7 +9,14 @@ Result<nlohmann::json> parseJsonBody(std::string_view text)
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception &error) {
-        return makeError(ErrorCode::Malformed, std::string("the body is not JSON: ") + error.what());
+        // Without the library's tag: "[json.exception.parse_error.101] parse error at line 1, column 2: ..." says
+        // "at line 1, column 2: ...".
+        std::string why = error.what();
+        if (const size_t tag = why.find("] "); why.rfind("[json.exception.", 0) == 0 && tag != std::string::npos)
+            why.erase(0, tag + 2);
+        if (why.rfind("parse error ", 0) == 0)
+            why.erase(0, std::string_view("parse error ").size());
+        return makeError(ErrorCode::Malformed, "the body is not JSON: " + why);
     }
 }
 

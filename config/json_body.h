@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An HTTP request body read as JSON and an answer's JSON written: the one place each is done, for the camera
 // request here and the daemon's other routes.
 #pragma once

@@ -1,12 +1,16 @@
+// SPDX-License-Identifier: Apache-2.0
 // The drop-in is parsed with toml++, its [camera] merged with the live camera's keys and re-emitted by a small
 // emitter whose floating-point numbers are std::to_chars' shortest exact form (every double reads back bit for bit).
 #include "config/live_drop_in.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "base/regular_file.h"
 #include "base/replace_file.h"
 #include "config/config_sections.h"
@@ -16,6 +20,13 @@
 namespace overlayd {
 
 namespace {
+
+// The header's pose, for a person to read: 0.1 um and 1e-7 degree (the keys below keep every bit).
+constexpr int kCommentDecimals = 7;
+// A pose key is written as its 12-decimal rounding when that is within 1e-13 of it (relative above 1): far below
+// what a pixel can show (1e-13 degree is 1e-12 px at 1000 px of focal length), far above atan2's rounding noise.
+constexpr int kTidyDecimals = 12;
+constexpr double kTidySlack = 1e-13;
 
 std::string numberText(double value)
 {
@@ -99,11 +110,86 @@ const char *distortionModelName(DistortionModel model)
     return "none";
 }
 
-// The pose as rmat/tvec: OpenCV's optical axes are the internal axes with y and z negated, which is exact, so the
-// loaded pose equals the live one bit for bit (a quaternion would round).
-void putPose(const Pose &pose, toml::table &camera)
+// A number a person wrote, for a key they read: 90.00000000000001 (atan2's rounding) is 90, while a value that is
+// not that close to a short decimal keeps every bit.
+double tidy(double value)
 {
+    const double rounded = roundedTo(value, kTidyDecimals);
+    return std::abs(rounded - value) <= kTidySlack * std::max(1.0, std::abs(value)) ? rounded : value;
+}
+
+toml::array tidyArray(const glm::dvec3 &v)
+{
+    return numbers({tidy(v.x), tidy(v.y), tidy(v.z)});
+}
+
+// OpenCV's rvec (axis times angle, radians) of a rotation matrix, by its quaternion: no branch near 180 degrees.
+glm::dvec3 rodriguesOf(const glm::dmat3 &rotation)
+{
+    glm::dquat q = glm::quat_cast(rotation);
+    if (q.w < 0.0)
+        q = -q;
+    const glm::dvec3 axis(q.x, q.y, q.z);
+    const double sine = glm::length(axis);
+    if (sine == 0.0)
+        return glm::dvec3(0.0);
+    return axis * (2.0 * std::atan2(sine, q.w) / sine);
+}
+
+// The pose in the keys the config wrote it in (`yaw = 90.0`, not a matrix the user never wrote): the same units and
+// axes, tidied to what a person wrote. The matrix form stays exact: OpenCV's optical axes are the internal axes with
+// y and z negated, so the loaded pose equals the live one bit for bit.
+void putPose(const CameraSpec &spec, toml::table &camera)
+{
+    const Pose &pose = spec.pose;
+    const glm::dmat3 worldFromInternal = glm::transpose(pose.rotation);
+    const glm::dvec3 position = pose.position(), back = worldFromInternal[2];
+    // A camera without roll has Z up, as people write it; else its own up, which makes the rolled pose exact.
+    const bool level = std::abs(worldFromInternal[0].z) <= kTidySlack && std::abs(back.z) < 1.0 - kTidySlack;
+    const glm::dvec3 up = level ? glm::dvec3(0.0, 0.0, 1.0) : worldFromInternal[1];
     const glm::dmat3 flip = internalFromAxes(CameraAxes::Optical); // its own inverse
+    switch (spec.poseKeys.form) {
+    case PoseForm::LookAt:
+        camera.insert_or_assign("eye", tidyArray(position));
+        camera.insert_or_assign("target", tidyArray(position - back * spec.poseKeys.targetDistance));
+        camera.insert_or_assign("up", tidyArray(up));
+        return;
+    case PoseForm::Gaze:
+        camera.insert_or_assign("eye", tidyArray(position));
+        camera.insert_or_assign("gaze", tidyArray(-back));
+        camera.insert_or_assign("up", tidyArray(up));
+        return;
+    case PoseForm::PrpVpnVup:
+        camera.insert_or_assign("prp", tidyArray(position));
+        camera.insert_or_assign("vpn", tidyArray(back));
+        camera.insert_or_assign("vup", tidyArray(up));
+        return;
+    case PoseForm::Orientation: {
+        glm::dquat q = glm::quat_cast(worldFromInternal * internalFromAxes(spec.poseKeys.axes));
+        if (q.w < 0.0)
+            q = -q; // the same rotation; a leading positive w is how people write it
+        camera.insert_or_assign("position", tidyArray(position));
+        camera.insert_or_assign("orientation", numbers({tidy(q.w), tidy(q.x), tidy(q.y), tidy(q.z)}));
+        camera.insert_or_assign("axes", spec.poseKeys.axes == CameraAxes::Optical  ? "optical"
+                                        : spec.poseKeys.axes == CameraAxes::OpenGl ? "opengl"
+                                                                                   : "body");
+        return;
+    }
+    case PoseForm::YawPitchRoll: {
+        const YawPitchRoll ypr = yawPitchRollOf(pose);
+        camera.insert_or_assign("position", tidyArray(position));
+        camera.insert_or_assign("yaw", tidy(ypr.yawDeg));
+        camera.insert_or_assign("pitch", tidy(ypr.pitchDeg));
+        camera.insert_or_assign("roll", tidy(ypr.rollDeg));
+        return;
+    }
+    case PoseForm::Rodrigues:
+        camera.insert_or_assign("rvec", vectorArray(rodriguesOf(flip * pose.rotation)));
+        camera.insert_or_assign("tvec", vectorArray(flip * pose.translation));
+        return;
+    case PoseForm::Rt:
+        break;
+    }
     const glm::dmat3 r = flip * pose.rotation;
     toml::array rows;
     for (int row = 0; row < 3; ++row)
@@ -161,7 +247,7 @@ void putCamera(const CameraSpec &spec, toml::table &camera)
     for (std::string_view key : kIntrinsicsFormKeys)
         camera.erase(key);
     camera.erase("calibration"); // its pinhole and distortion are written out below
-    putPose(spec.pose, camera);
+    putPose(spec, camera);
     putIntrinsicsForm(spec, camera);
     if (spec.calibrationCrop == CalibrationCrop::Region) {
         const CalibrationRegion &r = spec.calibrationRegion;
@@ -224,13 +310,17 @@ Result<std::string> liveDropInText(const CameraSpec &camera, std::string_view ex
     putCamera(camera, merged);
 
     const YawPitchRoll ypr = yawPitchRollOf(camera.pose);
-    std::string text = "# Written by overlayd (" + std::string(writer) +
-                       "): the live camera, read after the main config file; its keys replace the main file's.\n"
-                       "# Delete this file to go back to the main file's camera.\n"
-                       "# The pose in the mount frame '" +
-                       camera.mountFrame + "': position = " + tomlText(vectorArray(ypr.position)) +
-                       ", yaw = " + numberText(ypr.yawDeg) + ", pitch = " + numberText(ypr.pitchDeg) +
-                       ", roll = " + numberText(ypr.rollDeg) + " (degrees)\n";
+    std::string text =
+        "# Written by overlayd (" + std::string(writer) +
+        "): the live camera, read after the main config file; its keys replace the main file's.\n"
+        "# Delete this file to go back to the main file's camera.\n"
+        "# The pose in the mount frame '" +
+        camera.mountFrame + "': position = " +
+        tomlText(numbers({roundedTo(ypr.position.x, kCommentDecimals), roundedTo(ypr.position.y, kCommentDecimals),
+                          roundedTo(ypr.position.z, kCommentDecimals)})) +
+        ", yaw = " + numberText(roundedTo(ypr.yawDeg, kCommentDecimals)) +
+        ", pitch = " + numberText(roundedTo(ypr.pitchDeg, kCommentDecimals)) +
+        ", roll = " + numberText(roundedTo(ypr.rollDeg, kCommentDecimals)) + " (degrees)\n";
     for (const auto &[key, value] : *root)
         if (key.str() != "camera")
             text += keyText(key.str()) + " = " + tomlText(value) + "\n";

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The drop-in beside a config file that keeps the live camera across restarts without rewriting the user's file:
 // written by `POST /api/save` and `solve-pose --write`, read by the loader after the main file.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth scans for YAML, XML and TOML: one pass each, no recursion, strings and comments skipped.
 #include "config/nesting_depth.h"
 

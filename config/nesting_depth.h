@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A pre-scan of a file's text for how deeply it nests, before a parser that recurses per level sees it:
 // cv::FileStorage overflows the stack on a few thousand nested YAML flow sequences or XML elements, toml++ on tens of
 // thousands of dotted key parts. The scan is iterative and knows only enough of each syntax to skip strings and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [camera] pose keys: every pose form of projection/pose.h, chosen by the key only that form has.
 #include "config/config_sections.h"
 
@@ -10,8 +11,6 @@
 namespace overlayd {
 
 namespace {
-
-enum class PoseForm { LookAt, Gaze, PrpVpnVup, Orientation, YawPitchRoll, Rodrigues, Rt };
 
 struct PoseFormInfo {
     PoseForm form;
@@ -175,7 +174,7 @@ std::string_view blamedKey(TableReader &camera, const PoseFormInfo &info, const 
 
 } // namespace
 
-bool readPose(TableReader &camera, Pose &out)
+bool readPose(TableReader &camera, Pose &out, PoseKeysUsed *used)
 {
     const PoseFormInfo *info = chooseForm(camera);
     for (std::string_view key : kPoseKeys)
@@ -191,6 +190,13 @@ bool readPose(TableReader &camera, Pose &out)
         return false;
     }
     out = pose->value();
+    if (used) {
+        used->form = info->form;
+        if (info->form == PoseForm::Orientation)
+            used->axes = readAxes(camera).value_or(CameraAxes::Body);
+        if (info->form == PoseForm::LookAt)
+            used->targetDistance = glm::distance(*camera.vec3("eye"), *camera.vec3("target"));
+    }
     return true;
 }
 

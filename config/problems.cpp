@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Problems and "did you mean": collecting config errors and suggesting the key a typo meant.
 #include "config/problems.h"
 
@@ -12,7 +13,6 @@ std::string ConfigProblem::format() const
         out += key + ": ";
     return out + message;
 }
-
 
 void Problems::add(unsigned line, unsigned column, std::string key, std::string message, std::string file)
 {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Problems: collects every ConfigProblem of one load, so that a user sees them all in one pass.
 #pragma once
 

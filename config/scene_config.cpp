@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[frame]] scene-graph frames and [[annotation]] entries with their style.
 #include "config/config_sections.h"
 
@@ -104,7 +105,7 @@ void readAnnotations(TableReader &root, const std::string &baseDirectory, std::v
             readShape(table, *type, baseDirectory, images, annotation.shape);
         else if (!table.has("type"))
             table.problem("type", "missing: axes | grid | polyline | markers | box | arc | label | horizon | "
-                                  "guide-lines | frustum | text | crosshair | rect");
+                                  "guide-lines | frustum | text | crosshair | rect | image | mask");
         table.finish();
         // The renderer's own rules, run here so that check-config refuses what run would, at the key; only for an
         // annotation read without problems (a refused value was left at its default, and one report is enough), and

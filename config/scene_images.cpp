@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneImages: PNG and JPEG files to premultiplied RGBA through media/codec (libpng, libjpeg-turbo): grey, palette,
 // RGB or RGBA, 1 to 16 bits per channel. The file's size is checked before it is read, the header's image size (and
 // the scene's total with it) before any pixel is decoded, and a file already decoded is not read again.

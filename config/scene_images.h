@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneImages: the pixels of one scene's image annotations, each file decoded once however many annotations name it,
 // and the sum of what they show bounded (kMaxSceneImageBytes) before anything past it is decoded. Private to config/.
 #pragma once

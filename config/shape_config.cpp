@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The shape keys of an [[annotation]], one reader per type of overlay/shapes/annotation.h.
 #include "config/config_sections.h"
 
@@ -100,6 +101,16 @@ Shape readArc(TableReader &t)
     return s;
 }
 
+TextAlign readAlign(TableReader &t)
+{
+    return t
+        .choice<TextAlign>("align", {{"left", TextAlign::Left},
+                                     {"centre", TextAlign::Centre},
+                                     {"center", TextAlign::Centre},
+                                     {"right", TextAlign::Right}})
+        .value_or(TextAlign::Left);
+}
+
 Shape readLabel(TableReader &t)
 {
     LabelShape s;
@@ -108,6 +119,7 @@ Shape readLabel(TableReader &t)
     s.offsetPx = t.vec2("offset_px").value_or(s.offsetPx);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
+    s.align = readAlign(t);
     return s;
 }
 
@@ -141,6 +153,7 @@ Shape readScreenText(TableReader &t)
     s.position = t.vec2("position").value_or(s.position);
     s.sizePx = t.positive("size_px", 1000).value_or(s.sizePx);
     s.background = t.colour("background");
+    s.align = readAlign(t);
     return s;
 }
 
@@ -158,6 +171,28 @@ Shape readRect(TableReader &t)
     s.position = t.vec2("position").value_or(s.position);
     s.size = t.vec2("size").value_or(s.size);
     s.filled = t.boolean("filled").value_or(s.filled);
+    return s;
+}
+
+// A mask's fill: a colour, or "pixelate" in blocks of block_px.
+Shape readMask(TableReader &t)
+{
+    MaskShape s;
+    bool screen = false;
+    if (auto points = t.points("points", kMaxMaskPoints, {}, &screen)) {
+        s.points = std::move(*points);
+        if (s.points.size() < kMinMaskPoints)
+            t.problem("points", "a mask needs at least " + std::to_string(kMinMaskPoints) + " points");
+    }
+    s.world = !screen;
+    const toml::node *fill = t.node("fill");
+    if (fill && fill->as_string() && fill->as_string()->get() == "pixelate")
+        s.fill.reset();
+    else
+        s.fill = t.colour("fill").value_or(Rgba{0, 0, 0, 255});
+    if (s.fill && t.has("block_px"))
+        t.problem("block_px", "block_px is for fill = \"pixelate\"");
+    s.blockPx = unsigned(t.integer("block_px", kMinMaskBlockPx, kMaxMaskBlockPx).value_or(s.blockPx));
     return s;
 }
 
@@ -194,6 +229,7 @@ void readShape(TableReader &table, const std::string &type, const std::string &b
         {"text", {"text"}, readScreenText},
         {"crosshair", {}, readCrosshair},
         {"rect", {"size"}, readRect},
+        {"mask", {"points"}, readMask},
     };
     std::vector<std::string> names{"frustum", "image"};
     for (const ShapeReader &reader : kReaders) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [daemon], [source] (with its synthetic, replay, v4l2 and libcamera sub-tables) and [[sink]].
 #include "config/config_sections.h"
 
@@ -290,21 +291,36 @@ std::string outputIdentity(const std::string &path)
 // Output paths stay as written (relative to the daemon's working directory, where a user looks for them); only
 // inputs (replay files, calibrations) resolve against the config file's folder. Two sinks on one file (or both on
 // stdout) would interleave their frames into a file nothing reads: the second is refused at its path.
-void readSinks(TableReader &root, std::vector<SinkOptions> &out)
+void readSinks(TableReader &root, std::vector<SinkOptions> &out, StreamOptions &encoded)
 {
     std::map<std::string, std::string> writers; // output identity -> the first sink's key, "sink[0].path"
     std::string holder;                         // the sink with zero_copy = "on", "sink[0].zero_copy"
+    std::map<std::string, std::string> names;   // sink name -> the key that gave it, "sink[0].name"
     for (TableReader &sink : root.tables("sink", kMaxSinks)) {
+        if (isEncodedSink(sink)) {
+            readEncodedSink(sink, encoded);
+            continue;
+        }
         const size_t before = sink.problems().size();
         SinkOptions options;
+        options.name = sink.string("name", kMaxNameBytes).value_or("sink[" + std::to_string(out.size()) + "]");
+        if (const auto [first, added] = names.emplace(options.name, sink.keyPath("name")); !added)
+            sink.problem("name", "'" + options.name + "' is the name of " + first->second +
+                                     " already: /state and /metrics tell sinks apart by name");
         if (auto kind = sink.choice<SinkKind>("kind", {{"y4m", SinkKind::Y4m},
                                                        {"raw", SinkKind::Raw},
                                                        {"snapshot", SinkKind::Snapshot},
                                                        {"null", SinkKind::Null},
-                                                       {"v4l2", SinkKind::V4l2Output}}))
+                                                       {"v4l2", SinkKind::V4l2Output},
+                                                       // Never chosen here (readEncodedSink reads it): listed so
+                                                       // that an unknown kind's message names it.
+                                                       {"rtsp", SinkKind::Null},
+                                                       {"record", SinkKind::Null},
+                                                       {"push", SinkKind::Null},
+                                                       {"file", SinkKind::Null}}))
             options.kind = *kind;
         else if (!sink.has("kind"))
-            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2");
+            sink.problem("kind", "missing: y4m | raw | snapshot | null | v4l2 | rtsp | record | push | file");
         if (auto path = sink.string("path")) {
             options.path = *path;
             const bool writes = options.kind != SinkKind::Null && !path->empty();

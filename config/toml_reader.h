@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TableReader: typed, located access to one TOML table; every wrong type, bad value and unknown key becomes a
 // Problem with its file:line:column instead of stopping the load. Private to config/ (toml++ stays inside).
 #pragma once
@@ -71,6 +72,8 @@ public:
     // At most maxCount numbers (or points); the first one over is refused at its own position.
     std::optional<std::vector<double>> numbers(std::string_view key, size_t maxCount, Range range = {});
     std::optional<std::vector<glm::dvec3>> points(std::string_view key, size_t maxCount, Range range = {});
+    // The same, also taking [x, y] points (z = 0) when `screen` is given: *screen says which, all alike.
+    std::optional<std::vector<glm::dvec3>> points(std::string_view key, size_t maxCount, Range range, bool *screen);
     // An array of at most maxCount strings.
     std::optional<std::vector<std::string>> strings(std::string_view key, size_t maxCount);
     // "#rrggbb", "#rrggbbaa", a colour name, or [r, g, b] / [r, g, b, a] with 0..255 entries.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OpenCV calibration files in XML (what calibrateCamera's samples write with a .xml name), read with tinyxml2. Not
 // cv::FileStorage: its XML parser dereferences a null pointer on some malformed files (`<?xml versioimagn=`, found
 // by tests/fuzz/calibration_fuzz) and knows no line numbers. OpenCV's XML is one <opencv_storage> element whose

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration YAML read with yaml-cpp: ROS camera_info (camera_calibration's output) and OpenCV's own (%YAML:1.0,
 // !!opencv-matrix), whose header line yaml-cpp does not know and sees as a comment. Not cv::FileStorage for the
 // latter: its YAML parser loops forever on some malformed files (found by tests/fuzz/calibration_fuzz) and knows no

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Daemon: `overlayd run`. It loads the config, builds the sinks, and wires one event loop to the three parts that do
 // the work: the SourceSupervisor (the source, NO SIGNAL and reconnects), the HealthReporter (readiness, watchdog,
 // STATUS=, stats) and SceneControl (every change to the running scene, SIGHUP reloads among them).
@@ -13,18 +14,19 @@
 #include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
-#include "daemon/can_inputs.h"
-#include "daemon/daemon_status.h"
-#include "daemon/gpio_control.h"
+#include "control/can_inputs.h"
+#include "control/daemon_status.h"
+#include "control/gpio_control.h"
+#include "control/http_front.h"
+#include "control/path_inputs.h"
+#include "control/scene_control.h"
+#include "control/text_inputs.h"
+#include "daemon/encoded_stream_report.h"
 #include "daemon/health_reporter.h"
-#include "daemon/http_front.h"
-#include "daemon/path_inputs.h"
 #include "daemon/pipeline.h"
-#include "daemon/scene_control.h"
 #include "daemon/source_supervisor.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
-#include "daemon/text_inputs.h"
 
 namespace overlayd {
 
@@ -63,19 +65,21 @@ public:
 
     State state() const override { return source_ ? source_->state() : State::Idle; }
     const DaemonConfig &config() const override { return config_; }
-    const Pipeline &pipeline() const override { return pipeline_; }
+    const Pipeline &pipeline() const { return pipeline_; }
+    const StreamFormat &streamFormat() const override { return pipeline_.format(); }
+    uint64_t framesIn() const override { return pipeline_.framesIn(); }
+    std::vector<const StatusReporter *> reporters() const override;
+    std::shared_ptr<EncodedStream> encodedStream() const override { return stream_; }
     // The one path into the running scene (reload uses it too); call on the loop thread.
     SceneControl &scene() { return scene_; }
-    const GpioControl &gpio() const override { return gpio_; }
+    const GpioControl &gpio() const { return gpio_; }
     GpioControl &gpio() { return gpio_; }
-    const TextInputs &textInputs() const override { return textInputs_; }
+    const TextInputs &textInputs() const { return textInputs_; }
     TextInputs &textInputs() { return textInputs_; }
-    const PathInputs &pathInputs() const override { return pathInputs_; }
+    const PathInputs &pathInputs() const { return pathInputs_; }
     PathInputs &pathInputs() { return pathInputs_; }
-    const CanInputs &canInputs() const override { return canInputs_; }
+    const CanInputs &canInputs() const { return canInputs_; }
     CanInputs &canInputs() { return canInputs_; }
-    // Every live input's health, whatever its kind ([[input.text]], [[input.path]], [[input.can]]).
-    std::vector<InputHealth> inputHealth() const override;
     const std::string &waitReason() const { return source_->waitReason(); }
     std::chrono::milliseconds nextRetryDelay() const { return source_->nextRetryDelay(); }
     int exitStatus() const { return exitStatus_; }
@@ -88,14 +92,17 @@ private:
     struct ReopenedParts {
         bool source = false, sinks = false;
     };
-    // Everything a reload does once the new file has loaded (reload.cpp); an error: nothing was switched.
+    // Everything a reload does once the new file has loaded; an error: nothing was switched.
     Result<ReopenedParts> switchConfig(DaemonConfig next);
     // The switch itself, which cannot fail: between two frames, with every new part already open.
     void commitConfig(DaemonConfig next, SceneControl scene, std::optional<SourceSupervisor::Staged> stream,
                       std::unique_ptr<OverlayRenderer> renderer);
     void onFrameDelivered();
     void armStats();
-    std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status);
+    // The sinks of a config; with keepStream, without the encoded outputs' sink: the running one goes on (its
+    // [encoder] and encoded sinks are the config's).
+    std::vector<std::unique_ptr<SinkWorker>> buildSinks(const DaemonConfig &config, Status &status,
+                                                        bool keepStream = false);
     void applyLogLevel();
     uint64_t sinkFailures() const;
     void shutdown();
@@ -114,7 +121,10 @@ private:
     TextInputs textInputs_; // after scene_, whose slots it feeds
     PathInputs pathInputs_; // after scene_, whose polylines and markers it feeds
     CanInputs canInputs_;   // after scene_, whose guide lines and slots it feeds
-    HttpFront http_;        // after everything its API reads
+    // The encoded outputs the running sinks feed, and those buildSinks() made for sinks not yet switched in.
+    std::shared_ptr<EncodedStream> stream_, builtStream_;
+    EncodedStreamReport streamReport_{stream_}; // reports whichever encoded stream runs, or nothing
+    HttpFront http_;                            // after everything its API reads
 
     EventLoop *loop_ = nullptr;           // set while run() is running
     std::optional<SignalReader> signals_; // created before any sink thread, so that every thread blocks them

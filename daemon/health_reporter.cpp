@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // HealthReporter: the readiness, watchdog and STATUS= rules, and the stats line.
 #include "daemon/health_reporter.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // HealthReporter: what systemd and the log hear about the stream: READY=1 once the first frame is through, a
 // watchdog petted only while frames flow (or a reconnect runs), STATUS= lines, and the periodic stats line.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NoSignalFrame: the overlay's own text (the glyph cache, DejaVu Sans) on an opaque layer; blending an opaque layer
 // replaces every byte of the frame, so the frame needs no format-specific fill.
 #include "daemon/no_signal.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NoSignalFrame: the frame sinks receive while the source is down: dark grey with "NO SIGNAL" and the reason,
 // drawn once per reason in RGBA and converted to the stream's own format through the overlay's converters.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // openStream: source, format, overlay, sinks, in that order, each failure leaving the running pipeline as it was.
 #include "daemon/open_stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // openStream: the one sequence that opens a stream, for `run` (each start, reconnect and reload) and `render`.
 #pragma once
 
@@ -6,8 +7,8 @@
 
 #include "base/result.h"
 #include "config/daemon_config.h"
+#include "control/scene_control.h"
 #include "daemon/pipeline.h"
-#include "daemon/scene_control.h"
 #include "daemon/stages.h"
 #include "drivers/frame_source.h"
 

@@ -1,10 +1,12 @@
-// Pipeline: the per-frame path and its statistics.
+// SPDX-License-Identifier: Apache-2.0
+// Pipeline: the per-frame path and its statistics; then the sinks during a reload.
 #include "daemon/pipeline.h"
 
-#include "base/number_text.h"
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+
+#include "base/number_text.h"
 
 namespace overlayd {
 
@@ -81,7 +83,8 @@ void Pipeline::closeSinks()
 void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
 {
     const auto start = std::chrono::steady_clock::now();
-    blend(frame, metadata);
+    if (!blend(frame, metadata))
+        return;
     const auto blended = std::chrono::steady_clock::now();
     pushToSinks(frame, metadata);
     countFrame(metadata, start, blended);
@@ -90,7 +93,8 @@ void Pipeline::process(const FrameView &frame, const FrameMetadata &metadata)
 void Pipeline::process(FrameLease lease)
 {
     const auto start = std::chrono::steady_clock::now();
-    blend(lease.view(), lease.metadata());
+    if (!blend(lease.view(), lease.metadata()))
+        return;
     const auto blended = std::chrono::steady_clock::now();
     // Shared only when a sink keeps a reference: the others copy (or write inline) before this returns, and the
     // lease goes back to the source right after, with no allocation for the frame.
@@ -107,14 +111,22 @@ void Pipeline::process(FrameLease lease)
     countFrame(shared->metadata(), start, blended);
 }
 
-void Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
+bool Pipeline::blend(const FrameView &frame, const FrameMetadata &metadata)
 {
+    // The privacy masks first: the raw tap (snapshots with raw=1) and every sink see the masked frame only, and a
+    // frame that could not be masked goes nowhere.
+    if (renderer_)
+        if (auto masked = renderer_->applyMasks(frame); !masked) {
+            logger_.error(cat("privacy masks: ", masked.error().message, "; the frame is dropped"));
+            return false;
+        }
     if (rawTap_)
         rawTap_(frame, metadata);
     if (!renderer_)
-        return;
+        return true;
     if (auto blended = renderer_->blend(frame, metadata, format_.fps); !blended)
         logger_.error(cat("overlay: ", blended.error().message));
+    return true;
 }
 
 void Pipeline::countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,
@@ -155,6 +167,101 @@ PipelineStats Pipeline::takeStats()
     framesIn_ = 0;
     blendTime_ = pushTime_ = {};
     return stats;
+}
+
+// Pipeline during a reload: the new sinks open before the running ones close, except where both write to one place.
+
+namespace {
+
+// Two sinks that write to one place (a file, a device, stdout, the HTTP feed) cannot both be open: the new one waits
+// until the running one has closed.
+bool sameOutput(const SinkWorker &a, const SinkWorker &b)
+{
+    return !a.options().path.empty() && a.options().path == b.options().path;
+}
+
+Status openFor(SinkWorker &sink, const StreamFormat &format)
+{
+    if (auto opened = sink.open(format); !opened)
+        return makeError(opened.error().code,
+                         cat(sink.describe(), ": cannot open for ", format.describe(), ": ", opened.error().message));
+    return Ok{};
+}
+
+} // namespace
+
+Status Pipeline::replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format,
+                              const KeepSink &keep)
+{
+    const auto kept = [&keep](const SinkWorker &sink) {
+        return keep && keep(sink);
+    };
+    const auto takesOver = [this, &kept](const SinkWorker &sink) {
+        return std::any_of(sinks_.begin(), sinks_.end(),
+                           [&](const auto &running) { return !kept(*running) && sameOutput(*running, sink); });
+    };
+    const bool newFormat = format != format_;
+    // Gives up: the new sinks close, and the running ones are open for the running format again (those closed, and
+    // the kept ones that a new format re-opened).
+    const auto refuse = [&](Status failed) {
+        for (auto &each : sinks)
+            (void)each->close();
+        for (auto &running : sinks_)
+            if (!running->isOpen() || (newFormat && kept(*running)))
+                if (auto opened = openFor(*running, format_); !opened)
+                    logger_.error(opened.error().message);
+        return failed;
+    };
+    if (newFormat)
+        for (auto &running : sinks_)
+            if (kept(*running))
+                if (auto opened = openFor(*running, format); !opened)
+                    return refuse(opened);
+    // First the sinks that write elsewhere, while the running ones still write; then, once those have written what
+    // they hold and closed, the ones that take over their files and devices.
+    for (const bool afterRunning : {false, true}) {
+        if (afterRunning)
+            for (auto &running : sinks_)
+                if (!kept(*running))
+                    if (auto closed = running->close(); !closed)
+                        logger_.error(cat(running->describe(), ": ", closed.error().message));
+        for (auto &sink : sinks) {
+            if (takesOver(*sink) != afterRunning)
+                continue;
+            if (auto opened = openFor(*sink, format); !opened)
+                return refuse(opened);
+        }
+    }
+    // The kept sinks move over with their counters' last reading, so that the stats line goes on from it.
+    std::vector<SinkCounters> lastCounters(sinks.size(), SinkCounters{});
+    for (size_t i = 0; i < sinks_.size(); ++i)
+        if (kept(*sinks_[i])) {
+            sinks.push_back(std::move(sinks_[i]));
+            lastCounters.push_back(lastCounters_[i]);
+        }
+    std::erase(sinks_, nullptr);
+    setSinks(std::move(sinks));
+    lastCounters_ = std::move(lastCounters);
+    format_ = format;
+    return Ok{};
+}
+
+Status Pipeline::reopenSinks(const StreamFormat &format)
+{
+    for (auto &sink : sinks_)
+        if (auto opened = openFor(*sink, format); !opened) {
+            restoreSinks();
+            return opened;
+        }
+    format_ = format;
+    return Ok{};
+}
+
+void Pipeline::restoreSinks()
+{
+    for (auto &sink : sinks_)
+        if (auto opened = openFor(*sink, format_); !opened)
+            logger_.error(opened.error().message);
 }
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pipeline: a source's frame is blended in place by the stream's overlay, then handed to every sink's worker.
 #pragma once
 
@@ -47,7 +48,8 @@ public:
     bool hasRenderer() const { return renderer_ != nullptr; }
     // The renderer frames are blended with, for SceneControl's changes (owned here).
     OverlayRenderer *renderer() { return renderer_.get(); }
-    // Called with every source frame before the overlay is blended into it (the HTTP server's raw snapshots).
+    // Called with every source frame after its privacy masks and before the overlay is blended into it (the HTTP
+    // server's raw snapshots).
     using FrameTap = std::function<void(const FrameView &, const FrameMetadata &)>;
     void setRawTap(FrameTap tap) { rawTap_ = std::move(tap); }
     // Replaces the sinks; the old ones are flushed and closed first.
@@ -56,8 +58,11 @@ public:
     Status openSinks(const StreamFormat &format);
     // A reload's sinks take over from the running ones, every one open for `format` (the new stream's or the running
     // one's), or none of them: on failure the running sinks run on as they were and the error names the sink
-    // (pipeline_reload.cpp says in which order they open).
-    Status replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format);
+    // (replaceSinks in pipeline.cpp says in which order they open). A running sink that `keep` picks is not
+    // replaced: it goes on open (re-opened only for a new format) and joins the new sinks, after them.
+    using KeepSink = std::function<bool(const SinkWorker &)>;
+    Status replaceSinks(std::vector<std::unique_ptr<SinkWorker>> sinks, const StreamFormat &format,
+                        const KeepSink &keep = {});
     // The running sinks for the stream format a reload's new source negotiated; when one cannot take it, every sink
     // is opened for the running format again and the error names the sink.
     Status reopenSinks(const StreamFormat &format);
@@ -80,7 +85,8 @@ public:
 private:
     // The running sinks open for the running format again, after a reload gave up (failures are logged).
     void restoreSinks();
-    void blend(const FrameView &frame, const FrameMetadata &metadata);
+    // Masks, raw tap, overlay; false when the frame could not be masked and must not go out.
+    bool blend(const FrameView &frame, const FrameMetadata &metadata);
     void countFrame(const FrameMetadata &metadata, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point blended);
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rollback: what a change made of several steps has done so far, undone in reverse order unless it is committed (a
 // reload's GPIO lines, file watches, HTTP server and staged source, when a later step refuses the reload).
 #pragma once

@@ -1,7 +1,10 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkWorker: the queue, the drop policy and the worker thread.
 #include "daemon/sink_worker.h"
 
 #include <algorithm>
+
+#include "control/status_report.h"
 
 namespace overlayd {
 
@@ -66,7 +69,7 @@ void SinkWorker::push(const FrameView &frame, const FrameMetadata &metadata)
     if (!isOpen())
         return;
     if (inline_) {
-        writeInline(frame, metadata);
+        writeInline([&] { return sink_->write(frame, metadata); }, false);
         return;
     }
     std::unique_lock lock(mutex_);
@@ -99,6 +102,10 @@ void SinkWorker::push(const std::shared_ptr<const FrameLease> &lease)
         return;
     if (!sink_->takesLease(lease->view())) {
         push(lease->view(), lease->metadata());
+        return;
+    }
+    if (inline_) { // the encoded stream: it hands the reference to the encoder at once, so no queue of ours
+        writeInline([&] { return sink_->writeLease(lease); }, true);
         return;
     }
     std::unique_lock lock(mutex_);
@@ -137,15 +144,16 @@ void SinkWorker::threadMain()
     }
 }
 
-void SinkWorker::writeInline(const FrameView &frame, const FrameMetadata &metadata)
+template<typename Write>
+void SinkWorker::writeInline(const Write &write, bool leased)
 {
     const auto start = std::chrono::steady_clock::now();
-    const Status written = sink_->write(frame, metadata);
+    const Status written = write();
     const auto elapsed = std::chrono::steady_clock::now() - start;
     if (!written)
         logger_.error(cat(describe(), ": ", written.error().message));
     std::lock_guard lock(mutex_);
-    count(written, elapsed, false);
+    count(written, elapsed, leased);
 }
 
 void SinkWorker::count(const Status &written, std::chrono::steady_clock::duration elapsed, bool leased)
@@ -186,6 +194,24 @@ size_t SinkWorker::allocatedFrames() const
     for (const Slot &slot : slots_)
         frames += slot.buffer.has_value();
     return frames;
+}
+
+void SinkWorker::report(StatusReport &report) const
+{
+    const SinkCounters counters = this->counters();
+    // The config's name (or sink[N]) is the sink's identity: describe() changes as it writes ("null (66 frames)").
+    const std::string &name = options().name;
+    report.add("sinks", {{"name", name},
+                         {"describe", describe()},
+                         {"written", counters.written},
+                         {"dropped", counters.dropped},
+                         {"failed", counters.failed}});
+    const std::string label = StatusReport::label("sink", name);
+    report.metric("overlayd_sink_frames_total", "counter", "Frames a sink wrote.", double(counters.written), label);
+    report.metric("overlayd_sink_dropped_total", "counter", "Frames a sink's queue dropped.", double(counters.dropped),
+                  label);
+    report.metric("overlayd_sink_failed_total", "counter", "Frames a sink failed to write.", double(counters.failed),
+                  label);
 }
 
 } // namespace overlayd

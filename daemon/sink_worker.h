@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkWorker: one sink on its own thread behind a bounded queue of pooled frame copies (or, for a zero-copy sink,
 // references to the source's buffers), so a slow sink never stalls the source; when the queue is full the sink's
 // drop policy applies and drops are counted. The pool's frames are allocated as the queue first needs them (a sink
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "base/logger.h"
+#include "control/status_reporter.h"
 #include "drivers/sink_options.h"
 #include "media/frame_buffer.h"
 
@@ -28,7 +31,7 @@ struct SinkCounters {
     uint64_t zeroCopy = 0;                 // of `written`: frames the sink took as leases (FrameSink::writeLease)
 };
 
-class SinkWorker
+class SinkWorker final : public StatusReporter
 {
 public:
     // lossless: push() waits for room instead of dropping (`overlayd render` must write every frame).
@@ -57,6 +60,8 @@ public:
     const SinkOptions &options() const { return options_; }
     std::string describe() const { return sink_->describe(); }
     SinkCounters counters() const;
+    // Its entry in /state's "sinks" and its samples in /metrics.
+    void report(StatusReport &report) const override;
 
 private:
     struct Slot {
@@ -66,7 +71,11 @@ private:
     };
 
     void threadMain();
-    void writeInline(const FrameView &frame, const FrameMetadata &metadata);
+    // The sink's write() or writeLease() on the caller's thread, timed and counted. A template rather than a
+    // std::function: the call's captures (three references) would not fit std::function's own storage, and the
+    // frame path allocates nothing in the steady state (tests/unit/daemon/steady_allocation_test.cpp).
+    template<typename Write>
+    void writeInline(const Write &write, bool leased);
     // Counts one write of the sink's (the lock held).
     void count(const Status &written, std::chrono::steady_clock::duration elapsed, bool leased);
     std::optional<size_t> takeFreeSlot(std::unique_lock<std::mutex> &lock);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SourceSupervisor: the source's life under `overlayd run`. It opens the stream (openStream), pulls frames while it
 // streams (paced by a timer, or woken by the device's fd), and while the source is down feeds the sinks NO SIGNAL
 // frames and retries with back-off. A camera that vanishes is waited for, never a reason to exit. A reload that
@@ -11,15 +12,16 @@
 #include <optional>
 #include <string>
 
+#include "base/backoff.h"
 #include "base/event_loop.h"
 #include "base/logger.h"
 #include "config/daemon_config.h"
-#include "daemon/backoff.h"
+#include "control/run_state.h"
+#include "control/scene_control.h"
 #include "daemon/health_reporter.h"
 #include "daemon/no_signal.h"
 #include "daemon/open_stream.h"
 #include "daemon/pipeline.h"
-#include "daemon/scene_control.h"
 #include "daemon/stages.h"
 #include "drivers/frame_source.h"
 
@@ -28,7 +30,7 @@ namespace overlayd {
 class SourceSupervisor
 {
 public:
-    enum class State { Idle, Streaming, Waiting, Finished };
+    using State = RunState;
     // The loop's timers the supervisor arms (owned by the daemon, created before any thread starts).
     struct Timers {
         Timer &pacing, &retry, &noSignal;

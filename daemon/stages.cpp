@@ -1,10 +1,14 @@
+// SPDX-License-Identifier: Apache-2.0
 // StageFactories: the production wiring, and what a reload must re-open.
 #include "daemon/stages.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "drivers/sink_options.h"
 #include "drivers/source_options.h"
+#include "overlay/scene_renderer.h"
+#include "stream/engine_loader.h"
 
 namespace overlayd {
 
@@ -15,7 +19,7 @@ Result<std::unique_ptr<OverlayRenderer>> buildRenderer(const OverlayScene &scene
 {
     if (scene.annotations.empty())
         return std::unique_ptr<OverlayRenderer>();
-    return OverlayRenderer::create(scene, camera, format);
+    return SceneRenderer::create(scene, camera, format);
 }
 
 } // namespace
@@ -30,7 +34,10 @@ bool wantsZeroCopy(const DaemonConfig &config)
     for (const SinkOptions &sink : config.sinks)
         if (sink.kind == SinkKind::V4l2Output && sink.zeroCopy != ZeroCopy::Off)
             return true;
-    return false;
+    // A V4L2 encoder may import them as well ([encoder] zero_copy); a software encoder only ever gets copies.
+    const EncoderOptions &encoder = config.stream.encoder;
+    return config.stream.enabled() && encoder.zeroCopy != EncoderZeroCopy::Off &&
+           (encoder.kind == EncoderKind::V4l2 || encoder.kind == EncoderKind::Auto);
 }
 
 Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &notices)
@@ -61,6 +68,23 @@ Status limitZeroCopy(std::vector<SinkOptions> &sinks, std::vector<std::string> &
     return Ok{};
 }
 
+Status limitEncoderZeroCopy(const std::vector<SinkOptions> &sinks, EncoderOptions &encoder,
+                            std::vector<std::string> &notices)
+{
+    const auto keeper = std::find_if(sinks.begin(), sinks.end(), [](const SinkOptions &s) {
+        return s.kind == SinkKind::V4l2Output && s.zeroCopy != ZeroCopy::Off;
+    });
+    if (keeper == sinks.end() || encoder.zeroCopy == EncoderZeroCopy::Off)
+        return Ok{};
+    if (encoder.zeroCopy == EncoderZeroCopy::On)
+        return makeError(ErrorCode::ConfigError,
+                         "[encoder] zero_copy = \"on\" and sink " + keeper->path +
+                             " (zero_copy not \"off\"): only one can hold the camera's buffers");
+    encoder.zeroCopy = EncoderZeroCopy::Off;
+    notices.push_back("encoder: copying (zero_copy \"auto\"): " + keeper->path + " already takes the camera's buffers");
+    return Ok{};
+}
+
 bool sceneCameraChanged(const DaemonConfig &a, const DaemonConfig &b)
 {
     return drawsThroughCamera(b.source) && a.camera != b.camera;
@@ -86,7 +110,8 @@ StageFactories defaultStageFactories()
 {
     return StageFactories{
         [](const SourceOptions &options, const Camera *sceneCamera) { return makeSource(options, sceneCamera); },
-        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, makeLineProvider};
+        [](const SinkOptions &options) { return makeSink(options); }, buildRenderer, makeLineProvider,
+        loadStreamEngine};
 }
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # daemon/systemd_notify.cmake: the SystemdNotifier library (overlayd::systemd_notify), with libsystemd or without.
 # include() it from daemon/CMakeLists.txt and link overlayd::systemd_notify; tests/systemd includes it too when the
 # daemon does not, so the guard keeps one definition.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SystemdNotifier's libsystemd implementation; the only file that knows whether libsystemd was compiled in.
 #include "daemon/systemd_notify.h"
 

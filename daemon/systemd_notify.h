@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SystemdNotifier: tells systemd the truth about the daemon's health (sd_notify readiness, status, watchdog).
 #pragma once
 

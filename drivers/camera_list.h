@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What `overlayd list-cameras` shows: every camera a source could open, with what each offers.
 #pragma once
 

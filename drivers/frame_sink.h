@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameSink: where overlaid frames go (Y4M, raw, image snapshots, null, V4L2 output).
 #pragma once
 
@@ -28,11 +29,11 @@ public:
     // write() on the pipeline's thread with the frame itself, so it holds no queue, no thread and no frame copies.
     virtual bool writesInline() const { return false; }
 
-    // Zero copy (opt-in; only the V4L2 output does it). takesLease() is asked on the pipeline's thread for every
-    // source frame, so it may only read what open() decided; true: the frame goes to writeLease() instead of being
-    // copied for write(). writeLease() gets a reference to the source's own buffer and drops it when the device is
-    // done with it (the last reference gives the buffer back to the source). It may use only the frame's dmabuf
-    // fds, never its mapped bytes: the source may unmap them at any time (stop()).
+    // Zero copy (opt-in: the V4L2 output, and the encoded stream for a V4L2 encoder). takesLease() is asked on the
+    // pipeline's thread for every source frame, so it may only read what open() decided; true: the frame goes to
+    // writeLease() instead of being copied for write(). writeLease() gets a reference to the source's own buffer and
+    // drops it when the device is done with it (the last reference gives the buffer back to the source). It may use
+    // only the frame's dmabuf fds, never its mapped bytes: the source may unmap them at any time (stop()).
     virtual bool takesLease(const FrameView &) const { return false; }
     virtual Status writeLease(std::shared_ptr<const FrameLease> lease)
     {

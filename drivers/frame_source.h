@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameSource: where frames come from (synthetic, replay, V4L2). The daemon's event loop drives it.
 #pragma once
 

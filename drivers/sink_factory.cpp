@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // makeSink: the one place that maps a configured sink kind to its implementation.
 #include "drivers/sink_options.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a user can configure about a frame sink, and the one factory that builds any of them.
 #pragma once
 
@@ -26,6 +27,8 @@ enum class DropPolicy { DropOldest, DropNewest };
 enum class ZeroCopy { Auto, On, Off };
 
 struct SinkOptions {
+    // A stable identity for /state and /metrics labels: the config's `name`, else "sink[N]" (its table's place).
+    std::string name;
     SinkKind kind = SinkKind::Null;
     std::string path;          // file, "-" for stdout, or device
     unsigned every = 1;        // Snapshot: one image per `every` frames

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // makeSource: the one place that maps a configured source kind to its implementation.
 #include "drivers/source_options.h"
 

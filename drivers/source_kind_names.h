@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The source kinds' names, written once: `[source] kind` reads them, /state and the logs report them.
 #pragma once
 

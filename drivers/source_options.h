@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a user can configure about a frame source, and the one factory that builds any of them.
 #pragma once
 

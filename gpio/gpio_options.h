@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What [[gpio.input]] and [[gpio.output]] ask for: lines by chip and name or offset, what an input switches and what
 // an output shows. Compared whole (defaulted ==), so that a reload re-requests exactly the lines that changed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // layerVisibility: the show/hide precedence of layer_rules.h.
 #include "gpio/layer_rules.h"
 
@@ -13,7 +14,8 @@ struct Votes {
 
 } // namespace
 
-std::map<std::string, bool> layerVisibility(const std::vector<GpioInputOptions> &inputs, const std::vector<bool> &active)
+std::map<std::string, bool> layerVisibility(const std::vector<GpioInputOptions> &inputs,
+                                            const std::vector<bool> &active)
 {
     std::map<std::string, Votes> votes;
     for (size_t i = 0; i < inputs.size(); ++i) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The LineProvider over libgpiod 1.6 (the v1 API Debian 12 ships): every libgpiod call overlayd makes is in this
 // file; a v2 backend (Debian 13) is one more file beside it.
 #include <gpiod.h>

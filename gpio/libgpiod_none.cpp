@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The LineProvider of an overlayd built without libgpiod: every request is refused, saying so.
 #include "gpio/line_provider.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LineAddress::describe, for every message that names a line, and sameLine, for a line claimed twice.
 #include "gpio/gpio_options.h"
 

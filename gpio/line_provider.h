@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LineProvider: the few GPIO calls overlayd makes (request an input with edge events, request an output, list the
 // chips), so that libgpiod's API (v1 in Debian 12, a different v2 in Debian 13) stays in one file behind it and the
 // daemon's rules are tested with a fake.

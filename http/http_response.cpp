@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The answers the daemon's API builds: JSON bodies and JSON errors. Apart from the server, so that a build without
 // libmicrohttpd (http_server_none.cpp) still has them.
 #include "http/http_server.h"

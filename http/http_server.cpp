@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The server's libmicrohttpd side: request bodies within their limit, the control check, snapshot waits and MJPEG
 // streams as suspended connections, and every answer with the headers a browser should see.
 #include "http/http_server.h"
@@ -10,11 +11,12 @@
 #include <microhttpd.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/random.h>
 #include <sys/socket.h>
 
 #include "http/page_files.h"
 #include "http/percent_decoding.h"
-#include "http/token_file.h"
+#include "http/tls_certificate.h"
 
 namespace overlayd {
 
@@ -55,22 +57,24 @@ MHD_Result collectQuery(void *out, MHD_ValueKind, const char *key, const char *v
     return MHD_YES;
 }
 
-// Equal strings in time that does not depend on where they differ.
-bool sameToken(const std::string &given, const std::string &expected)
-{
-    unsigned char difference = given.size() == expected.size() ? 0 : 1;
-    for (size_t i = 0; i < given.size(); ++i)
-        difference |= static_cast<unsigned char>(given[i] ^ expected[i % std::max<size_t>(expected.size(), 1)]);
-    return difference == 0 && !expected.empty();
-}
-
 } // namespace
 
 // One TCP connection, between libmicrohttpd's "started" and "closed" notices.
 struct HttpServer::Connection {
     int fd = -1;
     bool inRequest = false; // a request's headers are complete and it is not finished yet
+    RequestSlots::Id id() const { return RequestSlots::Id(reinterpret_cast<uintptr_t>(this)); }
 };
+
+namespace {
+
+HttpServer::Connection *openConnection(MHD_Connection *connection)
+{
+    const MHD_ConnectionInfo *info = MHD_get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+    return info ? static_cast<HttpServer::Connection *>(info->socket_context) : nullptr;
+}
+
+} // namespace
 
 struct HttpServer::Exchange {
     std::string body;
@@ -128,12 +132,13 @@ struct MhdCallbacks {
                                       const char *method, const char *, const char *uploadData, size_t *uploadSize,
                                       void **state)
     {
+        HttpServer::Connection *open = openConnection(connection);
         if (!*state) {
             *state = new HttpServer::Exchange;
-            if (const MHD_ConnectionInfo *info =
-                    MHD_get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT))
-                if (auto *open = static_cast<HttpServer::Connection *>(info->socket_context))
-                    open->inRequest = true;
+            if (open) {
+                open->inRequest = true;
+                server.slots_.phase(open->id(), RequestSlots::Phase::Body, RequestSlots::Clock::now());
+            }
             // A body announced over the limit is refused before any of it is read.
             const std::string length = header(connection, MHD_HTTP_HEADER_CONTENT_LENGTH);
             if (!length.empty() && std::strtoull(length.c_str(), nullptr, 10) > kMaxBodyBytes)
@@ -151,17 +156,21 @@ struct MhdCallbacks {
             *uploadSize = 0;
             return MHD_YES;
         }
+        if (open)
+            server.slots_.phase(open->id(), RequestSlots::Phase::Serving, RequestSlots::Clock::now());
         return MHD_Result(server.access(connection, url ? url : "", method ? method : "", exchange));
     }
 
     static void completed(void *self, MHD_Connection *connection, void **state, MHD_RequestTerminationCode)
     {
-        if (const MHD_ConnectionInfo *info = MHD_get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT))
-            if (auto *open = static_cast<HttpServer::Connection *>(info->socket_context))
-                open->inRequest = false; // a keep-alive connection waits for its next request
+        auto &server = *static_cast<HttpServer *>(self);
+        if (HttpServer::Connection *open = openConnection(connection)) {
+            open->inRequest = false; // a keep-alive connection waits for its next request, within the deadline
+            server.slots_.phase(open->id(), RequestSlots::Phase::Headers, RequestSlots::Clock::now());
+        }
         auto *exchange = static_cast<HttpServer::Exchange *>(*state);
         if (exchange && exchange->waiting)
-            static_cast<HttpServer *>(self)->feed_.addSnapshotWaiter(exchange->raw, -1);
+            server.feed_.addSnapshotWaiter(exchange->raw, -1);
         delete exchange;
         *state = nullptr;
     }
@@ -177,9 +186,11 @@ struct MhdCallbacks {
             *socketState = open;
             server.connections_.push_back(open);
             ++server.counters_.connections;
+            server.shed(server.slots_.opened(open->id(), peerOf(connection), RequestSlots::Clock::now()));
             return;
         }
         auto *open = static_cast<HttpServer::Connection *>(*socketState);
+        server.slots_.closed(open->id());
         std::erase(server.connections_, open);
         delete open;
         *socketState = nullptr;
@@ -230,29 +241,57 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &options
         return makeError(ErrorCode::InvalidArgument,
                          "http.control = \"open\" only on loopback or a unix socket, not " + address->describe());
     std::unique_ptr<HttpServer> server(new HttpServer(options, *address, feed, std::move(api), logger));
-    if (options.control == ControlMode::Token) {
-        auto token = readTokenFile(options.tokenFile);
-        if (!token)
-            return makeError(token.error().code, "http.token_file " + token.error().message);
-        server->token_ = *token;
-    }
+    auto credentials = Credentials::load(options);
+    if (!credentials)
+        return credentials.error();
+    server->credentials_ = std::move(*credentials);
+    if (options.viewerOpen && !address->isLocal())
+        logger.notice("http: anyone who can connect to " + address->describe() +
+                      " may watch (no viewer credential: set http.viewer_token_file or http.users_file)");
     if (server->options_.pageDirectory.empty())
         server->options_.pageDirectory = defaultPageDirectory();
-    auto socket = openListeningSocket(*address, int(options.maxClients));
+    unsigned flags = MHD_USE_EPOLL | MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG;
+    if (!options.tls.empty()) {
+        if (MHD_is_feature_supported(MHD_FEATURE_TLS) != MHD_YES)
+            return makeError(ErrorCode::Unsupported, "http.tls_cert: this libmicrohttpd was built without TLS");
+        if (Status served = server->replaceCertificate(options.tls); !served)
+            return served.error();
+        flags |= MHD_USE_TLS;
+    } else if (!address->isLocal()) {
+        logger.warning("http: listening on " + address->describe() +
+                       " without TLS: the control token, viewer credentials and the video cross the network in "
+                       "clear text, for anyone on the path to read and replay (set http.tls_cert and http.tls_key)");
+    }
+    if (getrandom(server->digestRandom_.data(), server->digestRandom_.size(), 0) !=
+        ssize_t(server->digestRandom_.size()))
+        return makeError(ErrorCode::Io, "http: no random bytes for the Digest nonces (getrandom)");
+    auto socket = openListeningSocket(*address, kListenBacklog);
     if (!socket)
         return socket.error();
+    // The certificate is asked for per handshake (TlsCertificate), so that a reload renews it in place; without TLS
+    // the callback is never called.
     server->daemon_ = MHD_start_daemon(
-        MHD_USE_EPOLL | MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG, 0, nullptr, nullptr, &MhdCallbacks::access,
-        server.get(), MHD_OPTION_LISTEN_SOCKET, socket->get(), MHD_OPTION_CONNECTION_LIMIT, options.maxClients,
-        MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutSec, MHD_OPTION_CONNECTION_MEMORY_LIMIT, kConnectionMemoryBytes,
-        MHD_OPTION_NOTIFY_COMPLETED, &MhdCallbacks::completed, server.get(), MHD_OPTION_NOTIFY_CONNECTION,
-        &MhdCallbacks::connection, server.get(), MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(),
-        MHD_OPTION_UNESCAPE_CALLBACK, &MhdCallbacks::keepEscaped, nullptr, MHD_OPTION_END);
+        flags, 0, nullptr, nullptr, &MhdCallbacks::access, server.get(), MHD_OPTION_LISTEN_SOCKET, socket->get(),
+        MHD_OPTION_CONNECTION_LIMIT, options.maxClients + kSpareConnections, MHD_OPTION_CONNECTION_TIMEOUT,
+        kIdleTimeoutSec, MHD_OPTION_CONNECTION_MEMORY_LIMIT, kConnectionMemoryBytes, MHD_OPTION_NOTIFY_COMPLETED,
+        &MhdCallbacks::completed, server.get(), MHD_OPTION_NOTIFY_CONNECTION, &MhdCallbacks::connection, server.get(),
+        MHD_OPTION_EXTERNAL_LOGGER, &MhdCallbacks::log, server.get(), MHD_OPTION_DIGEST_AUTH_RANDOM,
+        server->digestRandom_.size(), server->digestRandom_.data(), MHD_OPTION_NONCE_NC_SIZE, kDigestNonces,
+        MHD_OPTION_UNESCAPE_CALLBACK, &MhdCallbacks::keepEscaped, nullptr,
+        options.tls.empty() ? MHD_OPTION_END : MHD_OPTION_HTTPS_CERT_CALLBACK, TlsCertificate::callback(),
+        MHD_OPTION_END);
     if (!server->daemon_)
         return makeError(ErrorCode::Io, "http: libmicrohttpd could not start on " + address->describe());
     [[maybe_unused]] const int owned = socket->release(); // libmicrohttpd closes it when it stops
     return server;
 }
+
+HttpServer::HttpServer(const HttpOptions &options, ListenAddress address, JpegFeed &feed, ApiHandler api,
+                       Logger &logger)
+    : options_(options), address_(std::move(address)), feed_(feed), api_(std::move(api)), logger_(logger),
+      slots_(SlotLimits{options.maxPendingPerAddress, options.maxClients, std::chrono::seconds(kHeaderDeadlineSec),
+                        std::chrono::seconds(kBodyDeadlineSec)})
+{}
 
 bool httpBuiltIn()
 {
@@ -284,7 +323,9 @@ void HttpServer::run()
     for (int pass = 0; pass < kMaxPasses; ++pass) {
         MHD_run(daemon_);
         MHD_UNSIGNED_LONG_LONG ms = 1;
-        const bool again = closeHungUp() || (MHD_get_timeout(daemon_, &ms) == MHD_YES && ms == 0);
+        // A connection shut down by shed() ends on the next pass, which frees its slot for the next accept.
+        const bool shedSome = std::exchange(shed_, false);
+        const bool again = closeHungUp() || shedSome || (MHD_get_timeout(daemon_, &ms) == MHD_YES && ms == 0);
         if (!again)
             break;
     }
@@ -309,6 +350,34 @@ bool HttpServer::closeHungUp()
             closed = true;
         }
     return closed;
+}
+
+Status HttpServer::replaceCertificate(const TlsFiles &files)
+{
+    auto certificate = TlsCertificate::create(files);
+    if (!certificate)
+        return certificate.error();
+    TlsCertificate::serve(std::move(*certificate));
+    options_.tls = files;
+    return Ok{};
+}
+
+void HttpServer::shed(const std::vector<std::pair<RequestSlots::Id, ShedReason>> &victims)
+{
+    // Shut down, not closed: the fd stays libmicrohttpd's, which sees the end and closes the connection itself.
+    for (const auto &[id, reason] : victims)
+        for (const Connection *open : connections_)
+            if (open->id() == id && open->fd >= 0) {
+                ::shutdown(open->fd, SHUT_RDWR);
+                shed_ = true;
+            }
+}
+
+unsigned HttpServer::maxStreams() const
+{
+    if (options_.maxStreams)
+        return options_.maxStreams;
+    return options_.maxClients > kKeptForRequests ? options_.maxClients - kKeptForRequests : 1;
 }
 
 std::optional<std::chrono::milliseconds> HttpServer::timeout() const
@@ -345,6 +414,7 @@ void HttpServer::onTick()
             stream->windowStart = now;
         }
     }
+    shed(slots_.late(now));
     resumeAll(); // idle streams resend, and snapshot waits past their deadline answer
     MHD_run(daemon_);
 }
@@ -355,10 +425,17 @@ HttpCounters HttpServer::counters() const
     out.streamClients = unsigned(streams_.size());
     for (const StreamClient *stream : streams_)
         out.streamFps.push_back(stream->fps);
+    out.limits = {{"header_deadline", slots_.shedCount(ShedReason::HeaderDeadline)},
+                  {"body_deadline", slots_.shedCount(ShedReason::BodyDeadline)},
+                  {"max_pending_per_address", slots_.shedCount(ShedReason::PerAddress)},
+                  {"max_clients", slots_.shedCount(ShedReason::Total)},
+                  {"max_streams", streamsRefused_},
+                  {"auth_refused", authFailures_.refused()},
+                  {"auth_rate_limited", authFailures_.blockedCount()}};
     return out;
 }
 
-int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
+int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response, DigestChallenge challenge)
 {
     MHD_Response *r = MHD_create_response_from_buffer(response.body.size(), const_cast<char *>(response.body.data()),
                                                       MHD_RESPMEM_MUST_COPY);
@@ -373,7 +450,12 @@ int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
     }
     if (!cacheSet)
         MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
-    const MHD_Result queued = MHD_queue_response(connection, response.status, r);
+    const MHD_Result queued =
+        challenge == DigestChallenge::None
+            ? MHD_queue_response(connection, response.status, r)
+            : MHD_queue_auth_fail_response2(connection, kAuthRealm, kAuthRealm, r,
+                                            challenge == DigestChallenge::Stale ? MHD_YES : MHD_NO,
+                                            MHD_DIGEST_ALG_MD5); // what browsers and curl answer
     MHD_destroy_response(r);
     ++counters_.requests;
     if (response.status >= 400)
@@ -381,23 +463,64 @@ int HttpServer::answer(MHD_Connection *connection, const HttpResponse &response)
     return queued;
 }
 
-std::optional<HttpResponse> HttpServer::refuseControl(MHD_Connection *connection) const
+Role HttpServer::digest(MHD_Connection *connection, bool &stale) const
 {
-    switch (options_.control) {
-    case ControlMode::Open:
+    char *name = MHD_digest_auth_get_username(connection);
+    if (name == nullptr)
+        return Role::None;
+    const BasicUser *user = credentials_.user(name);
+    MHD_free(name);
+    if (user == nullptr)
+        return Role::None;
+    const int checked = MHD_digest_auth_check2(connection, kAuthRealm, user->name.c_str(), user->password.c_str(),
+                                               kDigestNonceSec, MHD_DIGEST_ALG_MD5);
+    stale = checked == MHD_INVALID_NONCE;
+    return checked == MHD_YES ? user->role : Role::None;
+}
+
+std::optional<HttpResponse> HttpServer::refuse(MHD_Connection *connection, const HttpRequest &request,
+                                               DigestChallenge &challenge)
+{
+    const Role need = requiredRole(request.method, request.path);
+    if (need == Role::Viewer && options_.viewerOpen)
         return std::nullopt;
-    case ControlMode::Off:
+    if (need == Role::Control && options_.control == ControlMode::Off)
         return HttpResponse::error(403, "control is off (http.control = \"off\")");
-    case ControlMode::Token:
-        break;
-    }
-    const std::string authorization = header(connection, MHD_HTTP_HEADER_AUTHORIZATION);
-    constexpr std::string_view kBearer = "Bearer ";
-    if (authorization.rfind(kBearer, 0) == 0 && sameToken(authorization.substr(kBearer.size()), token_))
+    if (need == Role::Control && options_.control == ControlMode::Open)
         return std::nullopt;
-    HttpResponse refused = HttpResponse::error(401, "control needs the token: Authorization: Bearer TOKEN");
-    refused.headers.emplace_back(MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer");
-    return refused;
+    const std::string authorization = header(connection, MHD_HTTP_HEADER_AUTHORIZATION);
+    const auto now = AuthFailures::Clock::now();
+    Role role = Role::None;
+    if (!authorization.empty()) {
+        if (authFailures_.blocked(request.peer, now))
+            return HttpResponse::error(429, "too many refused credentials from this address: try again later");
+        bool stale = false;
+        role = authorization.starts_with("Digest ") && credentials_.hasUsers() ? digest(connection, stale)
+                                                                               : credentials_.fromHeader(authorization);
+        if (stale) // not a wrong credential: the client answers a fresh nonce without asking its user
+            challenge = DigestChallenge::Stale;
+        else if (role == Role::None)
+            if (const std::string line = authFailures_.failed(
+                    request.peer, request.method + (need == Role::Control ? ", a change" : ", watching"), now);
+                !line.empty())
+                logger_.warning(line); // the address and the request, never what was sent
+    }
+    if (role == Role::None) {
+        HttpResponse refused = HttpResponse::error(
+            401, need == Role::Control ? "control needs the token: Authorization: Bearer TOKEN (or a control user)"
+                                       : "watching needs a credential: a viewer or control token or user");
+        refused.headers.emplace_back(MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer");
+        if (credentials_.hasUsers()) {
+            refused.headers.emplace_back(MHD_HTTP_HEADER_WWW_AUTHENTICATE,
+                                         std::string("Basic realm=\"") + kAuthRealm + "\", charset=\"UTF-8\"");
+            if (challenge == DigestChallenge::None)
+                challenge = DigestChallenge::Fresh;
+        }
+        return refused;
+    }
+    if (int(role) < int(need))
+        return HttpResponse::error(403, "a viewer credential may watch, not change: this needs the control credential");
+    return std::nullopt;
 }
 
 int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, const std::string &method,
@@ -430,8 +553,15 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
     }
     const std::string &url = request.path;
     const bool reading = method == "GET" || method == "HEAD";
-    if (!reading && method != "PUT" && method != "POST")
+    const bool hangUp = method == "DELETE" && url.starts_with("/whep/"); // WHEP's one DELETE
+    if (!reading && method != "PUT" && method != "POST" && !hangUp)
         return answer(connection, HttpResponse::error(405, "method " + method + " is not served"));
+    if (!reading && (url == "/stream" || url == "/snapshot")) // before the credential check: none makes it right
+        return answer(connection, HttpResponse::error(405, "GET " + url));
+    request.peer = peerOf(connection);
+    DigestChallenge challenge = DigestChallenge::None;
+    if (auto refused = refuse(connection, request, challenge))
+        return answer(connection, *refused, challenge);
     if (reading && url == "/stream")
         return startStream(connection);
     if (reading && url == "/snapshot") {
@@ -447,11 +577,10 @@ int HttpServer::access(MHD_Connection *connection, const std::string &rawUrl, co
             response.headers.emplace_back("Content-Security-Policy", "default-src 'self'; img-src 'self' blob:");
             return answer(connection, response);
         }
-    } else if (auto refused = refuseControl(connection)) {
-        return answer(connection, *refused);
     }
     request.body = std::move(exchange.body);
-    request.peer = peerOf(connection);
+    if (const char *type = MHD_lookup_connection_value(connection, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE))
+        request.contentType = type;
     return answer(connection, api_(request));
 }
 
@@ -491,10 +620,20 @@ int HttpServer::answerSnapshot(MHD_Connection *connection, Exchange &exchange)
 
 int HttpServer::startStream(MHD_Connection *connection)
 {
+    if (streams_.size() >= maxStreams()) {
+        ++streamsRefused_;
+        return answer(connection, HttpResponse::error(503, "too many /stream viewers (http.max_streams = " +
+                                                               std::to_string(maxStreams()) + ")"));
+    }
     auto *client = new StreamClient;
     client->server = this;
     client->connection = connection;
     client->nextDue = Clock::now();
+    // The first part is a frame encoded after the client came: the feed may hold one from long ago (nobody watched,
+    // so nothing was encoded since). Only a source that sends nothing for kIdleResend gets the old one.
+    const auto latest = feed_.latest();
+    client->lastGeneration = latest ? latest->generation : 0;
+    client->lastSent = client->nextDue;
     MHD_Response *r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, kStreamBlockBytes, &MhdCallbacks::readStream,
                                                         client, &MhdCallbacks::freeStream);
     if (!r) {

@@ -1,8 +1,10 @@
+// SPDX-License-Identifier: Apache-2.0
 // HttpServer: libmicrohttpd in its epoll mode, driven by the daemon's event loop (no thread per client; streams
 // and snapshot waits are suspended connections resumed when a JPEG is published). It serves the stream, snapshots
 // and the page itself and hands every other request to the daemon's API handler, after the control check.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -12,11 +14,14 @@
 #include <utility>
 #include <vector>
 
+#include "base/auth_failures.h"
 #include "base/logger.h"
 #include "base/result.h"
+#include "http/credentials.h"
 #include "http/http_options.h"
 #include "http/jpeg_feed.h"
 #include "http/listen_address.h"
+#include "http/request_slots.h"
 
 struct MHD_Daemon;
 struct MHD_Connection;
@@ -29,6 +34,7 @@ struct HttpRequest {
     std::map<std::string, std::string> query;
     std::string body;
     std::string peer;
+    std::string contentType; // of the body, as sent
 };
 
 struct HttpResponse {
@@ -46,6 +52,10 @@ struct HttpResponse {
     static HttpResponse error(unsigned status, const std::string &message);
 };
 
+// A Digest challenge libmicrohttpd adds to a 401 (with a nonce of its own making): none, a fresh one, or one that
+// says the client's nonce was only too old (stale).
+enum class DigestChallenge { None, Fresh, Stale };
+
 // The daemon's endpoints (/state, /metrics, /api/...), called on the loop thread.
 using ApiHandler = std::function<HttpResponse(const HttpRequest &)>;
 
@@ -56,6 +66,8 @@ struct HttpCounters {
     uint64_t partsSent = 0;        // JPEG parts written to /stream clients
     uint64_t refused = 0;          // 4xx/5xx answers
     std::vector<double> streamFps; // each /stream client's recent parts per second
+    // How often each limit was hit: {name in /metrics, count} (docs/config.md "Limits" names them).
+    std::vector<std::pair<std::string, uint64_t>> limits;
 };
 
 class HttpServer
@@ -78,6 +90,10 @@ public:
     // Once a second: idle streams resend their last frame, overdue snapshot waits answer 503.
     void onTick();
 
+    // A renewed certificate (options().tls changed, nothing else): the next handshakes get it, open connections
+    // go on.
+    Status replaceCertificate(const TlsFiles &files);
+
     const ListenAddress &address() const { return address_; }
     const HttpOptions &options() const { return options_; }
     HttpCounters counters() const;
@@ -87,28 +103,34 @@ public:
     struct Connection;
 
 private:
-    HttpServer(const HttpOptions &options, ListenAddress address, JpegFeed &feed, ApiHandler api, Logger &logger)
-        : options_(options), address_(std::move(address)), feed_(feed), api_(std::move(api)), logger_(logger)
-    {}
+    HttpServer(const HttpOptions &options, ListenAddress address, JpegFeed &feed, ApiHandler api, Logger &logger);
 
     friend struct MhdCallbacks; // libmicrohttpd's C callbacks, in http_server.cpp
 
     int access(MHD_Connection *connection, const std::string &url, const std::string &method, Exchange &exchange);
-    int answer(MHD_Connection *connection, const HttpResponse &response);
+    int answer(MHD_Connection *connection, const HttpResponse &response,
+               DigestChallenge challenge = DigestChallenge::None);
     int answerSnapshot(MHD_Connection *connection, Exchange &exchange);
     int startStream(MHD_Connection *connection);
     int serveFile(MHD_Connection *connection, const std::string &path);
-    std::optional<HttpResponse> refuseControl(MHD_Connection *connection) const;
+    std::optional<HttpResponse> refuse(MHD_Connection *connection, const HttpRequest &request,
+                                       DigestChallenge &challenge);
+    // The role a Digest answer proves (None when it proves none; `stale` when only its nonce was too old).
+    Role digest(MHD_Connection *connection, bool &stale) const;
     ssize_t fillStream(StreamClient &client, char *buffer, size_t max);
     void resumeAll();
     bool closeHungUp();
+    void shed(const std::vector<std::pair<RequestSlots::Id, ShedReason>> &victims);
+    unsigned maxStreams() const;
 
     HttpOptions options_;
     ListenAddress address_;
     JpegFeed &feed_;
     ApiHandler api_;
     Logger &logger_;
-    std::string token_;
+    Credentials credentials_;
+    AuthFailures authFailures_{"http"};
+    std::array<unsigned char, 32> digestRandom_{}; // libmicrohttpd's key for the Digest nonces it makes
     MHD_Daemon *daemon_ = nullptr;
     bool stopping_ = false;
 
@@ -116,6 +138,9 @@ private:
     std::vector<StreamClient *> streams_;
     std::vector<Connection *> connections_; // every open connection
     HttpCounters counters_;
+    RequestSlots slots_;
+    uint64_t streamsRefused_ = 0; // /stream over max_streams
+    bool shed_ = false;           // shed() shut a connection down since the last pass of run()
 };
 
 } // namespace overlayd

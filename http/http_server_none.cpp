@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HttpServer of an overlayd built without libmicrohttpd (OVERLAYD_HTTP=OFF): it never starts, saying why. The
 // config refuses [http] first (httpBuiltIn), so only a caller that skipped the config meets this refusal.
 #include "http/http_server.h"
@@ -16,6 +17,16 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const HttpOptions &, JpegF
 }
 
 HttpServer::~HttpServer() = default;
+
+Result<TlsFiles> readTlsFiles(const std::string &, const std::string &)
+{
+    return makeError(ErrorCode::Unsupported, "this overlayd was built without the HTTP server");
+}
+
+Status HttpServer::replaceCertificate(const TlsFiles &)
+{
+    return makeError(ErrorCode::Unsupported, "this overlayd was built without the HTTP server");
+}
 
 int HttpServer::fd() const
 {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JpegFeed: the newest JPEG of the stream, handed from the encoding thread to the server on the loop thread. The
 // encoder works only while the feed is wanted (a /stream client watches, or a /snapshot waits), once per frame for
 // every client; an eventfd wakes the loop when a new JPEG is published.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Listen addresses: parsed strictly (numeric hosts only, so that nothing waits on a resolver at start-up) and
 // opened as sockets the daemon owns and hands to libmicrohttpd.
 #include "http/listen_address.h"

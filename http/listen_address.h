@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where the server listens: "HOST:PORT" (IPv4 dotted quad, "[IPv6]", or "localhost") or "unix:/path".
 #pragma once
 

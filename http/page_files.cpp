@@ -1,5 +1,7 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "http/page_files.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -59,6 +61,15 @@ std::optional<PageFile> readPageFile(const std::string &directory, const std::st
 
 std::string defaultPageDirectory()
 {
+    // An installed binary (a package's /usr/bin/overlayd, built in a tree elsewhere) finds the page in its prefix's
+    // share/overlayd/www; a binary in the build tree has none there and takes the folder it was built with.
+    std::error_code error;
+    const std::filesystem::path binary = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) {
+        const std::filesystem::path installed = binary.parent_path().parent_path() / "share/overlayd/www";
+        if (std::filesystem::is_directory(installed, error))
+            return installed.string();
+    }
     return OVERLAYD_PAGE_DIRECTORY;
 }
 

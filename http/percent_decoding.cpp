@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // percentDecoded: RFC 3986 section 2.1, with the control characters refused rather than passed on.
 #include "http/percent_decoding.h"
 

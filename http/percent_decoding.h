@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A request's path and query, %-decoded by us and not by libmicrohttpd: its decoder writes a decoded NUL into a C
 // string, so "/api/layers/a%00b" reached the API as "/api/layers/a" and changed another layer.
 #pragma once

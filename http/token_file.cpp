@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // readTokenFile: the one reader of http.token_file, for the config loader and the server alike.
 #include "http/token_file.h"
 

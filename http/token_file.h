@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The control token's file, read by the server when it starts and by the config loader when it checks [http], so
 // that check-config refuses every token file the server would.
 #pragma once

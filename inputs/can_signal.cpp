@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Decoding works on the 8 data bytes as one 64-bit word: read little-endian for Intel signals (a DBC bit number is
 // then the word's bit number), big-endian for Motorola ones (where DBC's sawtooth becomes one contiguous run of
 // bits, from the start bit's position in that word downwards).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A signal inside a classic CAN frame's 8 data bytes, laid out as a DBC file describes it (SG_ lines), and its
 // decoding into a physical value: physical = raw * scale + offset.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The kernel's CAN_RAW API (Documentation/networking/can.rst): socket(PF_CAN, SOCK_RAW, CAN_RAW), a CAN_RAW_FILTER
 // of one id (with CAN_EFF_FLAG and CAN_RTR_FLAG in the mask, so that the id's width must match and remote frames
 // are dropped), bound to the interface's index.

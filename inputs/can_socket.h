@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CanSocket: one signal's frames from a SocketCAN interface (can0, vcan0, ...), through the kernel's own raw CAN
 // socket API: a filter in the kernel lets only the signal's id through, so a busy bus wakes the daemon only for
 // the frames it wants.

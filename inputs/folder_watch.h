@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FolderWatch: a folder watched with inotify by its path, not by its inode. A folder that is removed, moved away or
 // made again (systemd removes and re-creates a service's RuntimeDirectory= on every restart) is waited for on its
 // nearest existing ancestor and watched again as soon as it is back.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // InputHealth: how one live input is doing, told the same way for every kind of input (a watched file, a CAN
 // interface), so that what reports it (/state, /metrics, the log) needs no change when a kind is added. Each input
 // collection keeps one per input and hands them out as a list.

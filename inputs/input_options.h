@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What [[input.text]], [[input.path]] and [[input.can]] ask for: live data from outside the config file, into the
 // running scene (text slots, world points, and the guide lines' steering angle).
 // Compared whole (defaulted ==), so that a reload re-opens exactly the inputs that changed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // std::from_chars reads each number (no locale, no allocation, the whole token must be a number; decimal or
 // scientific notation, an optional sign).
 #include "inputs/point_list.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A path file: world points another program writes (a planned route, a trajectory), one "x y z" per line in
 // metres, separated by spaces and/or commas; '#' starts a comment, blank lines are skipped.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "inputs/text_file_watch.h"
 
 #include <fcntl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TextFileWatch: a text file other programs write, watched with inotify. The folder is watched, not the file, so
 // that a file replaced by rename (the safe way to write it), created late or deleted is followed too; and the folder
 // is followed by its path (FolderWatch), so that a folder removed and made again is followed too.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colorimetry from the V4L2 format fields.
 #include "media/colorimetry.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colorimetry of a YCbCr frame: the colour matrix and the quantization range, always named, never guessed.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frame layouts and the checks that keep a blend inside the buffer.
 #include "media/frame.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frame views: a non-owning description of one frame's planes, and the layout of planes in one buffer.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameBuffer: allocation after validation, and a stride-aware copy.
 #include "media/frame_buffer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameBuffer: an owned frame in one allocation, laid out by FrameLayout (synthetic and replay sources, sink
 // queues, NO SIGNAL frames).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FramePool: frames allocated on demand up to the capacity, and lease bookkeeping.
 #include "media/frame_pool.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FramePool: the owned frames that a synthetic or replay source fills and lends out as FrameLeases, allocated as the
 // pipeline first needs them.
 #pragma once

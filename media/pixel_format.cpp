@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pixel-format table. Byte orders follow the V4L2 UAPI (the comments in linux/videodev2.h give memory order).
 #include "media/pixel_format.h"
 

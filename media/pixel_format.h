@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pixel-format table: one entry per supported V4L2 format drives strides, plane sizes and subsampling.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rgba: a straight (not premultiplied) sRGB colour with alpha, as a user writes it in the config.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SequenceCounter: a driver's 32-bit frame sequence numbers as the stream's own count from 0, and the frames lost in
 // the gaps between them (V4L2 buffers and libcamera requests number frames the same way).
 #pragma once

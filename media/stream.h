@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What flows between a source, the blender and the sinks: the stream's format, each frame's metadata, and the
 // lease through which a source lends a frame's memory to the pipeline.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GlyphStamps: a stamp is the glyph's coverage composited in the item's colour on a layer of its macropixel-aligned
 // box, converted once to the frame's format.
 #include "overlay/glyph_stamps.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GlyphStamps: the glyphs of a text that changes every frame (a frame counter), each kept as a small native layer
 // at the place it was drawn. The digits of a counter land on a few places only, so after the first frames every
 // glyph is a cached blend: only the glyphs whose stamp is new are rasterized and converted.

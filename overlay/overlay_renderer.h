@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
 // OverlayRenderer: one stream's overlay. World annotations are projected and rasterized once per change of scene,
 // camera or format; screen text whose tokens change (timestamp, frame number) lives on small layers of its own that
-// are re-rendered only when their text changes; the per-frame work is the native-format blend.
+// are re-rendered only when their text changes; the per-frame work is the native-format blend. The interface the
+// daemon holds; SceneRenderer::create (overlay/scene_renderer.h) makes the one implementation.
 #pragma once
 
 #include <memory>
@@ -23,11 +25,6 @@ class OverlayRenderer
 public:
     virtual ~OverlayRenderer() = default;
 
-    // Configure time: validates the scene (unknown frames, non-finite values, widths, sizes) and renders it for a
-    // stream. The camera's viewport must have the stream's frame size.
-    static Result<std::unique_ptr<OverlayRenderer>> create(const OverlayScene &scene, const Camera &camera,
-                                                           const StreamFormat &format);
-
     // The camera moved or changed (dynamic overlays): the next blend re-projects. A camera that changes before every
     // frame is drawn straight into each frame; one that then holds still is rendered into the cached layers again.
     virtual Status setCamera(const Camera &camera) = 0;
@@ -45,6 +42,14 @@ public:
     // a camera change. An unknown annotation or a bad point is an InvalidArgument error, and nothing changes.
     virtual Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) = 0;
 
+    // Frame path, before anything else reads the frame (the raw snapshot tap, the blend, every sink): burns the
+    // scene's privacy masks into it. An error means the frame could not be masked and must not go out. A renderer
+    // without masks has nothing to do.
+    virtual Status applyMasks(const FrameView &frame)
+    {
+        (void)frame;
+        return Ok{};
+    }
     // Frame path (no exceptions; no allocation once the text layers have warmed up and while the camera holds
     // still): refreshes token text if it changed and blends every enabled layer into the frame in place. fps feeds
     // the {fps} token.

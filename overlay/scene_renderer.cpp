@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneRenderer: renders world layers on scene/camera/format changes and token text on text changes; the frame
 // path is the blend of what is cached.
 #include "overlay/scene_renderer.h"
@@ -15,14 +16,40 @@
 
 namespace overlayd {
 
+Result<std::unique_ptr<OverlayRenderer>> SceneRenderer::create(const OverlayScene &scene, const Camera &camera,
+                                                               const StreamFormat &format)
+{
+    if (!format.format || format.width == 0 || format.height == 0 || format.width > kMaxFrameDimension ||
+        format.height > kMaxFrameDimension)
+        return makeError(ErrorCode::InvalidArgument, "overlay needs a stream format with a pixel format and a size");
+    if (camera.viewport().frameWidth() != int(format.width) || camera.viewport().frameHeight() != int(format.height))
+        return makeError(ErrorCode::InvalidArgument,
+                         "the camera's viewport is " + std::to_string(camera.viewport().frameWidth()) + "x" +
+                             std::to_string(camera.viewport().frameHeight()) + ", the stream " +
+                             std::to_string(format.width) + "x" + std::to_string(format.height));
+    Result<SceneGraph> graph = scene.graph ? Result<SceneGraph>(*scene.graph) : SceneGraph::create(scene.frames);
+    if (!graph)
+        return graph.error();
+    if (Status status = checkScene(scene, *graph); !status)
+        return status.error();
+    auto renderer = std::make_unique<SceneRenderer>(scene, std::move(*graph), camera, format);
+    if (Status status = renderer->renderMasks(); !status)
+        return status.error();
+    if (Status status = renderer->renderWorld(); !status)
+        return status.error();
+    return std::unique_ptr<OverlayRenderer>(std::move(renderer));
+}
+
 SceneRenderer::SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera,
                              const StreamFormat &format)
     : scene_(scene), graph_(std::move(graph)), camera_(camera), format_(format), colorimetry_(format.colorimetry),
-      rasterizer_(text_), frameSink_(*format.format, format.colorimetry)
+      rasterizer_(text_), masks_(scene, format), frameSink_(*format.format, format.colorimetry)
 {
     for (size_t i = 0; i < scene_.annotations.size(); ++i) {
         const Annotation &annotation = scene_.annotations[i];
-        const size_t layer = layerIndex(annotation.style.layer);
+        const size_t layer = layerIndex(annotation.style.layer); // a mask's too: showing it is no error
+        if (isMask(annotation))
+            continue;
         const auto *text = std::get_if<ScreenTextShape>(&annotation.shape);
         if (text && hasTokens(text->text)) {
             TextSlot &slot = texts_.emplace_back();
@@ -112,7 +139,9 @@ Status SceneRenderer::buildText(TextSlot &slot)
         slot.origins[i] = {box.x0, box.y0};
         if (!item.background)
             continue;
-        if (Status status = renderTextBox(slot, FillItem{*item.background, box.x0, box.y0, box.x1, box.y1}); !status)
+        const LayerRect plate = rasterizer_.plateBox(item);
+        if (Status status = renderTextBox(slot, FillItem{*item.background, plate.x0, plate.y0, plate.x1, plate.y1});
+            !status)
             return status;
         item.background.reset();
     }
@@ -245,6 +274,8 @@ Status SceneRenderer::setCamera(const Camera &camera)
         return makeError(ErrorCode::InvalidArgument, "the camera's viewport is not the stream's " +
                                                          std::to_string(format_.width) + "x" +
                                                          std::to_string(format_.height));
+    if (Status masked = masks_.setCamera(camera, graph_); !masked)
+        return masked;
     camera_ = camera;
     worldStale_ = true;
     cameraChangedSinceBlend_ = true;
@@ -298,6 +329,11 @@ Status SceneRenderer::setWorldPoints(std::string_view annotation, std::span<cons
 
 Status SceneRenderer::setLayerEnabled(std::string_view name, bool enabled)
 {
+    for (const Annotation &annotation : scene_.annotations)
+        if (!enabled && isMask(annotation) && annotation.style.layer == name)
+            return makeError(ErrorCode::InvalidArgument, "layer \"" + std::string(name) +
+                                                             "\" holds the privacy mask \"" + annotation.name +
+                                                             "\", which cannot be hidden");
     for (Layer &layer : layers_) {
         if (layer.name == name) {
             layer.enabled = enabled;
@@ -356,13 +392,28 @@ void SceneRenderer::drawWorldInto(const FrameView &frame)
     }
 }
 
-Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
+Status SceneRenderer::checkStreamFrame(const FrameView &frame) const
 {
-    // Checked once here; every layer below blends without checking again.
     if (!frame.format || frame.format->fourcc != format_.format->fourcc || frame.width != format_.width ||
         frame.height != format_.height)
         return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " + format_.describe());
-    if (Status status = checkFrame(frame); !status)
+    return checkFrame(frame);
+}
+
+Status SceneRenderer::applyMasks(const FrameView &frame)
+{
+    if (masks_.empty())
+        return Ok{};
+    if (Status status = checkStreamFrame(frame); !status)
+        return status;
+    masks_.apply(frame);
+    return Ok{};
+}
+
+Status SceneRenderer::blend(const FrameView &frame, const FrameMetadata &metadata, double fps)
+{
+    // Checked once here; every layer below blends without checking again.
+    if (Status status = checkStreamFrame(frame); !status)
         return status;
     movingFrames_ = cameraChangedSinceBlend_ ? movingFrames_ + 1 : 0;
     cameraChangedSinceBlend_ = false;

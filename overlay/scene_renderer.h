@@ -1,4 +1,5 @@
-// SceneRenderer: the OverlayRenderer behind OverlayRenderer::create. One NativeLayer per named layer (so switching a
+// SPDX-License-Identifier: Apache-2.0
+// SceneRenderer: the OverlayRenderer, made by SceneRenderer::create. One NativeLayer per named layer (so switching a
 // layer off costs nothing and re-projects nothing): the layer is drawn on a full-frame RGBA canvas that all layers
 // share and that lives only while they are rendered, and what it keeps are the runs of the pixels it covers, so its
 // memory is proportional to what it draws. A screen text with tokens (a frame counter, a clock, a slot) keeps its
@@ -20,6 +21,7 @@
 #include "overlay/blend/native_layer.h"
 #include "overlay/glyph_stamps.h"
 #include "overlay/overlay_renderer.h"
+#include "overlay/privacy_masks.h"
 #include "overlay/raster/rasterizer.h"
 #include "overlay/raster/text_renderer.h"
 #include "overlay/shapes/text_tokens.h"
@@ -29,6 +31,11 @@ namespace overlayd {
 class SceneRenderer final : public OverlayRenderer
 {
 public:
+    // Configure time: validates the scene (unknown frames, non-finite values, widths, sizes) and renders it for a
+    // stream. The camera's viewport must have the stream's frame size.
+    static Result<std::unique_ptr<OverlayRenderer>> create(const OverlayScene &scene, const Camera &camera,
+                                                           const StreamFormat &format);
+
     SceneRenderer(const OverlayScene &scene, SceneGraph graph, const Camera &camera, const StreamFormat &format);
 
     Status setCamera(const Camera &camera) override;
@@ -37,8 +44,11 @@ public:
     Status setSlotText(std::string_view slot, std::string_view text) override;
     Status setGuideSteering(std::string_view annotation, std::optional<double> steeringDeg) override;
     Status setWorldPoints(std::string_view annotation, std::span<const glm::dvec3> points) override;
+    Status applyMasks(const FrameView &frame) override;
     Status blend(const FrameView &frame, const FrameMetadata &metadata, double fps) override;
 
+    // Rasterizes the privacy masks for the camera (called by create; setCamera does it for the new camera).
+    Status renderMasks() { return masks_.setCamera(camera_, graph_); }
     // Re-projects and re-rasterizes every world layer (called by create and setCamera).
     Status renderWorld();
     // Whether the last blend drew the world straight into the frame (a moving camera), for tests and stats.
@@ -74,6 +84,8 @@ private:
         std::optional<GlyphStamps> stamps;
     };
 
+    // The frame is the stream's: format, size and planes.
+    Status checkStreamFrame(const FrameView &frame) const;
     Status buildText(TextSlot &slot);
     Status blendText(TextSlot &slot, const FrameView &frame);
     // The layer of a background box `fill` (slot.box), kept while the box stays the same.
@@ -106,6 +118,7 @@ private:
     std::vector<Layer> layers_;
     std::vector<TextSlot> texts_;
     std::vector<ImageSprite> images_;
+    PrivacyMasks masks_;                 // kept out of layers_: no layer switch reaches them
     std::vector<std::string> slotNames_; // the {slot:NAME} tokens the scene's texts use
     SlotTexts slotTexts_;
     FrameCoverageSink frameSink_;

@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera: projection of points and segments with clipping before the divide, lens curves, and unprojection.
 #include "camera.h"
 
+#include "camera_batch.h"
 #include "point_kernel.h"
 
 #include <algorithm>
@@ -301,6 +303,74 @@ Result<Ray> Camera::unprojectWide(const glm::dvec2 &ndc) const
     const glm::dvec3 internal = glm::inverse(opticalFromInternal) * optical;
     const glm::dvec3 world = glm::dvec3(glm::inverse(view_) * glm::dvec4(internal, 0.0));
     return Ray{position(), glm::normalize(world)};
+}
+
+// A filled world polygon (a privacy mask) clipped in clip space, so that a polygon reaching behind the camera keeps
+// the part in front instead of folding its hidden corners onto the image.
+Status Camera::projectPolygon(std::span<const glm::dvec4> world, std::vector<glm::dvec2> &out, double tolerancePx) const
+{
+    out.clear();
+    if (path_.wide)
+        return makeError(ErrorCode::InvalidArgument,
+                         "a world polygon cannot be projected through a lens that sees behind the camera");
+    std::vector<glm::dvec4> clip, clipped;
+    clip.reserve(world.size());
+    for (const glm::dvec4 &p : world)
+        clip.push_back(viewProjection_ * p);
+    segmentPlanes_.clipPolygon(clip, clipped);
+    Polylines outline;
+    for (size_t i = 0; i < clipped.size(); ++i) {
+        const glm::dvec4 &a = clipped[i], &b = clipped[(i + 1) % clipped.size()];
+        emitPiece(a, b - a, 0.0, 1.0, true, tolerancePx, outline);
+    }
+    out = std::move(outline.points);
+    return Ok{};
+}
+
+// The batch loops: one translation unit per instruction set (camera_batch*.cpp), chosen here at run time.
+bool Camera::batchKernelAvailable(BatchKernel kernel)
+{
+    switch (kernel) {
+    case BatchKernel::Best:
+    case BatchKernel::Lanes2:
+        return true;
+#ifdef OVERLAYD_HAVE_X86_KERNELS
+    // libgcc reads CPUID once at start-up; it also checks that the OS saves the AVX / AVX-512 registers.
+    case BatchKernel::Lanes4Avx2:
+        return __builtin_cpu_supports("avx2");
+    case BatchKernel::Lanes8Avx512:
+        return __builtin_cpu_supports("avx512f");
+#else
+    case BatchKernel::Lanes4Avx2:
+    case BatchKernel::Lanes8Avx512:
+        return false;
+#endif
+    }
+    return false;
+}
+
+BatchKernel Camera::bestBatchKernel()
+{
+    return batchKernelAvailable(BatchKernel::Lanes8Avx512) ? BatchKernel::Lanes8Avx512
+           : batchKernelAvailable(BatchKernel::Lanes4Avx2) ? BatchKernel::Lanes4Avx2
+                                                           : BatchKernel::Lanes2;
+}
+
+void Camera::projectPoints(std::span<const glm::dvec3> world, std::span<ProjectedPoint> out, BatchKernel kernel) const
+{
+    const BatchJob job{path_,        viewProjection_, lens_ ? lens_->distortion().model : DistortionModel::None,
+                       world.data(), out.data(),      std::min(world.size(), out.size())};
+    if (kernel == BatchKernel::Best)
+        kernel = bestBatchKernel();
+    else if (!batchKernelAvailable(kernel))
+        kernel = BatchKernel::Lanes2;
+#ifdef OVERLAYD_HAVE_X86_KERNELS
+    if (kernel == BatchKernel::Lanes8Avx512)
+        return avx512::projectPoints(job);
+    if (kernel == BatchKernel::Lanes4Avx2)
+        return avx2::projectPoints(job);
+#endif
+    baseline::projectPoints(job);
 }
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The camera: pose, projection, optional lens and viewport, composed once; projects, clips and unprojects.
 //
 // The pipeline for a world point X (homogeneous, so directions at infinity project too):
@@ -83,6 +84,12 @@ public:
     // A connected 3D polyline (closed: last point joins the first); unbroken runs come out as one polyline.
     void projectPolyline(std::span<const glm::dvec4> world, bool closed, Polylines &out,
                          double tolerancePx = kDefaultCurveTolerancePx) const;
+
+    // The visible part of a flat, closed 3D polygon as a pixel outline (memory order; empty when nothing is seen):
+    // clipped against the near, far and guard-band side planes before the divide, each edge curved through the lens
+    // to within tolerancePx. A lens that sees behind the camera has no such clip: refused.
+    Status projectPolygon(std::span<const glm::dvec4> world, std::vector<glm::dvec2> &out,
+                          double tolerancePx = kDefaultCurveTolerancePx) const;
 
     // The world-space ray of points that land on `pixel` (memory order). Perspective rays start at the
     // camera centre, orthographic rays on the near plane.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Batch projection of points, one entry per instruction set; Camera::projectPoints picks one at run time.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Batch projection on 4 lanes, compiled with -mavx2 (x86-64 only); run only where the CPU reports AVX2.
 #define OVERLAYD_LANES_NS avx2_lanes
 #include "camera_batch.h"

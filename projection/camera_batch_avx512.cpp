@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Batch projection on 8 lanes, compiled with -mavx512f (x86-64 only); run only where the CPU reports AVX-512F.
 #define OVERLAYD_LANES_NS avx512_lanes
 #include "camera_batch.h"

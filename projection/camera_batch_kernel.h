@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The batch loop over blocks of points, for one lane type: load and transform a block, project it, store it.
 //
 // Included by camera_batch.cpp (2-lane registers), camera_batch_avx2.cpp (4) and camera_batch_avx512.cpp (8) with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared validation helpers for the projection builders.
 #include "checks.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Liang-Barsky and Sutherland-Hodgman clipping in homogeneous coordinates.
 #include "clip.h"
 

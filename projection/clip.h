@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Clipping in homogeneous clip space, before the divide by w: points, segments and polygons.
 //
 // Each plane is a 4-vector p; a clip-space point c is inside when dot(p, c) >= 0. Clipping before the divide

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OpenCV's distortion models (calib3d projectPoints, fisheye::projectPoints) and their numerical inverse.
 #include "distortion.h"
 

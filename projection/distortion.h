@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Lens distortion models of OpenCV (and ROS camera_info), applied to normalized optical coordinates.
 #pragma once
 

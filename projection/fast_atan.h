@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A vectorisable atan for the fisheye model: within 2 ulp of std::atan, no branches, one division.
 //
 // Reduction to |t| <= tan(pi/8): atan(a) = pi/2 + atan(-1/a) above tan(3 pi/8), pi/4 + atan((a - 1)/(a + 1))
@@ -10,27 +11,23 @@
 
 namespace overlayd::OVERLAYD_LANES_NS {
 
-namespace atan_detail {
-
-inline constexpr double kTanPiOver8 = 0.41421356237309504880;
-inline constexpr double kTan3PiOver8 = 2.41421356237309504880;
-// pi/2 and pi/4 split into a double and the rest (Cephes' MOREBITS), so the sum keeps the last bit.
+// pi/2 as a double (its rest is kPiOver2Low below); point_kernel.h's fisheye uses it too.
 inline constexpr double kPiOver2 = 1.57079632679489655800;
-inline constexpr double kPiOver2Low = 6.123233995736765886130e-17;
-inline constexpr double kPiOver4 = 0.78539816339744827900;
-inline constexpr double kPiOver4Low = 3.061616997868382943065e-17;
-inline constexpr double kP[] = {
-    -0.33333333333333359,  0.20000000000009274,  -0.14285714286408022,  0.11111111116207731,
-    -0.090909077923729806, 0.076922446785372869, -0.066652484236908324, 0.058637248389313244,
-    -0.05111308797528212,  0.039902708643800196, -0.019923074471281044,
-};
-
-} // namespace atan_detail
 
 template<class V>
 [[gnu::always_inline]] inline V fastAtan(V x)
 {
-    using namespace atan_detail;
+    static constexpr double kTanPiOver8 = 0.41421356237309504880;
+    static constexpr double kTan3PiOver8 = 2.41421356237309504880;
+    // pi/2 and pi/4 split into a double and the rest (Cephes' MOREBITS), so the sum keeps the last bit.
+    static constexpr double kPiOver2Low = 6.123233995736765886130e-17;
+    static constexpr double kPiOver4 = 0.78539816339744827900;
+    static constexpr double kPiOver4Low = 3.061616997868382943065e-17;
+    static constexpr double kP[] = {
+        -0.33333333333333359,  0.20000000000009274,  -0.14285714286408022,  0.11111111116207731,
+        -0.090909077923729806, 0.076922446785372869, -0.066652484236908324, 0.058637248389313244,
+        -0.05111308797528212,  0.039902708643800196, -0.019923074471281044,
+    };
     const V one = V{} + 1.0, zero = V{};
     const V a = laneAbs(x);
     const auto big = a > kTan3PiOver8;

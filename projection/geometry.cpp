@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The homogeneous line, ray and plane geometry.
 #include "geometry.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The homogeneous geometry: rays, planes <N, D>, signed distances, intersections, and the view frustum's planes.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Two blocks of lanes computed side by side: every operation on a LanePair is the same operation on its two halves,
 // one after the other, so the instruction stream interleaves two independent blocks of points.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fixed-width double lanes (GCC/Clang vector extensions) and the few helpers the batch kernels need.
 //
 // Every helper also takes a plain double (one lane, bool masks), so the batch kernels and Camera::project run the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Lens: distortion in normalized optical coordinates, wrapped so that callers work in NDC.
 #include "lens.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A calibrated lens: pinhole intrinsics plus distortion, applied as a warp of NDC (so any viewport can follow).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The per-point projection from clip space to a pixel and a status, written once for any lane type.
 //
 // Camera::project runs it on one double, the batch loops (camera_batch*.cpp) on 2 or 4 lanes. Same operations in
@@ -82,7 +83,7 @@ template<class V>
     // Behind the plane atan2(rw, w) = pi/2 - atan(w / rw): one atan either way.
     const V zero = V{};
     const V angle = fastAtan(select(front, r, cw * inverseRw));
-    const V theta = select(front, angle, (zero + atan_detail::kPiOver2) - angle);
+    const V theta = select(front, angle, (zero + kPiOver2) - angle);
     const std::array<double, 8> &c = p.coeffs;
     const V t2 = theta * theta, t4 = t2 * t2;
     const V thetaD = theta * (1.0 + t2 * ((c[0] + c[1] * t2) + (c[2] + c[3] * t2) * t4));

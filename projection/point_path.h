@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The constants of the per-point path from clip space to pixels, composed once per Camera (see point_kernel.h).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A flat list of 2D polylines: one point array plus where each polyline ends (no allocation per polyline).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera pose builders: the viewing pipeline's graphics forms, orientations, and OpenCV/ROS extrinsics.
 #include "pose.h"
 
@@ -10,7 +11,6 @@
 #include "checks.h"
 
 namespace overlayd {
-
 
 glm::dmat4 Pose::viewMatrix() const
 {
@@ -75,7 +75,7 @@ Result<Pose> poseFromGaze(const glm::dvec3 &eye, const glm::dvec3 &gaze, const g
     const glm::dvec3 side = glm::cross(*upDirection, w);
     if (glm::length(side) <= Checks::kDegenerate)
         return makeError(ErrorCode::DegenerateBasis,
-                         "up " + str(up) + " is parallel to the gaze direction " + str(gaze));
+                         "up " + Checks::str(up) + " is parallel to the gaze direction " + Checks::str(gaze));
     const glm::dvec3 u = glm::normalize(side);
     const glm::dvec3 v = glm::cross(w, u);
     return poseFromBasis(eye, u, v, w);
@@ -87,7 +87,7 @@ Result<Pose> poseLookAt(const glm::dvec3 &eye, const glm::dvec3 &target, const g
     if (!Checks::finite(eye) || !Checks::finite(target) || !Checks::finite(up))
         return makeError(ErrorCode::InvalidArgument, "eye, target and up must be finite");
     if (eye == target)
-        return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + str(eye));
+        return makeError(ErrorCode::DegenerateBasis, "eye and target are the same point " + Checks::str(eye));
     return poseFromGaze(eye, target - eye, up);
 }
 
@@ -104,7 +104,8 @@ Result<Pose> poseFromPrpVpnVup(const glm::dvec3 &prp, const glm::dvec3 &vpn, con
     const glm::dvec3 zAxis = *vpnDirection;
     const glm::dvec3 side = glm::cross(*vupDirection, zAxis);
     if (glm::length(side) <= Checks::kDegenerate)
-        return makeError(ErrorCode::DegenerateBasis, "VUP " + str(vup) + " is parallel to VPN " + str(vpn));
+        return makeError(ErrorCode::DegenerateBasis,
+                         "VUP " + Checks::str(vup) + " is parallel to VPN " + Checks::str(vpn));
     const glm::dvec3 xAxis = glm::normalize(side);
     const glm::dvec3 yAxis = glm::cross(zAxis, xAxis);
     return poseFromBasis(prp, xAxis, yAxis, zAxis);
@@ -117,7 +118,7 @@ Result<Pose> poseFromOrientation(const glm::dvec3 &position, const glm::dquat &w
         return makeError(ErrorCode::InvalidArgument, "position and orientation must be finite");
     if (std::abs(norm - 1.0) > Checks::kOrthonormal)
         return makeError(ErrorCode::NotOrthonormal,
-                         "orientation quaternion is not of unit length (|q| = " + str(norm) + ")");
+                         "orientation quaternion is not of unit length (|q| = " + Checks::str(norm) + ")");
     const glm::dmat3 worldFromGivenAxes = glm::mat3_cast(worldFromAxes / norm);
     const glm::dmat3 worldFromInternal = worldFromGivenAxes * glm::transpose(internalFromAxes(axes));
     return poseFromBasis(position, worldFromInternal[0], worldFromInternal[1], worldFromInternal[2]);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Camera pose (extrinsics): every way users describe it, converging on one world-to-camera rigid transform.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Projection builders. Matrices follow GLM's right-handed *_NO / *_ZO conventions (column-major m[col][row]).
 #include "projection.h"
 
@@ -7,7 +8,6 @@
 #include "viewing_pipeline.h"
 
 namespace overlayd {
-
 
 double ndcNearDepth(DepthRange depth)
 {
@@ -21,10 +21,10 @@ Status checkNearFar(double near, double far, bool allowInfiniteFar)
     if (!std::isfinite(near) || std::isnan(far) || (!allowInfiniteFar && std::isinf(far)))
         return makeError(ErrorCode::InvalidArgument, "near and far must be finite numbers");
     if (near <= 0.0)
-        return makeError(ErrorCode::InvalidArgument, "near must be > 0 (got " + str(near) + ")");
+        return makeError(ErrorCode::InvalidArgument, "near must be > 0 (got " + Checks::str(near) + ")");
     if (far <= near)
-        return makeError(ErrorCode::InvalidArgument,
-                         "far must be greater than near (near " + str(near) + ", far " + str(far) + ")");
+        return makeError(ErrorCode::InvalidArgument, "far must be greater than near (near " + Checks::str(near) +
+                                                         ", far " + Checks::str(far) + ")");
     return Ok{};
 }
 
@@ -61,9 +61,9 @@ Result<Projection> Projection::perspective(FovAxis axis, double fovDeg, double a
 {
     if (!std::isfinite(fovDeg) || fovDeg <= 0.0 || fovDeg >= 180.0)
         return makeError(ErrorCode::InvalidArgument,
-                         "field of view must be in (0, 180) degrees (got " + str(fovDeg) + ")");
+                         "field of view must be in (0, 180) degrees (got " + Checks::str(fovDeg) + ")");
     if (!std::isfinite(aspect) || aspect <= 0.0)
-        return makeError(ErrorCode::InvalidArgument, "aspect must be > 0 (got " + str(aspect) + ")");
+        return makeError(ErrorCode::InvalidArgument, "aspect must be > 0 (got " + Checks::str(aspect) + ")");
     if (auto status = checkNearFar(near, far, true); !status)
         return status.error();
     const double tanHalf = std::tan(fovDeg * M_PI / 360.0);
@@ -102,8 +102,8 @@ Result<Projection> Projection::orthographic(const FrustumBounds &b, DepthRange d
         return makeError(ErrorCode::InvalidArgument, "orthographic box must have right > left and top > bottom");
     // A parallel projection has no centre of projection, so near may be zero or negative; the box must not be flat.
     if (b.far <= b.near)
-        return makeError(ErrorCode::InvalidArgument,
-                         "far must be greater than near (near " + str(b.near) + ", far " + str(b.far) + ")");
+        return makeError(ErrorCode::InvalidArgument, "far must be greater than near (near " + Checks::str(b.near) +
+                                                         ", far " + Checks::str(b.far) + ")");
     glm::dmat4 m(1.0);
     m[0][0] = 2.0 / (b.right - b.left);
     m[1][1] = 2.0 / (b.top - b.bottom);
@@ -126,7 +126,7 @@ Result<Projection> Projection::pinhole(const PinholeIntrinsics &k, double near, 
         return makeError(ErrorCode::InvalidArgument, "camera matrix entries must be finite");
     if (k.fx <= 0.0 || k.fy <= 0.0)
         return makeError(ErrorCode::InvalidArgument,
-                         "focal lengths fx, fy must be > 0 (got " + str(k.fx) + ", " + str(k.fy) + ")");
+                         "focal lengths fx, fy must be > 0 (got " + Checks::str(k.fx) + ", " + Checks::str(k.fy) + ")");
     if (k.width <= 0 || k.height <= 0)
         return makeError(ErrorCode::InvalidArgument, "pinhole image size must be positive (got " +
                                                          std::to_string(k.width) + "x" + std::to_string(k.height) +
@@ -152,7 +152,8 @@ Result<Projection> Projection::pinhole(const PinholeIntrinsics &k, double near, 
 Result<Projection> Projection::window(const WindowIntrinsics &w, DepthRange depth)
 {
     if (!std::isfinite(w.focal) || w.focal <= 0.0)
-        return makeError(ErrorCode::InvalidArgument, "window focal length must be > 0 (got " + str(w.focal) + ")");
+        return makeError(ErrorCode::InvalidArgument,
+                         "window focal length must be > 0 (got " + Checks::str(w.focal) + ")");
     if (!std::isfinite(w.centre.x) || !std::isfinite(w.centre.y))
         return makeError(ErrorCode::InvalidArgument, "window centre must be finite");
     if (!std::isfinite(w.halfWidth) || !std::isfinite(w.halfHeight) || w.halfWidth <= 0.0 || w.halfHeight <= 0.0)
@@ -174,8 +175,8 @@ Result<Projection> Projection::windowOrthographic(double width, double height, d
     if (!std::isfinite(width) || !std::isfinite(height) || width <= 0.0 || height <= 0.0)
         return makeError(ErrorCode::InvalidArgument, "orthographic window width and height must be > 0");
     if (!std::isfinite(near) || !std::isfinite(far) || far <= near)
-        return makeError(ErrorCode::InvalidArgument,
-                         "far must be greater than near (near " + str(near) + ", far " + str(far) + ")");
+        return makeError(ErrorCode::InvalidArgument, "far must be greater than near (near " + Checks::str(near) +
+                                                         ", far " + Checks::str(far) + ")");
     const glm::dmat4 zeroToOne = ViewingPipeline::orthographic(width, height, near, far);
     const glm::dmat4 m = depth == DepthRange::ZeroToOne ? zeroToOne : zeroToOneToMinusOneToOne() * zeroToOne;
     return Projection(m, depth, false, true);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Projection (intrinsics): every form users give, converging on one 4x4 matrix from camera to clip space.
 #pragma once
 

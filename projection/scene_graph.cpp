@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scene-graph resolution: validates the frames and composes world matrices along each path.
 #include "scene_graph.h"
 

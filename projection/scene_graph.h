@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Named coordinate frames, each placed relative to its parent (the viewing pipeline's hierarchical coordinate systems).
 #pragma once
 

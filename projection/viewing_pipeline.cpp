@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The viewing pipeline's step matrices (column-major GLM: m[column][row]).
 #include "viewing_pipeline.h"
 

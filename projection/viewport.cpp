@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Viewport validation and the affine NDC <-> pixel mapping for both origins.
 #include "viewport.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Viewport (the viewing pipeline's viewport transformation): NDC -> pixels of a window placed on a frame.
 //
 // Pixel convention: pixel (i, j) is the unit square centred on (i, j), so a frame of W x H pixels spans

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // WideField: a segment is cut where it crosses the near sphere, the far plane or the back cone; the pieces
 // between those crossings are each wholly in or out of the field, so testing their midpoints sorts them.
 #include "wide_field.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The field of a fisheye that sees behind the camera plane: which parts of a segment it draws, on the angle.
 //
 // Past 90 degrees from the axis no X/Z radius exists, so neither the near plane nor the lens's X/Z cone can bound

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The alignment page as a person sees it: overlayd serving the demo scene on a free loopback port, Debian's headless
 Chromium opening http://127.0.0.1:PORT/, one screenshot once the page has filled itself in from /state.
 

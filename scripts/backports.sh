@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # libcamera 0.3 from Debian 12's bookworm-backports, shared by scripts/install-deps.sh (the host) and
 # scripts/arm64/sysroot.sh (the arm64 sysroot's private apt): the suite on the mirror the machine already uses, and
 # a pin that lets only libcamera's packages come from it, so that nothing else on the machine moves.

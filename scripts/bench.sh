@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Every benchmark program on a Release build (as a user builds it), each with Google Benchmark's JSON output, merged
 # into one file with the machine and the date (out/bench/bench-DATE.json), then the same-run ratios as Markdown
 # tables (docs/speed.md's tables are this output). Reported, not asserted: each program refuses to time a wrong

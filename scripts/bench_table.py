@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Merges Google Benchmark JSON files (--benchmark_out=FILE --benchmark_out_format=json) into one file with the
 machine and date, and prints the same-run ratios as Markdown tables (docs/speed.md's tables are this output).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Configures and builds overlayd into $BUILD_DIR (default build/): every target, or only the ones named as arguments
 # (scripts/run.sh builds just the daemon it runs). Arguments starting with -D go to the configure step
 # (scripts/test.sh: -DOVERLAYD_BUILD_TESTS=ON). Warnings are errors under CI.

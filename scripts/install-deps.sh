@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian 12 packages overlayd needs, only those that are missing. On x86-64 and arm64 (a Raspberry Pi OS /
 # Debian 12 board) alike.
 #
@@ -42,6 +43,9 @@ packages=(
     libcamera-dev libcamera-ipa # the libcamera source (0.3 or later, see above); the IPA modules a camera needs
     libmicrohttpd-dev nlohmann-json3-dev # the HTTP server; JSON request bodies
     libgpiod-dev # GPIO lines (libgpiod 1.6, the v1 API)
+    # the encoded outputs' module (overlayd-stream.so, loaded only when an encoded sink is configured)
+    libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev libgstrtspserver-1.0-dev
+    libgstreamer-plugins-bad1.0-dev # webrtcbin's library and headers (gstreamer-webrtc-1.0): WebRTC
     systemd # on every booted Debian already; its systemd.pc says where the units install (systemd/CMakeLists.txt)
 )
 # The test suite: the test frameworks, and independent clients the tests check our output with.
@@ -50,8 +54,23 @@ test_packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     gpiod # the gpiod tools: the independent GPIO client in tests/vm
     ffmpeg v4l-utils
+    libjpeg-turbo-progs # cjpeg: libjpeg's own defaults, what the stream's JPEG size is compared with
+    # the encoded outputs' elements at run time: appsrc/tee (base), rtph264pay (good), h264parse and openh264enc
+    # (bad, with libopenh264), x264enc (ugly); splitmuxsink, mp4mux, matroskamux, flvmux (good), rtmp2sink, srtsink,
+    # mpegtsmux (bad), rtspclientsink (gstreamer1.0-rtsp); tests/stream reads the RTSP stream, the recordings and the
+    # pushes with ffprobe and ffmpeg
+    gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly
+    glib-networking # GLib's TLS backend: RTSPS (GTlsCertificate)
+    gstreamer1.0-rtsp
+    gstreamer1.0-nice # webrtcbin's ICE (libnice)
+    python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 gir1.2-gst-plugins-bad-1.0 # tests/stream's WHEP receiver
+    python3-gi-cairo # scripts/compare-peers.sh's GStreamer + cairo peer (the peers.smoke test)
+    libopenh264-7
+    python3-gi gir1.2-gst-rtsp-server-1.0 # tests/stream's RTSP RECORD server, which the push is proven against
     curl chromium python3-websocket # the HTTP tier: a real client and a real headless browser
     python3
+    scdoc man-db # the manual pages (man/) and man's check of them (tests/man)
+    dpkg-dev lintian # the package: dpkg-shlibdeps for its Depends, lintian on it (scripts/package.sh)
 )
 # tests/vm, the real-driver tier, boots Debian's x86-64 kernel in QEMU: on x86-64 hosts only (on an arm64 board the
 # tier reports itself skipped, and these are not installed).
@@ -59,6 +78,7 @@ vm_packages=(
     qemu-system-x86 busybox-static cpio kmod xz-utils binutils make ustreamer
     can-utils # cansend and candump, the CAN check's other end of the bus
     libcamera-tools # `cam`, the guest's baseline libcamera client: the same libcamera as overlayd's
+    mmdebstrap # the systemd guests' Debian 12 rootfs (tests/systemd/vm)
 )
 if ! $demo; then
     packages+=("${test_packages[@]}")

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The README's pictures, made by the real binary so that they show what it does today:
 #   docs/images/demo.png     the demo scene's first frame (overlayd render of config/examples/demo.toml)
 #   docs/alignment-page.png  the alignment page in headless Chromium, overlayd serving the demo scene

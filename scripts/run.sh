@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs what is missing, builds, and runs overlayd on its embedded default, config/examples/demo.toml: a
 # synthetic 1280x720 camera over a checkerboard ground with a projected grid, axes, labels and a timestamp. It stops
 # by itself after 150 frames (5 s at 30 fps) and leaves out/demo.y4m and a PNG snapshot every 30 frames.

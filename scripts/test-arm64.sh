@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The arm64 tier from a fresh Debian 12 x86-64 machine: the same sources cross-built for arm64 (aarch64) with
 # Debian's cross compiler against a sysroot of Debian's own arm64 packages (scripts/arm64/sysroot.sh, cached in
 # .cache/arm64), then the unit and replay tiers run by CTest under qemu-aarch64 (CMAKE_CROSSCOMPILING_EMULATOR; the

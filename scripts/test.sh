@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The whole test suite from a fresh Debian 12 machine: install what is missing, build, run every test through
 # CTest, then print the projection benchmark's speed ratios against OpenCV measured in the same run (reported,
 # not asserted: these machines drift by up to 1.5x; the benchmark itself refuses to time mismatching results).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The command line of `overlayd`: subcommands run (the default), check-config, project, render, list-cameras,
 // list-gpio, unproject and solve-pose.
 #pragma once

@@ -1,13 +1,32 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd check-config` and `overlayd run`, and config loading with every problem reported.
 #include "tools/commands.h"
 
 #include <cstdio>
+#include <filesystem>
 
+#include "config/live_drop_in.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame.h"
 #include "tools/startup_guard.h"
 
 namespace overlayd {
+
+namespace {
+
+// A command that reads NAME.live.toml says so: its camera is not the one the user reads in NAME.toml. "" when there
+// is none.
+std::string liveDropInNote(const std::string &path)
+{
+    const std::string dropIn = liveDropInPath(path);
+    std::error_code absent;
+    if (!std::filesystem::exists(dropIn, absent))
+        return {};
+    return "using the live pose from " + dropIn + " (written by POST /api/save or solve-pose --write; delete it to " +
+           "use the camera of " + path + ")";
+}
+
+} // namespace
 
 Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger)
 {
@@ -18,6 +37,8 @@ Result<DaemonConfig> loadConfigLogged(const std::string &path, Logger &logger)
             logger.error(problem.format());
         if (problems.empty())
             logger.error(cat(path, ": ", config.error().message));
+    } else if (const std::string note = liveDropInNote(path); !note.empty()) {
+        logger.notice(note);
     }
     return config;
 }
@@ -53,6 +74,8 @@ int checkConfigCommand(const std::string &path)
 {
     std::vector<ConfigProblem> problems;
     auto config = loadConfigFile(path, problems);
+    if (const std::string note = liveDropInNote(path); !note.empty())
+        std::fprintf(stderr, "%s\n", note.c_str());
     for (const ConfigProblem &problem : problems)
         std::printf("%s\n", problem.format().c_str());
     if (!config) {

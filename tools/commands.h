@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The subcommands of `overlayd`, each returning the process exit status, and the helpers tests check directly.
 #pragma once
 

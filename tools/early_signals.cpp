@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Blocks the stop signals from DT_PREINIT_ARRAY: the dynamic loader runs it right after relocation, before the
 // constructors of every shared library (liblttng-ust's, through libcamera, reads each loaded object for ~100 ms and
 // starts threads). What comes earlier — the kernel's exec and the loader itself — no program can cover; see

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stop signals from the executable's first instruction: SIGTERM, SIGINT and SIGHUP are blocked before any
 // library constructor runs, so that a signal sent while overlayd starts is kept pending for `run`'s signalfd
 // instead of ending the process with the default action.

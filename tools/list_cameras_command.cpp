@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd list-cameras`: what a user puts under [source] — each camera's id, model, formats, sizes and rates.
 #include <string>
 

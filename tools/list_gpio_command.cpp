@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd list-gpio`: what a user puts under [[gpio.input]] / [[gpio.output]] — chips by name and label, lines by
 // offset and name, and who holds each line now.
 #include <cstdio>

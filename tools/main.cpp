@@ -1,9 +1,11 @@
+// SPDX-License-Identifier: Apache-2.0
 // overlayd: the camera-overlay daemon and its tools. Exceptions are start-up failures only, caught here once.
 #include <csignal>
 #include <cstdio>
 #include <exception>
 
 #include "base/logger.h"
+#include "stream/engine_loader.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
 #include "tools/early_signals.h"
@@ -23,6 +25,9 @@ int main(int argc, char **argv)
         Logger logger = Logger::forStderr();
         if (line.logLevel)
             logger.setLevel(*line.logLevel);
+        // The config loader refuses encoded sinks whose module cannot be loaded, as `run` would fail to start them.
+        if (line.command == Command::CheckConfig || line.command == Command::Run)
+            requireStreamModule();
         switch (line.command) {
         case Command::CheckConfig:
             return checkConfigCommand(line.configPath);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd project`: where world points land in the configured camera, for aligning a grid to a real camera.
 #include "alignment/points_file.h"
 #include "base/number_text.h"
@@ -25,8 +26,7 @@ Result<std::vector<glm::dvec3>> readPoints(const std::string &path)
     if (file != stdin)
         std::fclose(file);
     if (text.size() > kMaxPointsFileBytes)
-        return makeError(ErrorCode::Malformed,
-                         path + ": more than " + std::to_string(kMaxPointsFileBytes) + " bytes");
+        return makeError(ErrorCode::Malformed, path + ": more than " + std::to_string(kMaxPointsFileBytes) + " bytes");
     return parseWorldPoints(text, path == "-" ? "stdin" : path);
 }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd render`: N frames of the configured source through the overlay into one output, unpaced, losing none.
 #include "tools/commands.h"
 

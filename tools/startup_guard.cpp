@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StartupGuard: a thread that polls the stop signals and "start-up is over", and exits the process on the first.
 #include "tools/startup_guard.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StartupGuard: SIGTERM and SIGINT while `overlayd run` starts. Start-up may block where no event loop waits yet
 // (a calibration file on a slow mount, a config path that is a FIFO, a device that does not answer), so a thread of
 // its own waits on a signalfd for the stop signals and ends the process with the stop's exit status and a log

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd unproject`: the world ray behind each pixel and where it meets a plane (the ground z = 0 by default),
 // the inverse of `project` through the same Camera (distortion undone exactly).
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stdio with errors as Results.
 #include "drivers/files/file_io.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Owned stdio files and the whole-or-nothing reads and writes the replay sources and file sinks need.
 #pragma once
 

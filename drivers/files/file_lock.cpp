@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // lockExclusive and flockHolder: flock, and /proc/locks to say who holds one.
 #include "drivers/files/file_lock.h"
 

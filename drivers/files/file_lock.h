@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An exclusive advisory lock on an output file, so that a second writer (another overlayd on the same path) is
 // refused with the process that holds it instead of interleaving its frames with ours.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The raw sink (rows packed, planes in the table's order: the layout raw replay reads) and the null sink.
 #include "drivers/files/file_sinks.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The file sinks: Y4M, raw frames, PNG/JPEG snapshots and the null sink.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image-sequence replay: PNG/JPEG files decoded by media/codec and converted to the configured pixel format. The first
 // image sets the frame size; the sequence ends at the first missing number.
 #include "drivers/files/replay_base.h"

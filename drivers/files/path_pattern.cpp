@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A tiny parser for the one printf conversion image sequences use.
 #include "drivers/files/path_pattern.h"
 

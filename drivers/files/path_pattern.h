@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Numbered file names and file types by extension ("frames/%04d.png") without handing a user's string to printf.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Raw replay: frames back to back, each laid out as makeFrameLayout packs it (rows packed, planes in the table's
 // order), in the configured format, size and fps. The file's bytes are read straight into the frame.
 #include "drivers/files/replay_base.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ReplaySource: the bookkeeping common to every file-backed source.
 #include "drivers/files/replay_base.h"
 
@@ -78,9 +79,11 @@ Result<FrameLease> ReplaySource::nextFrame()
     FrameMetadata metadata;
     metadata.sequence = sequence_;
     const double fps = format_.fps > 0.0 ? format_.fps : 30.0;
-    metadata.timestamp = std::chrono::nanoseconds(std::llround(double(sequence_) * 1e9 / fps));
-    metadata.wallClock =
-        startWall_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(metadata.timestamp);
+    // The time the frame was made, on CLOCK_MONOTONIC as a camera's is (latency is measured from it); the wall
+    // clock the overlay prints advances by the stream's frame period, so a render's text does not depend on speed.
+    metadata.timestamp = std::chrono::steady_clock::now().time_since_epoch();
+    metadata.wallClock = startWall_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                          std::chrono::nanoseconds(std::llround(double(sequence_) * 1e9 / fps)));
     metadata.colorimetry = format_.colorimetry;
     ++sequence_;
     return pool_->lend(*index, metadata);

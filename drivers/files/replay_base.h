@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the replay sources share: the frame pool, numbering, timestamps at the stream's fps, and looping.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // makeReplaySource: resolves ReplayFormat::Auto from the path and hands over to the format's source.
 #include "drivers/files/replay_source.h"
 

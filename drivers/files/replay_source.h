@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Replay sources: Y4M files, raw frame files and PNG/JPEG image sequences, optionally looping.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkFile: O_NONBLOCK opens (a FIFO without a reader answers ENXIO at once), the lock, then a blocking FILE.
 #include "drivers/files/sink_file.h"
 

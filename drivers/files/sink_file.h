@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkFile: the file a Y4M or raw sink writes. It never blocks the daemon to open: a FIFO that nobody reads yet is
 // opened on a later frame, once a reader is there (until then each frame fails as "no reader"); a regular file is
 // locked against a second writer before anything in it changes. A FIFO's reader that goes away closes it, and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Snapshot sink: one PNG or JPEG (by extension) per `every` frames, numbered by the frame's sequence number when
 // the path holds %d, else the same file replaced atomically each time.
 #include "drivers/files/file_sinks.h"

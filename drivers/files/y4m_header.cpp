@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // YUV4MPEG2 header parameters: W, H, F, C, and the XCOLORRANGE extension; I, A and other X tags are accepted and
 // ignored (the frames are progressive pictures to us).
 #include "drivers/files/y4m_header.h"

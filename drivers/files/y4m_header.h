@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The YUV4MPEG2 stream header: parsing what files hold, and writing what our sink produces.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Y4M sink: planar 8-bit Y'CbCr after a FRAME line; formats that are not planar are unpacked (NV12 -> I420
 // planes, YUYV -> 4:2:2 planes) and RGB is encoded at 4:4:4, so that every format writes a file ffmpeg reads.
 #include "drivers/files/file_sinks.h"

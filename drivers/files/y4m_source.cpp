@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Y4M replay: 4:2:0 frames come out as YUV420, 4:2:2 repacked losslessly to YUYV, mono as GREY; 4:4:4 has no
 // format in the table, so it is converted to the configured pixel format (chroma averaged per macropixel).
 #include "drivers/files/replay_base.h"

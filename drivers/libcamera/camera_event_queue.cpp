@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraEventQueue: the only work done on libcamera's thread for a removal or an arrival is a push and a wake-up.
 #include "drivers/libcamera/camera_event_queue.h"
 

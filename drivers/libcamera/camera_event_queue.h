@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraEventQueue: camera removals and arrivals handed from libcamera's thread to the daemon's loop.
 #pragma once
 

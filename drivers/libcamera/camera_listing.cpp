@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // list-cameras for libcamera: each camera's id, model, and what its video stream offers.
 #include <libcamera/stream.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The shared CameraManager and camera lookup.
 #include "drivers/libcamera/camera_manager.h"
 

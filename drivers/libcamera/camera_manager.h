@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The process's one libcamera CameraManager (libcamera refuses a second), and finding the configured camera in it.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraPresence: the re-acquire decisions, free of libcamera types so that they are tested without a camera.
 #include "drivers/libcamera/camera_presence.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraPresence: whether the configured libcamera camera is there, and which camera to open again when it returns.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Controls: the registry answers what check-config can know; the camera's ControlInfoMap what only it knows.
 #include "drivers/libcamera/libcamera_controls.h"
 
@@ -68,7 +69,6 @@ std::optional<ControlValueKind> libcameraControlKind(const std::string &name)
         return ControlValueKind::Unsupported;
     }
 }
-
 
 namespace {
 
@@ -152,7 +152,6 @@ std::string checkRange(const libcamera::ControlValue &value, const libcamera::Co
 
 } // namespace
 
-
 std::string libcameraControlProblem(const ControlSetting &setting)
 {
     const libcamera::ControlId *id = registryControl(setting.name);
@@ -161,7 +160,6 @@ std::string libcameraControlProblem(const ControlSetting &setting)
     const auto value = toControlValue(*id, setting);
     return value ? std::string() : value.error().message;
 }
-
 
 Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &settings,
                                              const libcamera::ControlInfoMap &camera)
@@ -193,6 +191,5 @@ Result<libcamera::ControlList> buildControls(const std::vector<ControlSetting> &
         return makeError(ErrorCode::ConfigError, problems);
     return list;
 }
-
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Config controls against libcamera: by name and type through its registry (no camera needed), by range against an
 // opened camera's ControlInfoMap.
 #pragma once

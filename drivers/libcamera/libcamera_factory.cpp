@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The libcamera entry points the driver factory calls, in builds with libcamera.
 #include "drivers/libcamera/libcamera_factory.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The libcamera entry points the driver factory and list-cameras call (libcamera_factory.cpp, or libcamera_none.cpp
 // in builds without libcamera). No libcamera type crosses this header.
 #pragma once

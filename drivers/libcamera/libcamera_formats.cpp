@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pixel formats: V4L2 names memory bytes in order, DRM (libcamera) names a little-endian word from its top bit, so
 // the packed RGB names are mirrored: V4L2 RGB24 (bytes R G B) is DRM BGR888 ([23:0] B:G:R little endian).
 #include "drivers/libcamera/libcamera_formats.h"

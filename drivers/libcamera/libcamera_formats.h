@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The project's pixel formats as libcamera's (DRM fourccs) and back: exact, by memory layout, never by name.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builds without libcamera: the kind is refused with the reason, and the registry is empty.
 #include "drivers/libcamera/libcamera_factory.h"
 

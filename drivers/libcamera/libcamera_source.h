@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LibcameraSource: a libcamera camera as a FrameSource (negotiation, controls, in-place leases, unplug).
 #pragma once
 

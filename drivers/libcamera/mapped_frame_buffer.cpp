@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MappedFrameBuffer: mmap of a libcamera buffer's dmabufs, and the sync ioctls around CPU access.
 #include "drivers/libcamera/mapped_frame_buffer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MappedFrameBuffer: one libcamera FrameBuffer mapped once for CPU access, as a FrameView over its dmabufs.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RequestRecycler: give-backs from any thread, none after detach().
 #include "drivers/libcamera/request_recycler.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RequestRecycler: how a lent libcamera request goes back to the camera, from whichever thread drops the lease.
 #pragma once
 

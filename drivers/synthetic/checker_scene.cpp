@@ -1,13 +1,17 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ray tracing of the checker ground. Unprojecting through a distorting lens is iterative and costs over a
 // microsecond. So 4x4 blocks are tried first from their four corners; in blocks that hold an edge, each pixel's
 // corners are traced, and pixels whose corners fall in different squares are supersampled from the corners (or
-// traced sample by sample where the horizon crosses them).
+// traced sample by sample where the horizon crosses them); pixels that see much of a square at once, toward the
+// horizon, take the checker's exact average over their footprint, as a camera's lens and sensor would.
 #include "drivers/synthetic/checker_scene.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
+
+#include <glm/common.hpp>
 
 #include "drivers/synthetic/scene_tracer.h"
 
@@ -16,6 +20,9 @@ namespace overlayd {
 namespace {
 
 constexpr unsigned kBlock = 4; // pixels per side of the blocks tried as one colour first
+// Footprints at least this wide (in squares) are box-filtered; narrower ones, near the camera, are supersampled,
+// which keeps their edges as sharp as the footprint itself.
+constexpr double kFootprintFiltered = 0.25;
 
 const uint8_t *colourOf(const Square &square)
 {
@@ -39,10 +46,45 @@ struct PixelCorners {
     }
 };
 
+// The share of dark along one axis near t (in squares), seen through a tent filter of half-width w: the filter a
+// pixel sees the ground through is about that wide, and a tent (a box convolved with itself) leaves far less of the
+// checker's pattern behind than a box does. Exact: the second integral of the square wave t -> floor(t) mod 2 is
+// piecewise quadratic, and the tent's average is its second difference over w squared.
+double oddShare(double t, double w)
+{
+    const auto twiceIntegrated = [](double x) {
+        const double k = std::floor(x / 2.0), r = x - 2.0 * k, over = std::max(0.0, r - 1.0);
+        return k * k - 0.5 * k + k * r + 0.5 * over * over;
+    };
+    return (twiceIntegrated(t + w) - 2.0 * twiceIntegrated(t) + twiceIntegrated(t - w)) / (w * w);
+}
+
+// A pixel whose footprint on the ground spans much of a square, toward the horizon: point samples (however many)
+// alias into moire there, so its colour is the filtered checker instead, with the footprint's extent along each
+// ground axis as the filter's half-width (dark where exactly one of the column and the row is odd).
+bool blendFootprint(const PixelCorners &corners, double squareMetres, uint8_t *px)
+{
+    const glm::dvec2 lo =
+        glm::min(glm::min(corners.tl.point, corners.tr.point), glm::min(corners.bl.point, corners.br.point));
+    const glm::dvec2 hi =
+        glm::max(glm::max(corners.tl.point, corners.tr.point), glm::max(corners.bl.point, corners.br.point));
+    const glm::dvec2 centre = 0.5 * (lo + hi) / squareMetres, extent = (hi - lo) / squareMetres;
+    if (std::max(extent.x, extent.y) < kFootprintFiltered)
+        return false;
+    const double oddX = oddShare(centre.x, std::max(extent.x, 1e-3)),
+                 oddY = oddShare(centre.y, std::max(extent.y, 1e-3));
+    const double dark = oddX * (1.0 - oddY) + oddY * (1.0 - oddX);
+    for (unsigned k = 0; k < 3; ++k)
+        px[k] = uint8_t(std::lround(kSceneLight[k] + dark * (double(kSceneDark[k]) - kSceneLight[k])));
+    return true;
+}
+
 void supersample(const SceneTracer &tracer, const PixelCorners &corners, unsigned x, unsigned y, uint8_t *px)
 {
     constexpr unsigned n = kSceneSupersampling;
     const bool interpolate = corners.allGround();
+    if (interpolate && blendFootprint(corners, tracer.squareMetres(), px))
+        return;
     unsigned sum[3] = {0, 0, 0};
     for (unsigned j = 0; j < n; ++j) {
         for (unsigned i = 0; i < n; ++i) {

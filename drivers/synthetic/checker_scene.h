@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The synthetic 3D scene: a checkerboard on the ground plane z = 0, ray-traced per pixel through the stream's
 // camera, so that a grid overlay of the same spacing must land on its edges without trusting the overlay path.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 2D patterns. Everything is integer arithmetic on the pixel position (and frame number), so output bytes do
 // not depend on the compiler or machine.
 #include "drivers/synthetic/patterns.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The synthetic source's 2D test patterns, drawn in RGB (the converter encodes them into the stream's format).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One ray of the checker scene: from a pixel position through the camera to a square of the ground plane, or the sky.
 #pragma once
 
@@ -44,6 +45,8 @@ public:
             return {};
         return {true, {hit.x, hit.y}};
     }
+
+    double squareMetres() const { return square_; }
 
     Square square(const Hit &hit) const
     {

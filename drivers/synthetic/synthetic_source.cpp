@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SyntheticSource: static patterns (bars, checkerboard, the 3D scene) are rendered and converted once at start()
 // and copied into each frame; the moving gradient and noise are drawn per frame. Timestamps are sequence / fps
 // (not the clock) so that two runs produce the same frames and metadata.
@@ -123,9 +124,12 @@ Result<FrameLease> SyntheticSource::nextFrame()
     }
     FrameMetadata metadata;
     metadata.sequence = sequence_;
-    metadata.timestamp = std::chrono::nanoseconds(std::llround(double(sequence_) * 1e9 / format_.fps));
+    // The time the frame was made, on CLOCK_MONOTONIC as a camera's is (latency is measured from it); the wall
+    // clock the overlay prints advances by the stream's frame period, so a render's text does not depend on speed.
+    metadata.timestamp = std::chrono::steady_clock::now().time_since_epoch();
     metadata.wallClock =
-        startWall_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(metadata.timestamp);
+        startWall_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                         std::chrono::nanoseconds(std::llround(double(sequence_) * 1e9 / format_.fps)));
     metadata.colorimetry = format_.colorimetry;
     ++sequence_;
     return pool_->lend(*index, metadata);

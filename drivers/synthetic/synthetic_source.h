@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The synthetic source: deterministic patterns in any format and size, and the checkerboard-ground scene.
 #pragma once
 

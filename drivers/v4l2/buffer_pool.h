@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BufferPool: a device's MMAP buffers, requested, mapped, queued and dequeued.
 #pragma once
 
@@ -44,7 +45,7 @@ public:
     PlaneMemory memory(unsigned index, unsigned plane) const;
 
     // VIDIOC_EXPBUF of every buffer's memory planes (O_CLOEXEC): the views then carry each plane's dmabuf fd and
-    // offset. The fds are the caller's to keep open while frames are out (buffer_export.cpp).
+    // offset. The fds are the caller's to keep open while frames are out (exportDmabufs).
     Result<std::vector<UniqueFd>> exportDmabufs();
 
     // VIDIOC_QBUF; an output buffer carries bytesUsed per plane.

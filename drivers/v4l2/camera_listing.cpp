@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // list-cameras for V4L2: every capture node under /dev with its formats, frame sizes and discrete frame rates.
 #include <fcntl.h>
 #include <linux/videodev2.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // V4l2CaptureSource: a V4L2 capture device as a FrameSource (negotiation, MMAP streaming, leases, MJPEG).
 #pragma once
 

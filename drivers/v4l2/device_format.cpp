@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Conversions between DeviceFormat and v4l2_format; the fourcc alias table.
 #include "drivers/v4l2/device_format.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DeviceFormat: one shape for the single- and multi-planar v4l2_format, and fourcc helpers.
 #pragma once
 

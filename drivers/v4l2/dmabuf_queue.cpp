@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DmabufQueue: REQBUFS, QBUF and DQBUF with V4L2_MEMORY_DMABUF.
 #include "drivers/v4l2/dmabuf_queue.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DmabufQueue: an output device's V4L2_MEMORY_DMABUF queue: buffers that are other devices' dmabufs.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // splitFrame: per-plane views of V4L2 buffers.
 #include "drivers/v4l2/frame_split.h"
 

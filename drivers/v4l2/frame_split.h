@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // splitFrame: the FrameView of one V4L2 buffer, its planes located once from the driver's bytesperline.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LeaseHub: the capture queue's operations, serialized between the event loop and sink threads.
 #include "drivers/v4l2/lease_hub.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LeaseHub: what a V4L2 capture source shares with the leases it lent: the give-back path and the exported fds.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MappedBuffer: mapping, moves and unmapping.
 #include "drivers/v4l2/mapped_buffer.h"
 

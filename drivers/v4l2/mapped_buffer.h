@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MappedBuffer: one mmap'ed V4L2 buffer plane, unmapped by its destructor.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MjpegDecoder: turns one MJPEG frame from a camera into a YUV frame the blender handles.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The MJPEG decoder when overlayd is built without libjpeg-turbo: asking for it is a clear error.
 #include "drivers/v4l2/mjpeg_decoder.h"
 

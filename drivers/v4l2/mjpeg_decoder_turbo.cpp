@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MjpegDecoder with libjpeg-turbo: decode to the JPEG's own YUV planes, then lay them out as YUYV or I420.
 #include "drivers/v4l2/mjpeg_decoder.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The decoded format of an MJPEG stream.
 #include "drivers/v4l2/mjpeg_decoder.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Negotiation: format fallback order, nearest size, nearest rate.
 #include "drivers/v4l2/negotiation.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Negotiation: what a capture device offers, and the choice of format, size and rate against a request.
 #pragma once
 

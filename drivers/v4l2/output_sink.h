@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // V4l2OutputSink: writes the overlaid stream to a V4L2 output device (v4l2loopback, vivid's output node), by copy
 // into MMAP buffers or, zero copy, by queueing the capture buffers themselves (DMABUF import).
 #pragma once
@@ -39,7 +40,7 @@ public:
     Status close() override;
     std::string describe() const override;
 
-    // Zero copy: frames whose dmabuf planes sit where the output's format puts them (output_zero_copy.cpp).
+    // Zero copy: frames whose dmabuf planes sit where the output's format puts them (chooseMemory).
     bool takesLease(const FrameView &frame) const override;
     // Queues the lease's dmabufs (VIDIOC_QBUF m.fd) and keeps the reference until VIDIOC_DQBUF returns the buffer.
     Status writeLease(std::shared_ptr<const FrameLease> lease) override;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The V4L2 entry points: the capture source and the output sink on the real kernel.
 #include "drivers/v4l2/v4l2_factory.h"
 
@@ -33,8 +34,7 @@ Result<std::unique_ptr<FrameSource>> makeV4l2Source(const SourceOptions &options
     if (options.v4l2.bufferCount < 2 || options.v4l2.bufferCount > 32)
         return makeError(ErrorCode::ConfigError,
                          "source.v4l2.buffers must be 2..32 (got " + std::to_string(options.v4l2.bufferCount) + ")");
-    return std::unique_ptr<FrameSource>(
-        std::make_unique<V4l2CaptureSource>(realSyscalls(), options, std::move(log)));
+    return std::unique_ptr<FrameSource>(std::make_unique<V4l2CaptureSource>(realSyscalls(), options, std::move(log)));
 }
 
 Result<std::unique_ptr<FrameSink>> makeV4l2OutputSink(const SinkOptions &options)
@@ -44,8 +44,7 @@ Result<std::unique_ptr<FrameSink>> makeV4l2OutputSink(const SinkOptions &options
                          "sink buffers must be 2..32 (got " + std::to_string(options.bufferCount) + ")");
     if (options.path.empty())
         return makeError(ErrorCode::ConfigError, "a v4l2 sink needs a device path");
-    return std::unique_ptr<FrameSink>(
-        std::make_unique<V4l2OutputSink>(realSyscalls(), options, logToStderr));
+    return std::unique_ptr<FrameSink>(std::make_unique<V4l2OutputSink>(realSyscalls(), options, logToStderr));
 }
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The V4L2 entry points the driver factory calls (drivers/v4l2/ implements them).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The real system calls behind the Syscalls seam.
 #include "drivers/v4l2/v4l2_syscalls.h"
 

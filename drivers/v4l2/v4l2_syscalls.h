@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The system calls the V4L2 code makes, behind an interface so that unit tests can stand in for the kernel.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // VideoDevice: one opened V4L2 video node, its capabilities, and the ioctls the source and sink need.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The two file formats behind image_codec.h, one file each (png_file.cpp, jpeg_file.cpp); image_codec.cpp picks one
 // by the file's signature.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The format of a file is its signature (never its name): PNG's eight bytes, JPEG's SOI marker.
 #include "media/codec/image_codec.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image files to pixels and back: PNG through libpng, JPEG through libjpeg-turbo, for the image annotations
 // (config/), the image-sequence replay and the snapshot sink (drivers/files/). It lives in media/ because both users
 // sit above it and media/ already owns libjpeg-turbo; the libraries' headers stay inside codec/'s .cpp files.

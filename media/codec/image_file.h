@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What an image file is and what decoding it gives: the types image_codec.h's functions and the two formats behind
 // them (formats.h) share, here so that neither header includes the other.
 #pragma once

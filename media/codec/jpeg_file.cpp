@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JPEG files through libjpeg-turbo's TurboJPEG API (2.1 in Debian 12): tjDecompressHeader3 gives the size before
 // anything is allocated, tjDecompress2 the pixels, tjCompress2 the snapshots. TurboJPEG returns errors (it keeps
 // libjpeg's longjmp inside itself), so no setjmp is needed here.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PNG through libpng's classic API. libpng reports an error by longjmp back to the last setjmp: the three functions
 // that call setjmp (readHeader, readRows, writeRows) hold only plain data and pointers, so the jump skips no
 // destructor; every C++ object (the handles' owners, the pixels, the row pointers) lives in their callers.

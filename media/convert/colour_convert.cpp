@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Whole-image colour conversion, row by row. The matrix is folded into 256-entry tables once per call, so the pixel
 // loops are additions and table reads; chroma is walked macropixel by macropixel, without divisions.
 #include "media/convert/colour_convert.h"

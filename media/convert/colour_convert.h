@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // R'G'B' <-> Y'CbCr for whole images in a named colorimetry, and chroma resampling between subsamplings.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Whole-frame conversion: the encoding (RGB or Y'CbCr) picks the path, the table entry drives the packing.
 #include "media/convert/frame_convert.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Whole-frame conversion between RGB or Y'CbCr images and a frame in any format of the pixel-format table, for
 // test patterns, image replay, PNG/JPEG snapshots, Y4M and "NO SIGNAL" frames. Not the per-frame hot path: each
 // call converts whole rows through one intermediate image.

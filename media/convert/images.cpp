@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Allocation of the converters' images.
 #include "media/convert/images.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plain images the converters work on: packed RGB, and planar Y'CbCr with any chroma subsampling.
 #pragma once
 

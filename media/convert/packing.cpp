@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Table-driven packing. Luma of pixel x sits at (x / pixelsPerGroup) * bytesPerGroup + yOffset[x % pixelsPerGroup]
 // of plane 0; chroma sample c at c * step + offset of its plane, step being the plane's bytes per chroma sample
 // pair (4 for packed 4:2:2, 2 for semi-planar, 1 for planar). This covers every YUV entry of the table.

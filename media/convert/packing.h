@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Moving samples between a frame in any format of the table and the converters' plain images, driven by the
 // table entry's plane layout and byte offsets (never by the fourcc).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The BT.601/BT.709 equations (ITU-R BT.601-7, BT.709-6) between 8-bit R'G'B' and Y'CbCr code values.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tables of JfifMapping, from the BT.601/BT.709 equations in media/convert/ycbcr_coefficients.h.
 #include "media/jpeg/jfif_mapping.h"
 

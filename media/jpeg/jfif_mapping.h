@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JfifMapping: a frame's Y'CbCr code values, in the frame's own colorimetry, to the full-range BT.601 code values
 // that JFIF defines and every JPEG decoder assumes, as 256-entry tables built once per colorimetry.
 #pragma once

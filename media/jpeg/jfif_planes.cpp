@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JfifPlanes: the table entry says where each component's samples sit; the loops below only step through them.
 // This runs on every frame of an MJPEG stream, so the steps of the table's layouts (1, 2 and 4 bytes) are compile-time
 // constants in the sample loops and every conversion is a table read.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JfifPlanes: a Y'CbCr frame's samples as the separate Y, Cb and Cr planes that libjpeg-turbo compresses from, in
 // JFIF's full-range BT.601 and with the frame's own chroma subsampling.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JpegEncoder with the TurboJPEG API: Y'CbCr frames through tjCompressFromYUVPlanes from JfifPlanes, RGB frames
 // through tjCompress2 (which converts to full-range BT.601 itself).
 #include "media/jpeg/jpeg_encoder.h"
@@ -52,12 +53,12 @@ void JpegEncoder::HandleDeleter::operator()(void *handle) const
     tjDestroy(handle);
 }
 
-Result<JpegEncoder> JpegEncoder::create()
+Result<JpegEncoder> JpegEncoder::create(JpegChroma chroma)
 {
     tjhandle handle = tjInitCompress();
     if (!handle)
         return makeError(ErrorCode::Io, std::string("JPEG encoder: libjpeg-turbo: ") + tjGetErrorStr2(nullptr));
-    return JpegEncoder(handle);
+    return JpegEncoder(handle, chroma);
 }
 
 Status JpegEncoder::encode(const FrameView &frame, Colorimetry colorimetry, int quality, std::vector<uint8_t> &out)
@@ -77,7 +78,7 @@ Status JpegEncoder::encode(const FrameView &frame, Colorimetry colorimetry, int 
 
 Status JpegEncoder::compressYcbcr(const FrameView &frame, Colorimetry colorimetry, int quality, unsigned long &size)
 {
-    const int subsampling = turboSubsampling(*frame.format);
+    int subsampling = turboSubsampling(*frame.format);
     if (subsampling < 0)
         return unsupported(frame);
     if (mapping_.colorimetry() != colorimetry)
@@ -85,10 +86,16 @@ Status JpegEncoder::compressYcbcr(const FrameView &frame, Colorimetry colorimetr
     if (auto gathered = planes_.gather(frame, mapping_); !gathered)
         return gathered;
     const unsigned char *planes[3] = {planes_.data()[0], planes_.data()[1], planes_.data()[2]};
+    std::array<int, 3> strides = planes_.strides();
+    // An odd height would need a padded luma row for the last chroma row: such frames keep their 4:2:2.
+    if (chroma_ == JpegChroma::Halved && subsampling == TJSAMP_422 && frame.height % 2 == 0) {
+        halveChroma(frame, planes, strides);
+        subsampling = TJSAMP_420;
+    }
     unsigned char *buffer = reserve(frame, subsampling);
     size = jpeg_.size();
-    if (tjCompressFromYUVPlanes(handle_.get(), planes, int(frame.width), planes_.strides().data(), int(frame.height),
-                                subsampling, &buffer, &size, quality, TJFLAG_NOREALLOC) != 0)
+    if (tjCompressFromYUVPlanes(handle_.get(), planes, int(frame.width), strides.data(), int(frame.height), subsampling,
+                                &buffer, &size, quality, TJFLAG_NOREALLOC) != 0)
         return failed(frame);
     return Ok{};
 }
@@ -104,6 +111,24 @@ Status JpegEncoder::compressRgb(const FrameView &frame, int quality, unsigned lo
                     int(frame.height), pixelFormat, &buffer, &size, TJSAMP_420, quality, TJFLAG_NOREALLOC) != 0)
         return failed(frame);
     return Ok{};
+}
+
+void JpegEncoder::halveChroma(const FrameView &frame, const unsigned char *planes[3], std::array<int, 3> &strides)
+{
+    const size_t width = (size_t(frame.width) + 1) / 2, rows = frame.height / 2;
+    for (unsigned c = 0; c < 2; ++c) {
+        std::vector<uint8_t> &out = halved_[c];
+        out.resize(width * rows); // sized once for a steady stream
+        const size_t stride = size_t(strides[c + 1]);
+        for (size_t y = 0; y < rows; ++y) {
+            const uint8_t *top = planes[c + 1] + 2 * y * stride, *bottom = top + stride;
+            uint8_t *row = out.data() + y * width;
+            for (size_t x = 0; x < width; ++x)
+                row[x] = uint8_t((unsigned(top[x]) + bottom[x] + 1) / 2);
+        }
+        planes[c + 1] = out.data();
+        strides[c + 1] = int(width);
+    }
 }
 
 // With TJFLAG_NOREALLOC libjpeg-turbo writes into our buffer and fails rather than grow it, so it must hold the

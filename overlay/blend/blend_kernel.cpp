@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The blend loops: short runs (the common case: a few pixels of a thin line) as one 16-byte vector operation with
 // a lane mask, long runs as plain loops the compiler vectorizes (16-bit lanes); built with -O3 for that reason.
 #include "overlay/blend/blend_kernel.h"

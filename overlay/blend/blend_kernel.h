@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The per-frame blend: one premultiplied "over" per touched byte, the same for every pixel format.
 #pragma once
 

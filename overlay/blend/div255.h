@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The one rounding every overlay blend uses, so that the cached layer, the native blend and the direct path agree.
 #pragma once
 

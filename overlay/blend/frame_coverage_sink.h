@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameCoverageSink: blends coverage straight into a frame in its own pixel format -- the moving-camera path, with
 // no RGBA layer and no per-frame layer conversion. Chroma-aware like NativeLayer: a subsampled chroma sample takes
 // the coverage-weighted colour of its macropixel.
@@ -80,7 +81,7 @@ private:
     void flushChroma();
     void blendLastRowGroups(unsigned chromaRow, Interval groups);
     // Groups [g0, g1) of a chroma row blended with their opacity sums, which are zeroed: NV12/NV21's few groups in
-    // one inline step (frame_coverage_sink_chroma.cpp only), any other interval by blendChromaRange.
+    // one inline step, any other interval by blendChromaRange.
     void blendChromaInterval(unsigned chromaRow, Interval interval);
     void blendChromaRange(unsigned chromaRow, Interval interval);
     // The bits by which a chroma row's opacity sums scale to four pixels' worth (2 - its luma rows).
@@ -88,8 +89,7 @@ private:
     // NV12/NV21/NV16: the first Cb/Cr pair of a chroma row.
     uint8_t *pairRow(unsigned chromaRow) const;
 
-    // The pixel loops, in 16-bit vector lanes (frame_coverage_sink_kernels.cpp; blendChroma with the chroma
-    // bookkeeping in frame_coverage_sink_chroma.cpp).
+    // The pixel loops, in 16-bit vector lanes.
     // pixels: the first byte of pixel x0's bytes; room: visible bytes of the row from there (a short run is one
     // 16-byte vector operation when they suffice); alpha is staged.
     static void blendLuma(uint8_t *pixels, const Layout &layout, const uint8_t *alpha, unsigned count, unsigned value,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-layout conversion of the RGBA layer into native bytes. All format knowledge of the overlay lives here and runs
 // once per (layer, format, colorimetry); the per-frame blend is format-blind.
 #include "overlay/blend/layer_converters.h"
@@ -100,7 +101,7 @@ private:
     bool valid_ = false;
 };
 
-void convertLumaPlane(const OverlayLayer &layer, const PixelFormatInfo &, const YcbcrEncoder &encoder, NativeLayer &out)
+void convertLumaPlane(const OverlayLayer &layer, const PixelFormatInfo &, const YcbcrEncoder &encoder, NativeRuns &out)
 {
     LumaCache luma(encoder);
     for (const Span &span : layer.spans()) {
@@ -112,7 +113,7 @@ void convertLumaPlane(const OverlayLayer &layer, const PixelFormatInfo &, const 
     }
 }
 
-void convertRgb(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &, NativeLayer &out)
+void convertRgb(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &, NativeRuns &out)
 {
     const unsigned bytes = format.planes[0].bytesPerGroup;
     for (const Span &span : layer.spans()) {
@@ -133,7 +134,7 @@ void convertRgb(const OverlayLayer &layer, const PixelFormatInfo &format, const 
 }
 
 void convertPacked422(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                      NativeLayer &out)
+                      NativeRuns &out)
 {
     Scratch scratch;
     LumaCache luma(encoder);
@@ -177,7 +178,7 @@ void forChromaIntervals(const OverlayLayer &layer, const PixelFormatInfo &format
 }
 
 void convertSemiPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                       NativeLayer &out)
+                       NativeRuns &out)
 {
     convertLumaPlane(layer, format, encoder, out);
     forChromaIntervals(layer, format, encoder,
@@ -195,7 +196,7 @@ void convertSemiPlanar(const OverlayLayer &layer, const PixelFormatInfo &format,
 }
 
 void convertPlanar(const OverlayLayer &layer, const PixelFormatInfo &format, const YcbcrEncoder &encoder,
-                   NativeLayer &out)
+                   NativeRuns &out)
 {
     convertLumaPlane(layer, format, encoder, out);
     forChromaIntervals(layer, format, encoder,

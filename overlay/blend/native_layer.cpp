@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NativeLayer: conversion at configure time, and the per-frame blend over its runs.
 #include "overlay/blend/native_layer.h"
 
@@ -48,36 +49,24 @@ Result<NativeLayer> NativeLayer::convert(const OverlayLayer &layer, const PixelF
 
 Status NativeLayer::update(const OverlayLayer &layer, Colorimetry colorimetry)
 {
-    if (layer.width() + placement_.x > width_ || layer.height() + placement_.y > height_)
+    const LayerPlacement &placement = runs_.placement();
+    if (layer.width() + placement.x > placement.frameWidth || layer.height() + placement.y > placement.frameHeight)
         return makeError(ErrorCode::InvalidArgument, "layer does not fit the frame it was converted for");
-    runs_.clear();
-    values_.clear();
-    inverseAlpha_.clear();
+    const PixelFormatInfo &format = runs_.format();
     // Covered pixels times bytes per pixel, plus whole macropixels at span ends: enough for one allocation.
-    const size_t estimate = layer.coveredPixels() * (format_->bitsPerPixel + 7) / 8 * 3 / 2 + 64 + kBlendReadAhead;
-    values_.reserve(estimate);
-    inverseAlpha_.reserve(estimate);
-    runs_.reserve(layer.spans().size() * 2);
-    layerConverter(format_->layout)(layer, *format_, YcbcrEncoder(colorimetry), *this);
-    values_.insert(values_.end(), kBlendReadAhead, 0);
-    inverseAlpha_.insert(inverseAlpha_.end(), kBlendReadAhead, 255);
+    runs_.clear(layer.coveredPixels() * (format.bitsPerPixel + 7) / 8 * 3 / 2 + 64, layer.spans().size() * 2);
+    layerConverter(format.layout)(layer, format, YcbcrEncoder(colorimetry), runs_);
+    runs_.finish();
     return Ok{};
-}
-
-void NativeLayer::beginRun(unsigned plane, unsigned row, unsigned byteOffset)
-{
-    // Converters count in layer pixels; a placed layer's runs move by whole groups and whole plane rows.
-    const unsigned rowShift = placement_.y / format_->planes[plane].verticalSubSampling;
-    const unsigned byteShift = placement_.x / format_->pixelsPerGroup * format_->planes[plane].bytesPerGroup;
-    runs_.push_back({plane, row + rowShift, byteOffset + byteShift, 0, uint32_t(values_.size())});
 }
 
 Status NativeLayer::blend(const FrameView &frame) const
 {
-    if (!frame.format || frame.format->fourcc != format_->fourcc || frame.width != width_ || frame.height != height_)
-        return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " +
-                                                         std::string(format_->name) + " " + std::to_string(width_) +
-                                                         "x" + std::to_string(height_));
+    const PixelFormatInfo &format = runs_.format();
+    const unsigned width = runs_.placement().frameWidth, height = runs_.placement().frameHeight;
+    if (!frame.format || frame.format->fourcc != format.fourcc || frame.width != width || frame.height != height)
+        return makeError(ErrorCode::InvalidArgument, "frame does not match the overlay's " + std::string(format.name) +
+                                                         " " + std::to_string(width) + "x" + std::to_string(height));
     if (Status status = checkFrame(frame); !status)
         return status;
     blendChecked(frame);
@@ -86,7 +75,7 @@ Status NativeLayer::blend(const FrameView &frame) const
 
 void NativeLayer::blendChecked(const FrameView &frame) const
 {
-    blendRuns(frame, runs_, values_.data(), inverseAlpha_.data());
+    blendRuns(frame, runs_.runs(), runs_.values(), runs_.inverseAlpha());
 }
 
 } // namespace overlayd

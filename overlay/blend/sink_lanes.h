@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 16-bit lane arithmetic the overlay's blend kernels share (FrameCoverageSink's, and blend_kernel.cpp's short
 // runs): vector types, loads, and the chroma rule on scalars and on eight lanes.
 #pragma once

@@ -1,4 +1,5 @@
-// FrameCoverageSink's pixel steps (frame_coverage_sink_kernels.cpp, built with -O3): the premultiplied "over" of
+// SPDX-License-Identifier: Apache-2.0
+// FrameCoverageSink's pixel steps (frame_coverage_sink.cpp, built with -O3): the premultiplied "over" of
 // blend_kernel.cpp with the value and 255 - alpha computed from the opacity on the fly, on one byte, 16 or 8 luma
 // lanes and one packed 4:2:2 window, and a short run's opacities loaded straight from its coverage. Header-only so
 // that the row paths inline them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The BT.601/BT.709 encoding equations (ITU-R BT.601-7 and BT.709-6), applied to premultiplied colour.
 #include "overlay/blend/ycbcr.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Premultiplied RGB -> premultiplied Y'CbCr code values for a named colorimetry.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The "over" of a coverage mask in one colour, in 8-bit premultiplied arithmetic.
 #include "overlay/raster/coverage.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Compositing a coverage mask in one colour into the premultiplied overlay layer ("over").
 #pragma once
 

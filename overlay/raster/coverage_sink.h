@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CoverageSink: where rasterized coverage goes, row by row -- an RGBA layer (cached overlays) or straight into a
 // frame in its own pixel format (a moving camera, where a cached layer would be redrawn every frame anyway).
 #pragma once

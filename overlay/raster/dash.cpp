@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Walks each polyline by arc length and keeps the pieces that fall in the pattern's "on" intervals.
 #include "overlay/raster/dash.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "overlay/raster/image_warp.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Warps an image's premultiplied RGBA pixels onto a layer (OpenCV's warpPerspective, bilinear; what falls outside the
 // image is transparent, so its edges come out anti-aliased), over what the layer holds.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OverlayLayer storage, rectangle fills and the coverage scan.
 #include "overlay/raster/overlay_layer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OverlayLayer: the rendered overlay as premultiplied RGBA plus the spans it covers, drawn once per scene change.
 #pragma once
 

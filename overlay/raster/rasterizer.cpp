@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Items become coverage rows: fills are solid rows, strokes are dashed first and then rasterized analytically
 // (StrokeRasterizer: a full-frame OpenCV mask cost more than a whole frame copy per redraw), text rows come from
 // the glyphs TextRenderer caches.
@@ -98,9 +99,27 @@ void Rasterizer::drawStroke(const StrokeItem &item, CoverageSink &sink, glm::ive
 LayerRect Rasterizer::textBox(const TextItem &item) const
 {
     const TextRenderer::Box box = text_.measure(item.text, item.sizePx, item.antialias);
-    const int x = int(std::lround(item.anchor.x));
+    // Right: the box's last column on the anchor; Centre: its middle column (the left one of two).
+    const int shift = item.align == TextAlign::Right    ? box.width - 1
+                      : item.align == TextAlign::Centre ? (box.width - 1) / 2
+                                                        : 0;
+    const int x = int(std::lround(item.anchor.x)) - shift;
     const int y = int(std::lround(item.anchor.y)) - (item.anchorAtBottom ? box.height() - 1 : 0);
     return {x, y, x + box.width, y + box.height()};
+}
+
+int textPlatePadding(double sizePx)
+{
+    return std::max(kMinTextPlatePaddingPx, int(std::lround(kTextPlatePaddingPerPx * sizePx)));
+}
+
+LayerRect Rasterizer::plateBox(const TextItem &item) const
+{
+    LayerRect box = textBox(item);
+    const int padding = textPlatePadding(item.sizePx);
+    box.x0 -= padding;
+    box.x1 += padding;
+    return box;
 }
 
 void Rasterizer::drawText(const TextItem &item, CoverageSink &sink, glm::ivec2 origin, const LayerRect &clip)
@@ -109,7 +128,7 @@ void Rasterizer::drawText(const TextItem &item, CoverageSink &sink, glm::ivec2 o
         return;
     const LayerRect box = shifted(textBox(item), origin);
     if (item.background)
-        fill(*item.background, box.intersect(clip), sink);
+        fill(*item.background, shifted(plateBox(item), origin).intersect(clip), sink);
     const cv::Mat coverage = text_.render(item.text, item.sizePx, item.antialias);
     const LayerRect r = box.intersect(clip).intersect({box.x0, box.y0, box.x0 + coverage.cols, box.y0 + coverage.rows});
     if (r.empty())

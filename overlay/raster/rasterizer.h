@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rasterizer: turns projected primitives into coverage rows for a CoverageSink -- fills as solid rows, strokes
 // through StrokeRasterizer, text from TextRenderer's cached glyph coverage.
 #pragma once
@@ -15,6 +16,11 @@
 
 namespace overlayd {
 
+// A text plate's padding on each side: 15% of the text size, at least 2 px (3 px at 20 px).
+constexpr double kTextPlatePaddingPerPx = 0.15;
+constexpr int kMinTextPlatePaddingPx = 2;
+int textPlatePadding(double sizePx);
+
 class Rasterizer
 {
 public:
@@ -29,6 +35,9 @@ public:
 
     // The box a text item occupies, in frame pixels.
     LayerRect textBox(const TextItem &item) const;
+    // Its background plate: the box with textPlatePadding(sizePx) more on the left and the right, so that the first
+    // and last letters do not touch the plate's edges (the line's height already leaves room above and below).
+    LayerRect plateBox(const TextItem &item) const;
 
 private:
     void fill(Rgba colour, const LayerRect &rect, CoverageSink &sink);

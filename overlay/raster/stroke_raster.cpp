@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StrokeRasterizer: stroked polylines -> coverage row by row, from each pixel's distance to the stroke.
 //
 // Semantics. Pixel centres are at integer coordinates (OpenCV's convention). A polyline of n points is n - 1
@@ -45,7 +46,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kFlat = 1e-9;      // a direction component this small is 0 (never divided by)
 constexpr double kSamePoint = 1e-9; // consecutive points closer than this (px) are one point
 constexpr double kSlack = 1e-7;     // pixel runs widen by this so a centre exactly on a binary edge is evaluated
-constexpr double kMaxWidth = 1e6;
 // A segment this steep (|u.y|) or steeper has safe rows: the t of its runs' pixels lies kSafeMargin px or more inside
 // its ends. The expressions' rounding is far below that: coordinates are ints of the clip plus at most the reach
 // (< 1e6), where a double's error is below 1e-9 px.
@@ -86,18 +86,8 @@ void StrokeRasterizer::rasterize(const Polylines &lines, double width, bool anti
 {
     if (!(width > 0.0) || !std::isfinite(width) || clip.empty() || !finite(origin))
         return;
-    // Wider than any frame is as wide as one: 255 * reach must stay far from the int range of the kernels.
-    const double hw = 0.5 * std::min(width, kMaxWidth);
-    if (!antialias)
-        profile_ = {255.0f, 255.0f, std::max(hw, 0.5), 0.0, true};
-    else if (width < 1.0)
-        profile_ = {float(255.0 * width), float(255.0 * width), 1.0, 0.5, false};
-    else
-        profile_ = {255.0f, 255.0f, hw + 0.5, 0.5, false};
-    profile_.negGainLanes = -profile_.gain + Floats4{};
-    profile_.halfLanes = 0.5f + Floats4{};
-    profile_.reachLanes = float(profile_.reach) + Floats4{};
-    profile_.peakLanes = float(int(profile_.peak + 0.5f)) + Floats4{};
+    painter_.setStroke(width, antialias, clip);
+    const StrokeRowPainter::Profile &profile = painter_.profile();
     clip_ = clip;
     // x0 in [clip.x0, clip.x1], x1 in [clip.x0 - 1, clip.x1 - 1], the latter negated as the sweep carries it.
     runMin_ = Doubles2{double(clip.x0), -(clip.x1 - 1.0)};
@@ -105,7 +95,7 @@ void StrokeRasterizer::rasterize(const Polylines &lines, double width, bool anti
     slacks_ = Doubles2{kSlack, kSlack}; // a member: GCC would broadcast a constant anew for every run
     // Coverage reaches at most reach + extension from the centre line's ends, so a segment cut one pixel beyond
     // that outside the clip colours no clipped pixel differently, whatever end it gets at the cut.
-    const double margin = profile_.reach + profile_.extension + 1.0;
+    const double margin = profile.reach + profile.extension + 1.0;
     minX_ = clip.x0 - margin, maxX_ = clip.x1 - 1 + margin;
     minY_ = clip.y0 - margin, maxY_ = clip.y1 - 1 + margin;
     segments_.clear();
@@ -114,9 +104,8 @@ void StrokeRasterizer::rasterize(const Polylines &lines, double width, bool anti
     if (segments_.empty())
         return;
     std::sort(segments_.begin(), segments_.end(), [](const Segment &p, const Segment &q) { return p.top < q.top; });
-    row_.resize(std::max(row_.size(), size_t(int64_t(clip.x1) - clip.x0 + kStrokeRowSlack)));
+    painter_.reserve(segments_.size());
     active_.resize(std::max(active_.size(), segments_.size() + 1)); // + 1: the idle sentinel emitRow reads
-    rowRuns_.resize(std::max(rowRuns_.size(), segments_.size()));
     sweep(sink);
 }
 
@@ -174,7 +163,7 @@ void StrokeRasterizer::addSegment(glm::dvec2 a, glm::dvec2 b, bool roundStart, b
     // A cut end lies outside what is drawn: butt is cheaper there.
     g.roundStart = roundStart && t0 <= 0.0;
     g.roundEnd = roundEnd && t1 >= 1.0;
-    const double reach = profile_.reach, ext = profile_.extension;
+    const double reach = painter_.profile().reach, ext = painter_.profile().extension;
     const Band along = band(g.u.x, g.u.y, g.roundStart ? 0.0 : -ext, g.roundEnd ? g.length : g.length + ext);
     const Band across = band(-g.u.y, g.u.x, -reach, reach);
     g.tLoX = along.loX, g.tHiX = along.hiX, g.tSlope = along.slope;
@@ -234,7 +223,7 @@ inline bool StrokeRasterizer::rowSpan(const Segment &g, double y, Span &span) co
             hi = std::min(g.tHiX + g.tSlope * dy, g.sHiX + g.sSlope * dy);
         }
         // The capsule is convex, so its row is one run: the hull of the body's and the round ends' discs' runs.
-        const double reach = profile_.reach;
+        const double reach = painter_.profile().reach;
         const auto disc = [&](glm::dvec2 c) {
             const double cy = y - c.y;
             if (std::fabs(cy) > reach)
@@ -263,7 +252,7 @@ inline bool StrokeRasterizer::rowSpan(const Segment &g, double y, Span &span) co
     // For the short kernel's step (emitRow): t at the run's ends and s at x0 as paint() computes them, the
     // rotation's two rows side by side ({t, s} = dy * {u.y, u.x} + dx * {u.x, -u.y}, dx * -u.y being -(dx * u.y)).
     span.fast = false;
-    if (!profile_.binary && span.x1 - span.x0 < 8) {
+    if (!painter_.profile().binary && span.x1 - span.x0 < 8) {
         const double dx = span.x0 - g.a.x;
         if (safe) { // between the ends (the safe rows' margin): s alone
             span.s0 = float(dy * g.u.x - dx * g.u.y);
@@ -313,7 +302,7 @@ void StrokeRasterizer::sweep(CoverageSink &sink)
         }
         active = kept;
         spans[active].x0 = kIdle;
-        emitRow(y, spans, runs, sink);
+        painter_.emitRow(y, spans, runs, sink);
     }
 }
 

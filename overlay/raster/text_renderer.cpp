@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TextRenderer: FreeType renders a glyph the first time a (size, anti-aliasing, code point) is asked for; a string
 // is then the copy of its cached glyphs into a scratch box. The placement and the composition are OpenCV's FreeType
 // module's (pen in whole pixels, bearings rounded down, each glyph blended over what is there), which the module's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Text coverage from a glyph cache: DejaVu Sans through FreeType, each glyph rendered once per size and kept as
 // coverage, so a string that changes every frame (a frame counter, a timestamp) costs a copy of its glyphs, not a
 // FreeType rendering. OpenCV's Hershey font when the font is missing.

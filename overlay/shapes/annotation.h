@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The annotation model: what a user asks to be drawn, in world units (metres) in a named scene-graph frame, or in
 // screen pixels. Plain data: config/ fills it, overlay/ projects and rasterizes it.
 #pragma once
@@ -16,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "media/rgba.h"
+#include "overlay/shapes/primitives.h"
 #include "projection/pose.h"
 #include "projection/projection.h"
 #include "projection/scene_graph.h"
@@ -89,6 +91,7 @@ struct LabelShape {
     glm::dvec2 offsetPx{0.0}; // in the viewport's origin convention
     double sizePx = 16.0;     // text height
     std::optional<Rgba> background{};
+    TextAlign align = TextAlign::Left; // which column of the box sits at the anchor + offset
 };
 
 // Where the plane through `point` with `normal` meets infinity, drawn across the view.
@@ -148,9 +151,10 @@ struct ImageShape {
 // {time:%Y-%m-%d %H:%M:%S}), {ms} (milliseconds of the wall clock), {{ and }} for literal braces.
 struct ScreenTextShape {
     std::string text;
-    glm::dvec2 position{10.0, 10.0}; // the text box's corner nearest the origin
+    glm::dvec2 position{10.0, 10.0}; // the text box's corner nearest the origin (its column per `align`)
     double sizePx = 20.0;
     std::optional<Rgba> background{};
+    TextAlign align = TextAlign::Left;
 };
 struct CrosshairShape {
     std::optional<glm::dvec2> position{}; // default: the viewport centre
@@ -161,9 +165,26 @@ struct RectShape {
     bool filled = false;
 };
 
+// The fewest and most points of a privacy mask's polygon, and the range of its pixelation block.
+inline constexpr size_t kMinMaskPoints = 3;
+inline constexpr size_t kMaxMaskPoints = 1024;
+inline constexpr unsigned kMinMaskBlockPx = 2;
+inline constexpr unsigned kMaxMaskBlockPx = 256;
+
+// A privacy mask: a polygon burned into the frame before anything else sees it (overlay/privacy_masks.h), filled
+// with a colour or pixelated in blocks. On the screen (`world` false: points are [x, y] pixels in the viewport's
+// origin, z unused) or on the world (points in the annotation's frame, projected through the live camera). Any
+// polygon, convex or not; a self-crossing one is filled by the nonzero winding rule. No layer switch hides it.
+struct MaskShape {
+    std::vector<glm::dvec3> points;
+    bool world = false;
+    std::optional<Rgba> fill{}; // nullopt: pixelate
+    unsigned blockPx = 16;
+};
+
 using Shape =
     std::variant<AxesShape, GridShape, PolylineShape, MarkersShape, BoxShape, ArcShape, LabelShape, HorizonShape,
-                 GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape, ImageShape>;
+                 GuideLinesShape, FrustumShape, ScreenTextShape, CrosshairShape, RectShape, ImageShape, MaskShape>;
 
 struct Annotation {
     std::string name;                       // for logs and error messages
@@ -171,6 +192,11 @@ struct Annotation {
     Style style{};
     Shape shape;
 };
+
+inline bool isMask(const Annotation &annotation)
+{
+    return std::holds_alternative<MaskShape>(annotation.shape);
+}
 
 // The points of a polyline or markers annotation (what [[input.path]] replaces); null for other shapes.
 inline std::vector<glm::dvec3> *worldPointsOf(Annotation &annotation)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ackermann ground tracks for the reverse-camera guide lines.
 #include "overlay/shapes/guide_lines.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reverse-camera guide lines: the ground track of a car-like vehicle for a steering angle (Ackermann geometry).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "overlay/shapes/image_quad.h"
 
 #include <glm/common.hpp>

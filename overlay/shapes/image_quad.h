@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where an image annotation lands in the frame: its four outer corners in memory-order pixels (pixel centres at
 // integer coordinates), for the renderer to warp the image's pixels into.
 #pragma once

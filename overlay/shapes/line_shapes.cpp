@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for the shapes made of 3D lines: axes, grid, polyline, box, arc.
 #include "overlay/shapes/shape_context.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -13,6 +15,25 @@ namespace {
 
 // Pixels between an axis tip and its label.
 constexpr double kAxisLabelGapPx = 4.0;
+// An axis label's size: at least this, and this many times the axis's line width.
+constexpr double kMinAxisLabelPx = 16.0;
+constexpr double kAxisLabelPerWidth = 6.0;
+// Relative luminance (sRGB, approximated by gamma 2.2) under which a label's colour counts as dark: it gets a light
+// plate (blue 0.07, red 0.21), else a dark one (green 0.72, yellow 0.93).
+constexpr double kDarkLabelLuminance = 0.4;
+constexpr Rgba kLightPlate{255, 255, 255, 200};
+constexpr Rgba kDarkPlate{0, 0, 0, 160};
+
+// A plate behind an axis label that contrasts with its colour whatever the ground is: blue "Z" on dark squares, or
+// green "Y" on grass, stays readable.
+Rgba plateFor(Rgba colour)
+{
+    const auto linear = [](uint8_t c) {
+        return std::pow(c / 255.0, 2.2);
+    };
+    const double luminance = 0.2126 * linear(colour.r) + 0.7152 * linear(colour.g) + 0.0722 * linear(colour.b);
+    return luminance < kDarkLabelLuminance ? kLightPlate : kDarkPlate;
+}
 
 } // namespace
 
@@ -26,9 +47,9 @@ void buildAxes(const ShapeContext &ctx, const AxesShape &shape)
         if (!shape.labels)
             continue;
         if (const auto pixel = ctx.point(tip)) {
-            const double size = std::max(12.0, 6.0 * ctx.style.width);
+            const double size = std::max(kMinAxisLabelPx, kAxisLabelPerWidth * ctx.style.width);
             ctx.text(kNames[axis], *pixel + ctx.camera.viewport().offsetToTopLeft(glm::dvec2(kAxisLabelGapPx)), size,
-                     shape.colours[axis], std::nullopt);
+                     shape.colours[axis], plateFor(shape.colours[axis]));
         }
     }
 }

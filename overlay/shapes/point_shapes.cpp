@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for shapes anchored at projected 3D points: markers and labels. Their size is in pixels, so only the
 // anchor goes through the projection; a clipped anchor (behind the camera) draws nothing.
 #include "overlay/shapes/shape_context.h"
@@ -60,7 +61,7 @@ void buildLabel(const ShapeContext &ctx, const LabelShape &shape)
 {
     if (const auto pixel = ctx.point(shape.anchor))
         ctx.text(shape.text, *pixel + ctx.camera.viewport().offsetToTopLeft(shape.offsetPx), shape.sizePx,
-                 ctx.style.colour, shape.background);
+                 ctx.style.colour, shape.background, shape.align);
 }
 
 } // namespace overlayd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Projected 2D primitives: what an annotation becomes after projection, in top-left (memory order) pixel coordinates.
 #pragma once
 
@@ -32,8 +33,12 @@ struct FillItem {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
+// Which column of a text's box its anchor gives: the first (Left), the middle, or the last (Right).
+enum class TextAlign { Left, Centre, Right };
+
 // Text placed by one corner of its box (ascent + descent): the top-left corner, or the bottom-left one when
-// anchorAtBottom (a bottom-left viewport origin puts text above its anchor, like everything else).
+// anchorAtBottom (a bottom-left viewport origin puts text above its anchor, like everything else); `align` moves
+// the box left of the anchor by none, half or all of its width.
 struct TextItem {
     std::string text;
     glm::dvec2 anchor{0.0};
@@ -42,6 +47,7 @@ struct TextItem {
     Rgba colour{};
     std::optional<Rgba> background{};
     bool antialias = true;
+    TextAlign align = TextAlign::Left;
 };
 
 // One annotation's primitives; drawn fills first, then strokes, then text.

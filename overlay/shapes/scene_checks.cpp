@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The rules each shape's numbers must follow; the message names the annotation and the value.
 #include "overlay/shapes/scene_checks.h"
 
@@ -82,6 +83,7 @@ struct Checker {
     void check(const CrosshairShape &s);
     void check(const RectShape &s);
     void check(const ImageShape &s);
+    void check(const MaskShape &s);
 };
 
 void Checker::check(const AxesShape &s)
@@ -190,6 +192,18 @@ void Checker::check(const ImageShape &s)
     require(s.opacity >= 0.0 && s.opacity <= 1.0, "opacity", "image opacity must be 0..1");
 }
 
+void Checker::check(const MaskShape &s)
+{
+    require(s.points.size() >= kMinMaskPoints && s.points.size() <= kMaxMaskPoints, "points",
+            "a mask needs " + std::to_string(kMinMaskPoints) + " to " + std::to_string(kMaxMaskPoints) + " points");
+    for (const glm::dvec3 &p : s.points)
+        require(finite(p) && (s.world || glm::length(glm::dvec2(p)) < kMaxPixels), "points",
+                "mask points must be finite (screen points within 100000 px)");
+    require(s.fill || (s.blockPx >= kMinMaskBlockPx && s.blockPx <= kMaxMaskBlockPx), "block_px",
+            "block_px must be " + std::to_string(kMinMaskBlockPx) + " to " + std::to_string(kMaxMaskBlockPx));
+    require(!s.fill || s.fill->a == 255, "fill", "a mask's fill colour must be opaque");
+}
+
 } // namespace
 
 std::optional<AnnotationProblem> checkAnnotation(const Annotation &annotation)
@@ -211,6 +225,7 @@ Status checkScene(const OverlayScene &scene, const SceneGraph &graph)
             std::holds_alternative<ScreenTextShape>(annotation.shape) ||
             std::holds_alternative<CrosshairShape>(annotation.shape) ||
             std::holds_alternative<RectShape>(annotation.shape) ||
+            (isMask(annotation) && !std::get<MaskShape>(annotation.shape).world) ||
             (std::holds_alternative<ImageShape>(annotation.shape) && std::get<ImageShape>(annotation.shape).position);
         if (!screen && !graph.contains(annotation.frame))
             return makeError(ErrorCode::InvalidArgument,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Configure-time validation of an overlay scene: every problem is found before anything is drawn.
 #pragma once
 

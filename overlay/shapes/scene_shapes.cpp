@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for shapes derived from scene geometry: the horizon, vehicle guide lines and another camera's frustum.
 #include "overlay/shapes/shape_context.h"
 
@@ -63,10 +64,19 @@ void buildHorizon(const ShapeContext &ctx, const HorizonShape &shape)
 void buildGuideLines(const ShapeContext &ctx, const GuideLinesShape &shape)
 {
     if (!shape.steeringKnown) {
+        // Unknown must be unmistakable on any ground (grey marks vanish on grey asphalt): each mark is drawn over a
+        // black halo kStaleHaloPx wider, so that a light colour shows on a light ground and the halo on a dark one.
+        constexpr double kStaleHaloPx = 4.0;
         GuideLinesShape straight = shape;
         straight.steeringDeg = 0.0;
-        for (const auto &mark : guideGeometry(straight).marks)
-            ctx.segment(ctx.stroke(shape.staleColour), mark[0], mark[1]);
+        const auto marks = guideGeometry(straight).marks;
+        StrokeItem &halo = ctx.stroke(Rgba{0, 0, 0, 255});
+        halo.style.width += kStaleHaloPx;
+        for (const auto &mark : marks)
+            ctx.segment(halo, mark[0], mark[1]);
+        StrokeItem &line = ctx.stroke(shape.staleColour);
+        for (const auto &mark : marks)
+            ctx.segment(line, mark[0], mark[1]);
         return;
     }
     const GuideGeometry geometry = guideGeometry(shape);

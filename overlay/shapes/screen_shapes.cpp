@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builders for screen-space items: positions given in the viewport's origin convention (the user's), converted to
 // memory order here, no projection.
 #include "overlay/shapes/shape_context.h"
@@ -11,7 +12,7 @@ namespace overlayd {
 void buildScreenText(const ShapeContext &ctx, const ScreenTextShape &shape)
 {
     ctx.text(shape.text, ctx.camera.viewport().toTopLeft(shape.position), shape.sizePx, ctx.style.colour,
-             shape.background);
+             shape.background, shape.align);
 }
 
 void buildCrosshair(const ShapeContext &ctx, const CrosshairShape &shape)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The dispatch from each shape to its builder.
 #include "overlay/shapes/shape_builder.h"
 
@@ -34,6 +35,7 @@ void buildPrimitives(const Annotation &annotation, const glm::dmat4 &worldFromFr
                    [&](const CrosshairShape &s) { buildCrosshair(ctx, s); },
                    [&](const RectShape &s) { buildRect(ctx, s); },
                    [&](const ImageShape &) {}, // pixels, not primitives: SceneRenderer warps them (image_quad.h)
+                   [&](const MaskShape &) {},  // burned into the frame, not drawn over it (privacy_masks.h)
                },
                annotation.shape);
 }

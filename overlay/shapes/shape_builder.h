@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Annotation -> 2D primitives in memory-order pixels, through the camera (clipped, curved through the lens).
 #pragma once
 

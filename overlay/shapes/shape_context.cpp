@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ShapeContext: projection of an annotation's geometry through the camera into stroke and text primitives.
 #include "overlay/shapes/shape_context.h"
 
@@ -45,11 +46,11 @@ void ShapeContext::pixels(StrokeItem &item, std::span<const glm::dvec2> points, 
 }
 
 void ShapeContext::text(const std::string &string, const glm::dvec2 &corner, double sizePx, Rgba colour,
-                        const std::optional<Rgba> &background) const
+                        const std::optional<Rgba> &background, TextAlign align) const
 {
     const Viewport &viewport = camera.viewport();
-    out.texts.push_back(
-        TextItem{string, corner, viewport.origin() == Origin::BottomLeft, sizePx, colour, background, style.antialias});
+    out.texts.push_back(TextItem{string, corner, viewport.origin() == Origin::BottomLeft, sizePx, colour, background,
+                                 style.antialias, align});
 }
 
 } // namespace overlayd

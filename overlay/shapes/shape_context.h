@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The state every shape builder shares, and the per-shape builders that turn an annotation into 2D primitives.
 #pragma once
 
@@ -30,7 +31,7 @@ struct ShapeContext {
     void pixels(StrokeItem &item, std::span<const glm::dvec2> points, bool closed) const;
     // Text whose box corner nearest the viewport's origin sits at `corner` (a memory-order pixel).
     void text(const std::string &text, const glm::dvec2 &corner, double sizePx, Rgba colour,
-              const std::optional<Rgba> &background) const;
+              const std::optional<Rgba> &background, TextAlign align = TextAlign::Left) const;
 };
 
 void buildAxes(const ShapeContext &ctx, const AxesShape &shape);

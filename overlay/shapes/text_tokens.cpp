@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Token expansion for screen text, checked once at configure time so that the frame path cannot fail.
 #include "overlay/shapes/text_tokens.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Screen-text tokens: {frame}, {fps}, {time:FORMAT}, {ms}, {slot:NAME} (text set at run time through the daemon's
 // control path), and {{ / }} for literal braces.
 #pragma once

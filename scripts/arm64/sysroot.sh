@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Makes the arm64 sysroot the cross build links against and qemu-aarch64 runs in: Debian 12's own arm64 packages
 # (the -dev packages overlayd builds with and every library they pull in), downloaded by a private apt whose state
 # lives in the cache folder and unpacked with dpkg-deb. The host's dpkg is never touched: on Debian 12 installing

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """scripts/compare-peers.sh's measuring half: the same scene over the same raw 1080p YUYV frames with overlayd,
 FFmpeg, OpenCV and GStreamer, each tool's CPU time per frame (user + system of its process, from wait4's rusage,
 all threads), with and without drawing, and the ratios to overlayd.

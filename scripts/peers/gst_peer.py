@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """The GStreamer side of scripts/compare-peers.sh: runs one gst-launch pipeline to its end in this process (so that
 every GStreamer case, drawing or not, pays the same start-up), and, when the pipeline has a cairooverlay named
 `draw`, draws the scene file's lines and text with cairo on every frame (anti-aliased), as a user of cairooverlay

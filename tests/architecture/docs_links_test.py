@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The documents stay true to the tree: every relative link in README.md and docs/*.md resolves (to a file, or to a
 heading of a Markdown file when it names an anchor), and every repository path they name in backticks
 (`daemon/pipeline.cpp`, `tests/http/`, `config/*_config.cpp`) exists. Exit status 1 lists every broken one as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // jpeg_bench: JpegEncoder compressing 1920x1080 frames from their own planes, against the RGB round trip it
 // replaces (frameToRgb, then tjCompress2 from RGB), in the same run.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // projection_bench: Camera::projectPoints against cv::projectPoints / cv::fisheye::projectPoints, same points.
 //
 // Usage: projection_bench [--points=N[,N...]] [Google Benchmark flags]; 1000 and 100000 points unless given.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-frame blend of a cached overlay against a cold memcpy of the same frame, in the same run.
 //
 // The layer is a grid of anti-aliased 2-pixel lines drawn with OpenCV onto transparent black (which yields

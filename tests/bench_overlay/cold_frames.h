@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Cold frames for the overlay benchmarks: a ring of frames larger than the caches, and the baseline every ratio is
 // measured against, a cold memcpy of one frame.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The moving-camera blend: coverage rows of a perspective ground grid (~8% of the pixels, many short runs per row)
 // blended straight into cold frames by FrameCoverageSink, against a cold memcpy of the same frame in the same run.
 // `cached` is today's dynamic path fed the same rows: composite into an RGBA layer, convert it, blend it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pipeline's own cost with no annotations: a frame lent by a source (from a ring of frames larger than the
 // caches, as a camera's buffers are cold) goes through Pipeline::process to its sinks, against a cold memcpy of one
 // frame in the same run. Issue 20's goal: at most 1.3x one frame copy.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The overlay's Speed section: a ground grid of 40 lines 2 px wide, an axes triad 3 px wide and 3 text labels seen by
 // a pitched-down camera, at 1280x720 and 1920x1080 in YUYV and NV12:
 //   static       per-frame blend of the unchanged overlay;
@@ -83,7 +84,7 @@ std::unique_ptr<OverlayRenderer> benchRenderer(benchmark::State &state, const ch
                                                unsigned height)
 {
     auto renderer =
-        OverlayRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
+        SceneRenderer::create(benchScene(), benchCamera(width, height, 0.0), streamFormat(formatName, width, height));
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());
         return nullptr;
@@ -207,7 +208,7 @@ std::unique_ptr<OverlayRenderer> reverseRenderer(benchmark::State &state, const 
                                                  unsigned height)
 {
     auto renderer =
-        OverlayRenderer::create(reverseScene(), reverseCamera(width, height), streamFormat(formatName, width, height));
+        SceneRenderer::create(reverseScene(), reverseCamera(width, height), streamFormat(formatName, width, height));
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());
         return nullptr;

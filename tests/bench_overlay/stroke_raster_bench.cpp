@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StrokeRasterizer against the OpenCV path it replaces, on the Speed scene's ground grid (40 lines 2 px wide seen by
 // the pitched-down camera of scene_bench.cpp) at 1920x1080, the camera yawing between frames:
 //   stroke_raster  coverage rows into a sink that sums them (what a frame sink would blend);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The README's demo scene (config/examples/demo.toml, read through the config loader: grid, axes, labels, a
 // timestamp and a frame counter, both on translucent boxes) blended on cold frames as the daemon does it, frame
 // number and wall clock advancing like a 30 fps camera's, timed from the 300th frame on:
@@ -17,7 +18,7 @@
 
 #include "cold_frames.h"
 #include "config/daemon_config.h"
-#include "overlay/overlay_renderer.h"
+#include "overlay/scene_renderer.h"
 
 #ifndef OVERLAYD_DEMO_CONFIG
 #error "OVERLAYD_DEMO_CONFIG must name config/examples/demo.toml"
@@ -47,7 +48,7 @@ std::unique_ptr<OverlayRenderer> demoRenderer(benchmark::State &state, const std
     format.width = width;
     format.height = height;
     format.colorimetry = config->source.colorimetry.value_or(Colorimetry{});
-    auto renderer = camera ? OverlayRenderer::create(config->scene, *camera, format)
+    auto renderer = camera ? SceneRenderer::create(config->scene, *camera, format)
                            : Result<std::unique_ptr<OverlayRenderer>>(camera.error());
     if (!renderer) {
         state.SkipWithError(renderer.error().message.c_str());

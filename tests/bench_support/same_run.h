@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What every benchmark executable of the project shares: Google Benchmark's own reporters (so that
 // --benchmark_format=json and --benchmark_out=FILE --benchmark_out_format=json give the standard output that
 // scripts/bench_table.py reads) plus each case's time per iteration, kept for the same-run ratios printed at the end.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Heap by pool from a massif output (docs/footprint.md): valgrind --tool=massif --massif-out-file=OUT overlayd run ...;
 then tests/footprint/heap_pools.py OUT. Each allocation tree's bytes at the last detailed snapshot go to the first frame that
 names a known pool (the synthetic source's frames, sink slots, layer canvases, native layers, text, ...)."""

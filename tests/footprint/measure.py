@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """What overlayd costs to start and to keep running, measured on the real binary (docs/footprint.md).
 
   tests/footprint/measure.py --overlayd build/daemon/overlayd [--runs 10] [--seconds 10]

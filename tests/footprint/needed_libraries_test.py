@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The shared libraries overlayd must not name (DT_NEEDED): each one loaded at every start, `overlayd --version`
 included, costs resident memory (docs/footprint.md) for something the daemon does without it.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """What `overlayd --version` costs in resident memory, and the floor under it (docs/footprint.md).
 
   tests/footprint/startup_rss.py --overlayd build/daemon/overlayd [--runs 5] [--by-library 25]

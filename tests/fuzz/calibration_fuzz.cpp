@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as a calibration file. Each input is read twice: named .yaml (OpenCV YAML when it
 // starts with "%YAML:", OpenCV XML with "<?xml", ROS camera_info YAML otherwise) and named .xml (always OpenCV's
 // reader). The loaders must return a calibration or an error, never crash, hang, leak or allocate what a declared

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any CAN frame (from the bus, untrusted) decoded through any layout the config accepts. The first
 // 4 bytes choose the layout (start bit, length, byte order and sign); the rest are the frame's data bytes, of any
 // length (a short frame must come back as nullopt, never as a read past its end).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as a config file. The loader must return a config or problems, never crash, hang or
 // leak (run under ASan + UBSan in CI).
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A daemon for the fuzz targets that drive the HTTP API: started once from a fixed config written to a folder of its
 // own (where the config's relative files live too), with the API it would serve.
 #pragma once
@@ -12,8 +13,8 @@
 #include <unistd.h>
 
 #include "config/daemon_config.h"
+#include "control/http_api.h"
 #include "daemon/daemon.h"
-#include "daemon/http_api.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 
@@ -35,8 +36,7 @@ struct FuzzDaemon {
                                                     overlayd::DaemonOptions{path, std::nullopt, 0});
         if (!daemon->start())
             std::abort(); // the fixed config must start: a fuzz run over a daemon that did not is no run
-        api = std::make_unique<overlayd::HttpApi>(daemon->scene(), *daemon,
-                                                  [] { return overlayd::HttpCounters{}; });
+        api = std::make_unique<overlayd::HttpApi>(daemon->scene(), *daemon, [] { return overlayd::HttpCounters{}; });
     }
     ~FuzzDaemon() { std::filesystem::remove_all(folder); }
 };

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any request through the HTTP API's handlers (HttpApi::handle: /state, /metrics, PUT
 // /api/camera|layers|text, /api/project, /api/unproject, /api/save), on a daemon started once with a small scene.
 // The input is "METHOD PATH?QUERY\nBODY", as libmicrohttpd hands the parts over after its own parsing.

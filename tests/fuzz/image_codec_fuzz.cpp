@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as an image file (an image annotation's PNG/JPEG, a replay frame): the header read,
 // then both decodings, under a small side limit so that a header claiming a huge image is refused, not allocated.
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as an [[input.path]] file (what another program writes while the daemon runs).
 #include <cstddef>
 #include <cstdint>

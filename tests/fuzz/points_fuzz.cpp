@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as a solve-pose points file.
 #include <cstddef>
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as a screen text (a config's `text = "..."`, checked by checkTokens at load) and as a
 // slot's text (what HTTP, a text file or a CAN input sets at run time), expanded for a frame as the renderer does.
 #include <chrono>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes in a watched [[input.text]] file and a watched [[input.path]] file, read by the inputs
 // as the event loop would on a change, then GET /state through HttpApi::handle: the answer must be 200 and JSON
 // that nlohmann's strict parser (which refuses invalid UTF-8) reads back. The daemon is started once with a scene

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: any bytes as a Y4M stream header line (what a replay source reads first from a file).
 #include <cstddef>
 #include <cstdint>

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """The alignment page in a real browser against a real `overlayd run`: pose edit, click-to-ground, layer toggle.
 
     tests/http/browser_test.py --overlayd build/daemon/overlayd --workdir /tmp/bt [--config config/examples/demo.toml]
@@ -10,11 +11,15 @@ Exit 0: pass; 1: a check failed (the message says which); 2: set-up failed. Boun
 """
 import argparse
 import json
+import math
 import os
+import re
 import shutil
 import signal
 import sys
+import subprocess
 import time
+import urllib.parse
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -207,6 +212,245 @@ def hide_layer(page, base):
     print(f'layer {name!r} hidden through its checkbox')
 
 
+def out_of_range_pitch(page, base):
+    """Pitch 120 typed into the field (range -90..90) is refused on the page, naming the field, and never sent: the
+    camera stays as it was (the server would take it as another pose)."""
+    before = get_state(base)['camera']
+    page.evaluate("""(() => {
+        const field = document.getElementById('pitch');
+        field.value = '120';
+        field.dispatchEvent(new Event('input', {bubbles: true}));
+        field.dispatchEvent(new Event('change', {bubbles: true}));
+    })()""")
+    said = page.wait_for("(() => { const s = document.getElementById('pose-status');"
+                         " return s.classList.contains('error') && s.textContent; })()", 5, 'the page to refuse pitch 120')
+    if 'Pitch' not in said or '120' not in said:
+        raise Failure(f'the page refused pitch 120 without naming it: {said!r}')
+    time.sleep(1.0)  # longer than the page's send delay
+    after = get_state(base)['camera']
+    if any(abs(after[key] - before[key]) > 1e-9 for key in ('yaw', 'pitch', 'roll')):
+        raise Failure(f'pitch 120 was sent anyway: {before} became {after}')
+    page.evaluate(f"""(() => {{
+        const field = document.getElementById('pitch');
+        field.value = '{before['pitch']}';
+        field.dispatchEvent(new Event('change', {{bubbles: true}}));
+    }})()""")
+    print(f'pitch 120 refused on the page: {said!r}')
+
+
+def shown_intrinsics(page, base, centred):
+    """The page shows /state's intrinsics, those the camera draws with: cx, cy in [camera.pinhole]'s convention."""
+    k = get_state(base)['camera']['intrinsics']
+    shown = page.wait_for("(() => { const cx = document.getElementById('cx').textContent;"
+                          " return cx && cx !== '–' && {cx, cy: document.getElementById('cy').textContent}; })()",
+                          5, 'the intrinsics on the page')
+    if abs(float(shown['cx']) - k['cx']) > 0.006 or abs(float(shown['cy']) - k['cy']) > 0.006:
+        raise Failure(f'the page shows cx {shown["cx"]}, cy {shown["cy"]}; the camera uses {k["cx"]}, {k["cy"]}')
+    width, height = get_state(base)['source']['width'], get_state(base)['source']['height']
+    if centred and (abs(k['cx'] - (width - 1) / 2) > 1e-6 or abs(k['cy'] - (height - 1) / 2) > 1e-6):
+        raise Failure(f'a centred camera shows cx {k["cx"]}, cy {k["cy"]}, not the image centre '
+                      f'({(width - 1) / 2}, {(height - 1) / 2}) with pixel centres at integers')
+
+
+def pose_value(base, key):
+    camera = get_state(base)['camera']
+    return camera['position']['xyz'.index(key)] if key in 'xyz' else camera[key]
+
+
+def step_by_key(page, base, element, key, press, shift, expected_step):
+    """Focuses `element` (a pose field or slider), presses an arrow key and waits for /state's `key` to move by
+    expected_step: the page's own step (0.01 m, 0.1 degree; Shift ten times that), not the element's native one."""
+    before = pose_value(base, key)
+    page.evaluate(f"document.getElementById({json.dumps(element)}).focus()")
+    page.press(press, shift=shift)
+    target = round(before + expected_step, 6)
+    poll(lambda: abs(pose_value(base, key) - target) < 1e-6, 5,
+         f'{press}{" with Shift" if shift else ""} on #{element} to move {key} {before} -> {target}')
+
+
+def fine_control(page, base):
+    """Arrow keys step fields and sliders by 0.01 m / 0.1 degree, Shift by ten times that; "Fine sliders" narrows a
+    position slider to +-1 m, so that a 20 px drag moves centimetres (it moved metres over +-20 m)."""
+    step_by_key(page, base, 'x', 'x', 'ArrowUp', True, 0.1)
+    step_by_key(page, base, 'x', 'x', 'ArrowDown', False, -0.01)
+    step_by_key(page, base, 'yaw-slider', 'yaw', 'ArrowRight', True, 1.0)
+    step_by_key(page, base, 'yaw-slider', 'yaw', 'ArrowLeft', False, -0.1)
+    page.evaluate("document.getElementById('fine').click()")
+    spans = page.evaluate("""(() => Object.fromEntries(['x', 'yaw'].map((key) => {
+        const range = document.getElementById(key + '-slider');
+        return [key, Number(range.max) - Number(range.min)]; })))()""")
+    if abs(spans['x'] - 2) > 1e-9 or spans['yaw'] > 10 + 1e-9:
+        raise Failure(f'fine sliders span {spans}, not x 2 m and yaw at most 10 degrees')
+    time.sleep(1.6)  # the page's "being edited" window after the key presses: the drag below starts from the server's x
+    before = pose_value(base, 'x')
+    box = page.evaluate("""(() => { const r = document.getElementById('x-slider');
+        r.scrollIntoView({block: 'center'}); return r.getBoundingClientRect().toJSON(); })()""")
+    thumb = box['left'] + box['width'] * (before - float(page.evaluate("document.getElementById('x-slider').min"))) / 2
+    page.drag(thumb, box['top'] + box['height'] / 2, 20)
+    poll(lambda: abs(pose_value(base, 'x') - before) > 1e-9, 5, 'the fine x slider drag to move the camera')
+    time.sleep(0.5)
+    moved = abs(pose_value(base, 'x') - before)
+    if moved > 0.5:  # 20 px of +-1 m, plus the thumb's half width if the press missed its centre
+        raise Failure(f'a 20 px drag of the fine x slider ({box["width"]} px wide) moved x by {moved} m')
+    page.evaluate("document.getElementById('fine').click()")
+    print(f'keys: 0.01 m / 0.1 degree, Shift 10x; a 20 px fine drag moved x {moved:.3f} m')
+
+
+def revert(page, base):
+    """"Revert to the config" puts back the config's pose (/state camera.configured) after edits."""
+    configured = get_state(base)['camera']['configured']
+    if abs(get_state(base)['camera']['yaw'] - configured['yaw']) < 1e-6:
+        set_yaw(page, base)
+    page.evaluate("document.getElementById('revert').click()")
+    poll(lambda: all(abs(get_state(base)['camera'][key] - configured[key]) < 1e-6 for key in ('yaw', 'pitch', 'roll'))
+         and math.dist(get_state(base)['camera']['position'], configured['position']) < 1e-6, 5,
+         f'the pose to go back to the config\'s {configured}')
+    print(f'reverted to the config\'s pose {configured}')
+
+
+def edit_lens(page, base):
+    """The lens field edits the camera's own intrinsics key: a `fov` camera's field of view along its axis (the
+    demo's vfov 50, then back), a `pinhole` camera's focal length (fx 10% longer with fy in proportion and the
+    principal point kept, then back)."""
+    label = page.wait_for("!document.getElementById('lens-form').hidden &&"
+                          " document.getElementById('lens-label').textContent", 5, 'the lens field')
+    k = get_state(base)['camera']['intrinsics']
+    if k['form'] == 'fov':
+        if 'Field of view' not in label or k['fov_axis'] not in label:
+            raise Failure(f'the fov camera\'s lens field is labelled {label!r}')
+        key = 'vfov' if k['fov_axis'] == 'vertical' else 'hfov'
+        steps = [(50.0, lambda now: abs(now[key] - 50.0) < 1e-6), (k['fov'], lambda now: abs(now[key] - k[key]) < 1e-6)]
+    else:
+        if 'Focal length' not in label:
+            raise Failure(f'the pinhole camera\'s lens field is labelled {label!r}')
+        longer = round(k['fx'] * 1.1, 3)
+        steps = [(longer, lambda now: abs(now['fx'] - longer) < 1e-6 and abs(now['fy'] / now['fx'] - k['fy'] / k['fx'])
+                  < 1e-6 and abs(now['cx'] - k['cx']) < 1e-6 and abs(now['cy'] - k['cy']) < 1e-6),
+                 (k['fx'], lambda now: abs(now['fx'] - k['fx']) < 1e-3)]
+    for value, reached in steps:
+        page.evaluate(f"""(() => {{
+            const field = document.getElementById('lens');
+            field.value = '{value}';
+            field.dispatchEvent(new Event('change', {{bubbles: true}}));
+        }})()""")
+        poll(lambda: reached(get_state(base)['camera']['intrinsics']), 5, f'the lens field\'s {value} to apply')
+    print(f'lens field {label!r}: {steps[0][0]} applied, then {steps[1][0]}')
+
+
+GROUND_MARKS = [(-2.0, 0.0, 0.0), (2.0, 0.0, 0.0), (-3.0, 6.0, 0.0), (3.0, 6.0, 0.0), (0.0, 12.0, 0.0),
+                (1.0, 3.0, 0.0)]
+
+
+def click_pixel_actual_size(page, u, v):
+    """In the 1:1 view: scrolls the frame to image pixel (u, v) and clicks that pixel's centre."""
+    box = page.evaluate(f"""(() => {{
+        const frame = document.getElementById('frame');
+        frame.scrollIntoView({{block: 'start'}});
+        frame.scrollLeft = {u} - frame.clientWidth / 2;
+        frame.scrollTop = {v} - frame.clientHeight / 2;
+        return document.getElementById('stream').getBoundingClientRect().toJSON(); }})()""")
+    page.click(box['left'] + u + 0.5, box['top'] + v + 0.5)
+
+
+def collect_points(page, base, overlayd, config, workdir):
+    """The 1:1 view shows one image pixel per CSS pixel, so clicks land on the pixels meant; the clicked points,
+    given their world coordinates, download as a CSV that `overlayd solve-pose` reads and solves back to the live
+    pose."""
+    page.evaluate("document.getElementById('points-clear').click()")
+    page.evaluate("document.getElementById('zoom').click()")
+    width = page.evaluate("document.getElementById('stream').getBoundingClientRect().width")
+    natural = page.evaluate("document.getElementById('stream').naturalWidth")
+    if abs(width - natural) > 0.5:
+        raise Failure(f'the 1:1 view shows the {natural} px image {width} px wide')
+    query = ';'.join(','.join(str(c) for c in p) for p in GROUND_MARKS)
+    state = get_state(base)['source']
+    projected = [p for p in json.loads(http(base, '/api/project?points=' + query)[0])
+                 if p['visible'] and 0 <= p['pixel'][0] <= state['width'] - 1 and 0 <= p['pixel'][1] <= state['height'] - 1]
+    if len(projected) < 4:
+        raise Failure(f'only {len(projected)} of the ground marks {GROUND_MARKS} are in the frame: too few to solve')
+    for n, point in enumerate(projected, 1):
+        u, v = (round(c) for c in point['pixel'])
+        click_pixel_actual_size(page, u, v)
+        shown = page.wait_for(f"document.querySelectorAll('#click-results li').length === {n} &&"
+                              " document.querySelector('#click-results li').dataset.pixel", 5, f'click {n}')
+        got = [float(c) for c in shown.split(',')]
+        if math.dist(got, (u, v)) > 0.05:
+            raise Failure(f'in the 1:1 view a click on pixel ({u}, {v}) gave {got}')
+        world = point['world']
+        page.evaluate(f"""(() => {{
+            const inputs = document.querySelectorAll('#click-results li:first-child input[data-axis]');
+            {json.dumps(world)}.forEach((value, i) => {{
+                inputs[i].value = String(value);
+                inputs[i].dispatchEvent(new Event('input', {{bubbles: true}}));
+            }}); }})()""")
+    page.evaluate("document.getElementById('zoom').click()")
+    href = page.evaluate("document.getElementById('points-download').href")
+    prefix = 'data:text/csv;charset=utf-8,'
+    if not href.startswith(prefix):
+        raise Failure(f'the points link is {href[:80]!r}, not a CSV')
+    csv_text = urllib.parse.unquote(href[len(prefix):])
+    points = os.path.join(workdir, 'points.csv')
+    open(points, 'w').write(csv_text)
+    if csv_text.count('\n') != len(projected) + 1:
+        raise Failure(f'the points file has not a header and {len(projected)} rows:\n{csv_text}')
+    solved = subprocess.run([overlayd, 'solve-pose', '--config', config, '--points', points],
+                            capture_output=True, text=True, timeout=60)
+    if solved.returncode != 0:
+        raise Failure(f'solve-pose refused the page\'s points ({solved.returncode}): {solved.stderr}\n{csv_text}')
+    found = re.search(r'# position = \[([^\]]*)\]\s*# yaw = (\S+)\s*# pitch = (\S+)', solved.stdout)
+    if not found:
+        raise Failure(f'no pose in solve-pose\'s output:\n{solved.stdout}')
+    position = [float(c) for c in found.group(1).split(',')]
+    camera = get_state(base)['camera']
+    if math.dist(position, camera['position']) > 0.05 or abs(float(found.group(2)) - camera['yaw']) > 0.2 or \
+            abs(float(found.group(3)) - camera['pitch']) > 0.2:
+        raise Failure(f'solve-pose on the page\'s points gave {found.group(0)!r}; the camera is {camera}')
+    print(f'{len(projected)} points clicked in the 1:1 view solve back to the pose: {found.group(0)!r}')
+
+
+def token_flow(args, workdir, cleanup, browser):
+    """With control = "token": a click on the image gives its ground point without the token (it changes nothing);
+    a pose edit asks for the token over the page, moving none of the controls, and the form goes once it worked."""
+    port = daemon_fixture.free_port()
+    token_file = os.path.join(workdir, 'token')
+    open(token_file, 'w').write('browser-token\n')
+    path = os.path.join(workdir, 'overlayd-token.toml')
+    with open(path, 'w') as file:
+        file.write(daemon_fixture.config_without_sinks(args.config) +
+                   daemon_fixture.http_section(port, control='token', token_file=token_file))
+    daemon = daemon_fixture.Daemon(args.overlayd, path, workdir, port, cwd=workdir)
+    cleanup.append(daemon.stop)
+    daemon.wait_ready(20)
+    page = Page(browser.browser_url(20), timeout=10)
+    cleanup.append(page.close)
+    open_page(page, daemon.base)
+    page.evaluate("sessionStorage.clear()")
+    click_centre(page, daemon.base)
+    if not page.evaluate("document.getElementById('token-form').hidden"):
+        raise Failure('a click on the image asked for the control token')
+    top = page.evaluate("document.getElementById('pose-title').getBoundingClientRect().top")
+    set_field = """(() => {
+        const field = document.getElementById('yaw');
+        field.value = '95';
+        field.dispatchEvent(new Event('input', {bubbles: true}));
+        field.dispatchEvent(new Event('change', {bubbles: true}));
+    })()"""
+    page.evaluate(set_field)
+    page.wait_for("!document.getElementById('token-form').hidden", 5, 'the page to ask for the token')
+    moved = page.evaluate("document.getElementById('pose-title').getBoundingClientRect().top") - top
+    if abs(moved) > 1:
+        raise Failure(f'the token form pushed the pose controls {moved} px down')
+    page.evaluate("""(() => {
+        document.getElementById('token').value = 'browser-token';
+        document.getElementById('token-form').requestSubmit();
+    })()""")
+    poll(lambda: abs(get_state(daemon.base)['camera']['yaw'] - 95) < 1e-6, 5, 'the pose edit sent with the token')
+    page.wait_for("document.getElementById('token-form').hidden", 5, 'the token form to go once the token worked')
+    if page.problems:
+        raise Failure('the page with control = "token" ran into errors:\n' + '\n'.join(map(str, page.problems)))
+    print('token: a click needs none; an edit asked for it over the page, and the form went once it worked')
+
+
 def check_narrow(page, workdir):
     page.call('Emulation.setDeviceMetricsOverride', width=360, height=800, deviceScaleFactor=1, mobile=True)
     overflow = page.wait_for('(() => { void document.body.offsetWidth;'
@@ -230,7 +474,16 @@ def run(args, workdir, cleanup):
     change_yaw(page, base, workdir)
     click_centre(page, base)
     hide_layer(page, base)
+    out_of_range_pitch(page, base)
+    fine_control(page, base)
+    revert(page, base)
+    edit_lens(page, base)
+    collect_points(page, base, args.overlayd, os.path.join(workdir, 'overlayd.toml'), workdir)
+    shown_intrinsics(page, base, args.config == os.path.abspath(daemon_fixture.DEMO))
     check_narrow(page, workdir)
+    if page.problems:
+        raise Failure('the page ran into errors:\n' + '\n'.join(map(str, page.problems)))
+    token_flow(args, workdir, cleanup, browser)
     if page.problems:
         raise Failure('the page ran into errors:\n' + '\n'.join(map(str, page.problems)))
     if daemon.process.poll() is not None:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """A real `overlayd run` with an [http] section, for the HTTP tier's tests: the demo scene (config/examples/demo.toml
 without its file sinks), a free loopback port, helpers to wait for it and stop it, and a JPEG decoder for snapshots."""
 import json

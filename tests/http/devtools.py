@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Headless Chromium driven over the DevTools protocol: just enough for browser_test.py (evaluate, click, screenshot).
 
 Uses Debian's python3-websocket; a pyenv or venv interpreter does not see Debian's dist-packages, so fall back to it.
@@ -71,18 +72,23 @@ class Chromium:
 
 
 class Page:
-    """One page target, reached through the browser's endpoint with a flat session."""
+    """One page target, reached through the browser's endpoint with a flat session: the browser's first page, or a
+    new tab opened at `url`."""
 
-    def __init__(self, browser_ws_url, timeout):
+    def __init__(self, browser_ws_url, timeout, url=None):
         self.ws = websocket.create_connection(browser_ws_url, timeout=timeout, suppress_origin=True)
         self.next_id = 0
         self.session = None
         self.problems = []  # uncaught exceptions and security errors (a CSP refusal, say) the page ran into
-        targets = self.call('Target.getTargets')['targetInfos']
-        pages = [t for t in targets if t['type'] == 'page']
-        if not pages:
-            raise BrowserError(f'no page target among {targets}')
-        self.session = self.call('Target.attachToTarget', targetId=pages[0]['targetId'], flatten=True)['sessionId']
+        if url is None:
+            targets = self.call('Target.getTargets')['targetInfos']
+            pages = [t for t in targets if t['type'] == 'page']
+            if not pages:
+                raise BrowserError(f'no page target among {targets}')
+            self.target = pages[0]['targetId']
+        else:
+            self.target = self.call('Target.createTarget', url=url)['targetId']
+        self.session = self.call('Target.attachToTarget', targetId=self.target, flatten=True)['sessionId']
         self.call('Page.enable')
         self.call('Runtime.enable')
         self.call('Log.enable')
@@ -138,11 +144,33 @@ class Page:
             self.call('Input.dispatchMouseEvent', type=kind, x=x, y=y, button='left',
                       clickCount=0 if kind == 'mouseMoved' else 1)
 
+    def press(self, key, shift=False):
+        """A key pressed and released on the focused element, as a keyboard sends it (arrow keys: 'ArrowUp')."""
+        codes = {'ArrowLeft': 37, 'ArrowUp': 38, 'ArrowRight': 39, 'ArrowDown': 40}
+        for kind in ('rawKeyDown', 'keyUp'):
+            self.call('Input.dispatchKeyEvent', type=kind, key=key, code=key, modifiers=8 if shift else 0,
+                      windowsVirtualKeyCode=codes.get(key, 0))
+
+    def drag(self, x, y, dx):
+        """A left-button drag from (x, y) by dx CSS pixels across, in small moves as a hand makes them."""
+        self.call('Input.dispatchMouseEvent', type='mouseMoved', x=x, y=y)
+        self.call('Input.dispatchMouseEvent', type='mousePressed', x=x, y=y, button='left', clickCount=1)
+        for step in range(1, 11):
+            self.call('Input.dispatchMouseEvent', type='mouseMoved', x=x + dx * step / 10, y=y, button='left',
+                      buttons=1)
+        self.call('Input.dispatchMouseEvent', type='mouseReleased', x=x + dx, y=y, button='left', clickCount=1)
+
     def screenshot(self, path):
         png = base64.b64decode(self.call('Page.captureScreenshot', format='png')['data'])
         with open(path, 'wb') as file:
             file.write(png)
         return png
+
+    def close_tab(self):
+        """Closes the tab as a user does (its pagehide runs), then the connection."""
+        self.session = None
+        self.call('Target.closeTarget', targetId=self.target)
+        self.close()
 
     def close(self):
         try:

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The HTTP API through the real path: `overlayd run` with [http] on loopback, every endpoint and every refusal
 checked with curl (a real client), the stream read by ffprobe, the overlay in snapshots found where /api/project
 says, a pose change seen in the next snapshot, save then restart, and a SIGHUP reload of [http].
@@ -115,7 +116,7 @@ def check_overlay_where_projected(base, workdir, tag):
 
 # Numbers no config file may hold (a denormal, the largest doubles) and what a JSON parser makes of overflow.
 EXTREMES = (5e-324, -5e-324, 1e-300, 1e308, -1e308, "1e400")
-HOME = {"position": [0.0, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0, "fov": 60.0, "near": 0.1,
+HOME = {"position": [1.5, -6.0, 3.0], "yaw": 90.0, "pitch": 25.0, "roll": 0.0, "fov": 60.0, "near": 0.1,
         "far": 200.0, "distortion": {"model": "none"}}
 
 
@@ -209,6 +210,10 @@ def run(overlayd, workdir):
         state = daemon.wait_ready()
         check(state["source"]["width"] == WIDTH and state["source"]["format"] == "YUYV", f"/state source: {state}")
         check([layer["name"] for layer in state["layers"]] == ["grid", "axes", "labels", "hud"], f"layers: {state}")
+        # The version /state reports is the one the binary prints (the package's too), from git or VERSION.
+        printed = subprocess.run([overlayd, "--version"], capture_output=True, text=True).stdout.split()
+        check(printed[:1] == ["overlayd"] and state.get("version") == printed[-1] and state["version"][0].isdigit(),
+              f"/state version {state.get('version')!r} against --version {printed}")
         check(abs(state["camera"]["yaw"] - 90.0) < 1e-9 and abs(state["camera"]["pitch"] - 25.0) < 1e-9,
               f"/state camera in yaw/pitch/roll: {state['camera']}")
 

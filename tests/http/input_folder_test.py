@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """An [[input.text]] whose folder is removed and made again while `overlayd run` streams, as systemd does to a
 writer service's RuntimeDirectory= on every restart: three restarts in a row, the file written with `echo >` and
 once replaced by rename. Each time /state must show the new text, and while the folder is gone the input's health

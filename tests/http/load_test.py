@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd's HTTP server under load: 100 MJPEG viewers, 10 stalled ones, then a storm of 2000 short connections.
 
     tests/http/load_test.py --overlayd build/daemon/overlayd --workdir /tmp/lt [--seconds 60]

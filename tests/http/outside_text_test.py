@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Text from outside cannot kill the daemon: watched text and path files holding bytes that are not UTF-8 (invalid
 sequences, binary garbage, surrogates, a refused line whose quote would cut a multi-byte character in half), and API
 requests carrying such bytes, while `overlayd run` serves. After each, the daemon lives, /state is valid JSON (decoded

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """[[input.path]] through the real path: a polyline's points fed by a file while `overlayd run` streams. Written,
 replaced by rename, made malformed (by rename and by `printf > file`) and deleted; after each, /state reports the
 points (or the refusal, naming file:line) and the next snapshot shows the magenta path where `overlayd project` (the

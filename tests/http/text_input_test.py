@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """[[input.text]] through the real path: a text slot fed by a file, changed with `echo > file` (and by rename, and by
 deleting it) while `overlayd run` streams; /state reports the value and the next snapshots show the new text in the
 text's box and nowhere else.

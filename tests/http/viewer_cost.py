@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """What watching costs: the daemon's CPU seconds per second at 1280x720 YUYV 30 fps (the demo scene, overlay on)
 with 0, 1 and 10 /stream viewers, measured from /proc/PID/stat over the same interval for each. A measurement for
 docs/speed.md, not a pass/fail test (these machines are noisy; compare the rows of one run, not runs).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The OpenCV side of scripts/compare-peers.sh: what a user who picks OpenCV writes to draw the comparison scene on
 // raw YUYV frames, as a program of its own so that its CPU time is measured like the other tools' (getrusage of
 // the child, by the script). Frames are read from a file and written to another, back to back, as the script and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The checkerboard-scene alignment check. The synthetic source ray-traces the ground's 1 m checkers through the
 // configured (distorting) camera pixel by pixel; the overlay projects a 1 m grid through the same camera with
 // clipping, curve subdivision and rasterization. Neither trusts the other: the grid's pixels (the difference between

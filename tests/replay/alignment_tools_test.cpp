@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd solve-pose` and `overlayd unproject` through the real binary, against OpenCV as the independent
 // reference: pixels made by cv::projectPoints from the example's calibration (plumb_bob lens) and extrinsics must
 // give those extrinsics back; unprojected pixels must meet the ground where the world points are.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Broken configs (tests/data/config/bad/) and a truncated Y4M: each run of the real binary exits non-zero with a
 // message naming the problem, and nothing crashes (CI runs this under AddressSanitizer/UBSan too).
 #include <ostream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd run ... | ffplay -`: when the reader of the Y4M stream on stdout goes away, the daemon is not killed.
 #include <sys/wait.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // calibration_crop = [x, y, width, height] through the real binary: `overlayd project` of a 1280x720 stream made
 // from an off-centre region of a 1600x1200 calibration lands where cv::projectPoints puts the points with the
 // camera matrix transformed by hand; check-config refuses a region of another aspect at its file:line:column.

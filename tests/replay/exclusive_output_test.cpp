@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Exclusive outputs (issue 19, class 5): `check-config` and `run` refuse two sinks on one file or on stdout at the
 // second's file:line:key, and a second daemon on the first's output file is refused at start naming its pid.
 #include <csignal>

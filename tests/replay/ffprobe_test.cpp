@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ffprobe (Debian's ffmpeg, an independent Y4M reader) reads our Y4M output and agrees on size, pixel format and
 // frame count.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Files the daemon reads (issue 19, classes 2 and 5), through the real binary: a config or calibration path that is
 // a directory, a FIFO with no writer or a device, a config over the size limit, a calibration nested deeper than
 // the parsers can take, a declared matrix far larger than its field, a ROS distortion that is not a list, a

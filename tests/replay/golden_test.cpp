@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Golden frames: `overlayd render` over scenes covering each kind of pixel format, both viewport origins,
 // perspective and orthographic cameras, with and without lens distortion. The raw output is converted to BGR with
 // OpenCV and compared with tests/data/replay/golden/<scene>.png.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The replay tests' harness: processes, scratch folders and OpenCV's colour conversions.
 #include "harness.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The replay tests' harness: runs the real `overlayd` binary in a scratch folder and reads what it wrote.
 #pragma once
 

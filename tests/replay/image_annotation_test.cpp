@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image annotations through the real binary: config/examples/images.toml (with an asymmetric picture in place of its
 // logo) rendered in RGB24, against a render of the same scene without its images and an independent composition made
 // here with OpenCV (the picture blended by the "over" rule in doubles; the ground sign warped by cv::warpPerspective

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The log level: the config's daemon.log_level applies to `render` too, and --log-level overrides it.
 #include <fstream>
 #include <sstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Numbers given on the command line and in points files, through the real binary: each one finite and in the
 // config file's range (kAnyMagnitude), or refused naming the argument (exit 2) or the file and line; a plane
 // written large or small is the same plane.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // solve-pose's points file as JSON, through the real binary: the same points give the same pose as the CSV form,
 // `project --json`'s output goes straight back in, and bad files are refused at file:line with the element named.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Starting and polling a long-running `overlayd run`.
 #include "process.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A long-running `overlayd run` for the replay tests: started in a scratch folder with its stderr in a file, and
 // polled (not timed) until what it writes shows a condition.
 #pragma once

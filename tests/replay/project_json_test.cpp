@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `overlayd project --json` against points computed by hand. The camera (tests/data/replay/project_*.toml) sits at
 // the origin looking along +X with Z up, vertical fov 90 degrees on 320x240: f = 120 / tan(45 deg) = 120 px on
 // both axes, principal point (159.5, 119.5). A point at distance d ahead, y to the left and z up lands on

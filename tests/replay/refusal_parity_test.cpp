@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // check-config promises what run does: every config of tests/data/config/refusals/ is refused by check-config,
 // render and run alike, through the real binary, with the same "file:line:column: key: reason" line and exit
 // status 2; every config of tests/data/config/accepted/ is accepted by all three. A row is a file: its first line
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 struct Row {
     std::string path;    // the config, absolute
     std::string refusal; // "LINE:COLUMN: KEY: WORDS" from its first line; empty: it must be accepted
-    std::string needs;   // the optional part it needs ("http", "libcamera", "gpiod"), from its second line
+    std::string needs;   // the optional part it needs ("http", "libcamera", "gpiod", "stream"), from its second line
 };
 
 // Whether this build has the optional part a row needs (OVERLAYD_FEATURES: " http libcamera gpiod ", from CMake).

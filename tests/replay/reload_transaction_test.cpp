@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A reload is a transaction (issue 19): a SIGHUP whose new config cannot be carried out whole (a source that cannot
 // be opened, a sink that cannot be created, both at once with a new camera and overlay) is refused, the log says
 // why, and the old config keeps streaming with its old overlay; a good reload afterwards still switches.

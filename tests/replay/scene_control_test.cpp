@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The running scene changes through SceneControl: `overlayd run` on one pose, the config swapped for another pose and
 // reloaded with SIGHUP, and the marker on the world origin must sit where `overlayd project` puts it for each pose:
 // before the reload in the first frames, after it in the last ones. The projection and the rasterizer are checked

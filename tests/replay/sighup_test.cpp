@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SIGHUP with `overlayd run`: a bad config is refused with every problem at file:line and the old one keeps
 // running; a good one switches sinks without a restart; SIGTERM then ends cleanly with complete files. Run with
 // JOURNAL_STREAM set, so the log lines must carry syslog priority prefixes.

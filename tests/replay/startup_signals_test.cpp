@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SIGTERM and SIGINT while `overlayd run` starts (issue 19): at any moment, and whatever start-up is blocked in, the
 // daemon ends with status 0 within a second — never by the signal's default action, never after start-up finishes.
 // The limit is generous on purpose: the tests poll the process and only fail on a daemon that does not stop.

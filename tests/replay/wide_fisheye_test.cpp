@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A 220-degree fisheye through the real binary: `overlayd project` puts points behind the camera plane where the
 // OpenCV fisheye model, written out here on the angle (cv::fisheye cannot take z <= 0), puts them, and
 // `overlayd unproject` turns those pixels back into the rays towards the points.

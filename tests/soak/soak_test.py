@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """overlayd over a long run: reloads good and bad, a sink reader that leaves and comes back, RSS, fds and threads flat.
 
     tests/soak/soak_test.py --overlayd build/daemon/overlayd --workdir /tmp/soak [--seconds 180]
@@ -64,7 +65,7 @@ def demo_scene():
 def config_text(port, fifo, camera_y, source=None, extra_sink=None):
     source = source or ('[source]\nkind = "synthetic"\nformat = "YUYV"\nwidth = 640\nheight = 360\nfps = 30.0\n'
                         '[source.synthetic]\npattern = "checkerboard"\n')
-    scene = demo_scene().replace("position = [0.0, -6.0, 3.0]", f"position = [0.0, {camera_y}, 3.0]", 1)
+    scene = demo_scene().replace("position = [1.5, -6.0, 3.0]", f"position = [1.5, {camera_y}, 3.0]", 1)
     sinks = f'[[sink]]\nkind = "y4m"\npath = "{fifo}"\n'
     if extra_sink:
         sinks += f'[[sink]]\nkind = "y4m"\npath = "{extra_sink}"\n'

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The real overlayd binary talking to a notify socket owned by the test, as systemd would see it: READY after the
 // first frame, WATCHDOG only while frames flow, RELOADING/READY around SIGHUP, STOPPING on SIGTERM.
 #include <csignal>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DaemonProcess: posix_spawn with an explicit environment, and a polling wait with a deadline.
 #include "daemon_process.h"
 

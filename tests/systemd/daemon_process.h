@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // DaemonProcess: the real overlayd binary run as systemd would run it (own environment, signals, exit status).
 #pragma once
 

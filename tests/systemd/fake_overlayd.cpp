@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // fake_overlayd: a stand-in daemon that checks the end-to-end tests themselves (run them with
 // OVERLAYD_TEST_DAEMON=<this>); FAKE_OVERLAYD_BUG=<name> makes it break one rule, and the tests must then fail.
 #include <csignal>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NotifySocket: receives sd_notify datagrams with their sender credentials, as systemd's manager does.
 #include "notify_socket.h"
 

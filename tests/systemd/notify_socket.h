@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NotifySocket: the test's stand-in for systemd's end of NOTIFY_SOCKET (a bound AF_UNIX datagram socket).
 #pragma once
 

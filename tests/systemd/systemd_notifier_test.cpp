@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SystemdNotifier against a real AF_UNIX datagram socket: the exact sd_notify messages, and silence without one.
 #include "daemon/systemd_notify.h"
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The real-driver test tier: boots Debian's current kernel in QEMU with vivid and runs the overlayd binary against
 # it (tests/vm/guest/checks/). Prints one PASS/FAIL line per check; exits 0 if all pass, 1 if any fails, 2 on a
 # harness error, 77 when skipped (OVERLAYD_SKIP_VM=1). See docs/vm-tests.md.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Instructions per iteration of a Google Benchmark case, counted by QEMU (count_plugin.c) rather than timed: the same
 # measure for the arm64 build under qemu-aarch64 and the x86-64 build under qemu-x86_64 (-cpu max: the AVX2 loops;
 # TCG has no AVX-512), repeatable whatever else the machine does.

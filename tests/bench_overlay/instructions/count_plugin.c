@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 /* A QEMU TCG plugin that counts the guest instructions a process executes and prints the total at exit:
  * "instructions: N" on stderr. For instruction counts of the same benchmark on arm64 (qemu-aarch64) and x86-64
  * (qemu-x86_64), measured the same way (scripts: count.sh beside this file).

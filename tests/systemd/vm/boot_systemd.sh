@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: Apache-2.0
 # Opt-in (not in CTest): boots Debian 12 with systemd as PID 1 in QEMU (TCG) and proves that the installed
 # overlayd@.service reaches active (running) under its hardening and that the watchdog restarts a stalled instance.
 # Needs root, mmdebstrap, cpio, qemu-system-x86 and the guest kernel cached by tests/vm/run.sh.
@@ -13,14 +14,13 @@ vmlinux=$(find "$cache" -mindepth 2 -maxdepth 2 -name vmlinux 2>/dev/null | head
 mkdir -p "$work" && cd "$work"
 
 # The rootfs: minbase + systemd + the daemon's runtime libraries, cached (about 5 min and 600 MB the first time).
+source "$here/guest.sh"
+# libcamera (0.3, from bookworm-backports: guest.sh), libgpiod and libmicrohttpd are linked since the binary gained
+# those parts; procps holds the /bin/kill that ExecReload= runs (without it a reload fails with 203/EXEC and the
+# daemon never sees SIGHUP).
 packages=systemd-sysv,libopencv-imgcodecs406,libopencv-contrib406,libopencv-imgproc406,libtomlplusplus3
-packages+=,libturbojpeg0,libyaml-cpp0.7,libtinyxml2-9
-rootfs=$cache/systemd-rootfs-$(echo "$packages" | md5sum | cut -c1-8).tar
-if [ ! -s "$rootfs" ]; then
-    mmdebstrap --variant=minbase --include="$packages" --dpkgopt='path-exclude=/usr/share/doc/*' \
-        --dpkgopt='path-exclude=/usr/share/man/*' --dpkgopt='path-exclude=/usr/share/locale/*' \
-        bookworm "$rootfs.tmp" && mv "$rootfs.tmp" "$rootfs"
-fi
+packages+=,libturbojpeg0,libyaml-cpp0.7,libtinyxml2-9,libcamera0.3,libgpiod2,libmicrohttpd12,procps
+rootfs=$(guestRootfs "$packages" systemd-rootfs '/usr/share/doc/*' '/usr/share/man/*' '/usr/share/locale/*')
 
 # What `cmake --install` would put there, plus two configs and the check unit.
 rm -rf root && mkdir root && tar -C root -xf "$rootfs"
@@ -37,28 +37,9 @@ for name in demo stall; do
     printf '[source.synthetic]\npattern = "colour-bars"\nstall_after_frames = %s\n[[sink]]\nkind = "null"\n' \
         $stall >> root/etc/overlayd/$name.toml
 done
-install -m 755 "$here/vmcheck.sh" root/usr/local/bin/vmcheck.sh
-printf '[Unit]\nAfter=multi-user.target\n[Service]\nType=oneshot\nExecStart=/usr/local/bin/vmcheck.sh\n%s\n' \
-    'StandardOutput=journal+console' > root/etc/systemd/system/vmcheck.service
-mkdir -p root/etc/systemd/system/multi-user.target.wants
-ln -sf ../vmcheck.service root/etc/systemd/system/multi-user.target.wants/vmcheck.service
-ln -sf /lib/systemd/systemd root/init # the whole rootfs is the initramfs: no block or 9p modules needed
-(cd root && find . | cpio -o -H newc --quiet) > root.cpio
+guestImage "$here/vmcheck.sh"
+guestBoot "$vmlinux"
 
-timeout 600 qemu-system-x86_64 -accel tcg,thread=multi -cpu max -m 2048 -smp 2 -nographic -nic none -no-reboot \
-    -kernel "$vmlinux" -initrd root.cpio -append "console=ttyS0 panic=-1 loglevel=3 systemd.show_status=0" \
-    > guest.log 2>&1 < /dev/null || true
-grep -a -o 'VMCHECK.*' guest.log || true
-
-# systemctl show prints properties in its own order, so each one is looked for on its own.
-fail=0
-expect() { # expect WHAT PATTERN...: every pattern must occur on one VMCHECK line starting with WHAT
-    local what=$1 line && shift
-    line=$(grep -a -o "VMCHECK $what.*" guest.log | head -1)
-    for pattern in "$@"; do
-        echo "$line" | grep -q -- "$pattern" || { echo "FAIL: $what: no '$pattern' in '$line'"; fail=1; }
-    done
-}
 expect user '(video)' '(gpio)'
 expect demo: ActiveState=active SubState=running StatusText=streaming
 expect stall: 'NRestarts=[1-9]'

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Guest side of boot_systemd.sh, run by vmcheck.service once multi-user.target is up: overlayd@demo reaches active
 # (running), a reload keeps it active, and a stalled instance is killed by the watchdog and restarted.
 say() { echo "VMCHECK $*"; }

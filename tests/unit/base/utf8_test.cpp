@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The UTF-8 helpers against two independent references: hand-picked vectors from Markus Kuhn's UTF-8 decoder
 // stress test with the valid prefix Python's strict decoder reports (bytes.decode("utf-8"): UnicodeDecodeError.start),
 // and glibc's mbrtowc in C.UTF-8 over every sequence of up to three bytes and every four-byte lead.

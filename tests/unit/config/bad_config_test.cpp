@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Broken configs under tests/data/config/bad/: each gives the expected problem at the expected line, and a file
 // with many problems gets all of them in one pass.
 #include <string>

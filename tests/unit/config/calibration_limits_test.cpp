@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a calibration file may not be: not a regular file, too large, nested too deep, a matrix declared larger (or
 // with more channels) than its field needs, a ROS matrix whose data is not a list or disagrees with rows x cols, a
 // key given twice. Each refusal names the file and, where the file is at fault, the line.

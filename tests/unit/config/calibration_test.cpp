@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Calibration import: OpenCV YAML and XML written here with cv::FileStorage, ROS camera_info YAML written by hand;
 // `calibration = "path"` in [camera] with TOML values overriding the file; missing and malformed files.
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The config file itself: only a regular file of at most kMaxConfigFileBytes is read (a directory, a device or a
 // FIFO is refused with what it is, without blocking), and no TOML nests deeper than kMaxNestingDepth (toml++
 // overflows the stack on tens of thousands of dotted key parts). Also the depth scan itself, on what real files

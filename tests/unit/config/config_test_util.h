@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers shared by the config tests: loading TOML text, the problems as text, OpenCV's reference projection.
 #pragma once
 
@@ -11,6 +12,19 @@
 #include "config/daemon_config.h"
 
 namespace overlayd::test {
+
+// A synthetic source and a camera: the least a config needs, for tests of the other sections.
+inline const std::string kMinimalConfig = R"(
+[source]
+kind = "synthetic"
+width = 640
+height = 480
+[camera]
+position = [0.0, -6.0, 3.0]
+yaw = 90.0
+pitch = 25.0
+fov = 60.0
+)";
 
 inline std::string sourceDir()
 {

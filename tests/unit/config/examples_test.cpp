@@ -1,7 +1,13 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every example under config/examples/ loads without a problem and builds its camera; the README's demo has the
 // scene the README promises.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <gtest/gtest.h>
 
@@ -86,6 +92,22 @@ TEST(Examples, DemoCameraLooksDownAtTheGround)
     EXPECT_GT(ray->direction.y, 0.0);
     EXPECT_EQ(camera->project(glm::dvec3(0, 0, 0)).status, PointStatus::Visible);
     EXPECT_EQ(camera->project(glm::dvec3(2, 5, 0)).status, PointStatus::Visible);
+}
+
+// The axes triad reads as three axes: the Y axis (away from the camera) is not drawn over the Z axis (up), as it is
+// from any camera in their plane x = 0. Compared by the directions of the drawn axes from the origin's pixel.
+TEST(Examples, DemoDrawsTheYAxisApartFromTheZAxis)
+{
+    const DaemonConfig config = loadExample("demo.toml");
+    auto camera = config.camera.build(1280, 720);
+    ASSERT_TRUE(camera.ok());
+    const auto origin = camera->project(glm::dvec3(0, 0, 0)), y = camera->project(glm::dvec3(0, 1, 0)),
+               z = camera->project(glm::dvec3(0, 0, 1));
+    ASSERT_TRUE(origin.status == PointStatus::Visible && y.status == PointStatus::Visible &&
+                z.status == PointStatus::Visible);
+    const glm::dvec2 alongY = glm::normalize(y.pixel - origin.pixel), alongZ = glm::normalize(z.pixel - origin.pixel);
+    const double degrees = glm::degrees(std::acos(std::clamp(glm::dot(alongY, alongZ), -1.0, 1.0)));
+    EXPECT_GT(degrees, 15.0) << "the Y and Z axes are drawn " << degrees << " degrees apart";
 }
 
 TEST(Examples, DistortedPinholeComesFromItsCalibration)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[gpio.input]] / [[gpio.output]]: every key read; the shape checked without hardware (what check-config can
 // know), each problem at its file:line:key: unknown layers, lines named twice, missing chips and lines, limits.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [http] and the HTTP API's camera requests, read by the config file's readers: defaults, every refusal at its key,
 // the drop-in `POST /api/save` writes read back over the main file.
 #include <filesystem>
@@ -16,17 +17,7 @@ using overlayd::test::loadValid;
 
 namespace {
 
-const std::string kBase = R"(
-[source]
-kind = "synthetic"
-width = 640
-height = 480
-[camera]
-position = [0.0, -6.0, 3.0]
-yaw = 90.0
-pitch = 25.0
-fov = 60.0
-)";
+const std::string kBase = test::kMinimalConfig;
 
 // Reports every problem when the expected one is missing.
 bool hasProblem(const std::vector<ConfigProblem> &problems, const std::string &key, const std::string &words)
@@ -46,6 +37,21 @@ std::filesystem::path scratch(const std::string &name)
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+bool samePose(const Pose &a, const Pose &b)
+{
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (std::abs(a.rotation[c][r] - b.rotation[c][r]) > 1e-12)
+                return false;
+    return glm::length(a.translation - b.translation) <= 1e-12;
+}
+
+std::string fileText(const std::string &path)
+{
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 } // namespace
@@ -224,7 +230,11 @@ TEST(LiveDropIn, KeepsTheWholeCameraAndMergesWithWhatTheDropInHolds)
         ASSERT_TRUE(written.ok()) << written.error().message;
         auto after = loadConfigFile(path, problems);
         ASSERT_TRUE(after.ok()) << change << ": " << after.error().message;
-        EXPECT_TRUE(after->camera == *live) << change;
+        // A look-at pose goes back as eye/target/up: its basis is rebuilt from them, equal to within rounding.
+        CameraSpec loaded = after->camera;
+        EXPECT_TRUE(samePose(loaded.pose, live->pose)) << change;
+        loaded.pose = live->pose;
+        EXPECT_TRUE(loaded == *live) << change;
         std::ifstream saved(liveDropInPath(path));
         const std::string text((std::istreambuf_iterator<char>(saved)), std::istreambuf_iterator<char>());
         EXPECT_NE(text.find("frame = \"world\""), std::string::npos) << text;
@@ -261,4 +271,58 @@ TEST(LiveDropIn, APlantedTemporaryIsNeitherFollowedNorTouched)
     for ([[maybe_unused]] const auto &entry : std::filesystem::directory_iterator(dir))
         ++entries;
     EXPECT_EQ(entries, 4u); // the config, the drop-in, the victim, the planted folder: no temporary left
+}
+
+// A save writes the live pose in the pose keys the config used, whatever form the API's edit came in: the user's
+// degrees stay degrees (`yaw = 95.0`, not a matrix), a look-at stays eye/target, an optical quaternion stays one.
+TEST(LiveDropIn, WritesThePoseInTheConfigsOwnForm)
+{
+    struct Form {
+        const char *keys;                        // the main file's pose
+        std::vector<std::string> written, never; // in the drop-in's [camera], and not
+    };
+    const Form forms[] = {
+        {"position = [0.0, -6.0, 3.0]\nyaw = 90.0\npitch = 25.0\n",
+         {"position = [0.5, -6.0, 3.0]", "yaw = 95.0", "pitch = 20.0", "roll = 0.0"},
+         {"rmat", "tvec"}},
+        {"eye = [0.0, -6.0, 3.0]\ntarget = [0.0, 4.0, 0.0]\n",
+         {"eye = [0.5, -6.0, 3.0]", "target = ", "up = "},
+         {"rmat", "yaw"}},
+        {"eye = [0.0, -6.0, 3.0]\ngaze = [0.0, 1.0, -0.3]\n", {"eye = [0.5, -6.0, 3.0]", "gaze = ", "up = "}, {"rmat"}},
+        {"prp = [0.0, -6.0, 3.0]\nvpn = [0.0, -1.0, 0.3]\n", {"prp = [0.5, -6.0, 3.0]", "vpn = ", "vup = "}, {"rmat"}},
+        {"position = [0.0, -6.0, 3.0]\norientation = [0.5, -0.5, 0.5, -0.5]\naxes = \"optical\"\n",
+         {"position = [0.5, -6.0, 3.0]", "orientation = ", "axes = \"optical\""},
+         {"rmat", "yaw"}},
+        {"rvec = [1.9, 0.1, -0.05]\ntvec = [0.2, 1.1, 6.3]\n", {"rvec = ", "tvec = "}, {"rmat", "yaw"}},
+        {"rmat = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]\ntvec = [0.0, 2.0, 7.0]\n",
+         {"rmat = ", "tvec = "},
+         {"yaw", "rvec"}},
+    };
+    const auto dir = scratch("form");
+    const std::string path = (dir / "front.toml").string();
+    for (const Form &form : forms) {
+        std::ofstream(path) << "[source]\nkind = \"synthetic\"\nwidth = 640\nheight = 480\n[camera]\nfov = 60.0\n"
+                            << form.keys;
+        std::filesystem::remove(liveDropInPath(path));
+        std::vector<ConfigProblem> problems;
+        auto before = loadConfigFile(path, problems);
+        ASSERT_TRUE(before.ok()) << form.keys << before.error().message;
+        // The page's edit: position and degrees, in another form than the file's.
+        auto live = cameraFromJson(R"({"position": [0.5, -6.0, 3.0], "yaw": 95, "pitch": 20, "roll": 0})",
+                                   before->camera, 640, 480);
+        ASSERT_TRUE(live.ok()) << live.error().message;
+        ASSERT_TRUE(writeLiveDropIn(path, *live, "a test").ok());
+        const std::string text = fileText(liveDropInPath(path));
+        const std::string camera = text.substr(text.find("[camera]"));
+        for (const std::string &key : form.written)
+            EXPECT_NE(camera.find(key), std::string::npos) << form.keys << "wrote:\n" << text;
+        for (const std::string &key : form.never)
+            EXPECT_EQ(camera.find(key), std::string::npos) << form.keys << "wrote:\n" << text;
+        auto after = loadConfigFile(path, problems);
+        ASSERT_TRUE(after.ok()) << text << after.error().message;
+        EXPECT_TRUE(samePose(after->camera.pose, live->pose)) << text;
+        const PoseKeysUsed &was = before->camera.poseKeys, &is = after->camera.poseKeys;
+        EXPECT_TRUE(is.form == was.form && is.axes == was.axes) << text;
+        EXPECT_NEAR(is.targetDistance, was.targetDistance, 1e-9) << text; // a look-at keeps its target's distance
+    }
 }

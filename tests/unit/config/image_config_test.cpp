@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // type = "image": the file is decoded at load time into premultiplied RGBA (grey, colour, alpha, 16-bit, JPEG), placed
 // on the screen or on a world plane; a file that cannot be used and a placement that is not one of the two are
 // refused at their keys; an image too large is refused from its header, before decoding. The test images are written

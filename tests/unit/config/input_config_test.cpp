@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[input.text]]: a slot some text shows, fed once, from a file whose folder exists; [[input.can]]: a signal layout
 // that fits the 8 data bytes, an id within its width, a target the scene has, fed once; every refusal at its key.
 #include <filesystem>
@@ -10,14 +11,7 @@ using overlayd::test::loadValid;
 
 namespace {
 
-const std::string kScene = R"(
-[source]
-kind = "synthetic"
-width = 640
-height = 480
-[camera]
-position = [0.0, -6.0, 3.0]
-yaw = 90.0
+const std::string kScene = test::kMinimalConfig + R"(
 [[annotation]]
 type = "text"
 text = "gear {slot:gear}, {slot:status}"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every intrinsics form, near/far, depth range, distortion and viewport of [camera]/[viewport], against pixels
 // computed by hand from the forms' definitions or by cv::projectPoints / cv::fisheye::projectPoints.
 #include <charconv>

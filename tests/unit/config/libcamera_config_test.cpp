@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [source.libcamera]: every key read, control names and value types checked against libcamera's registry at load
 // (what check-config can know without a camera), each problem at its file:line:key. A build without libcamera
 // refuses the kind itself.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The limits of docs/config.md "Limits": every number has a range (the message gives it, for a large finite value as
 // for inf), counts and lengths are refused at the first entry over, the renderer's own rules and the sinks' are
 // refused at their key by the loader (so that check-config refuses what run would), and "did you mean" costs
@@ -74,7 +75,8 @@ TEST(Limits, CountsAreRefusedAtTheFirstEntryOver)
 
 TEST(Limits, TextAndNamesHaveAMaximumLength)
 {
-    EXPECT_REFUSED("[[annotation]]\ntype = \"text\"\ntext = \"" + std::string(kMaxAnnotationTextBytes + 1, 'x') + "\"\n",
+    EXPECT_REFUSED("[[annotation]]\ntype = \"text\"\ntext = \"" + std::string(kMaxAnnotationTextBytes + 1, 'x') +
+                       "\"\n",
                    "test.toml:3:8: annotation[0].text: too long: at most 1024 bytes (got 1025)\n");
     EXPECT_REFUSED("[[frame]]\nname = \"" + std::string(kMaxNameBytes + 1, 'f') + "\"\n",
                    "test.toml:2:8: frame[0].name: too long: at most 256 bytes (got 257)\n");

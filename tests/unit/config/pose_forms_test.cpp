@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every pose form of [camera] describes the same physical camera; each must project like cv::projectPoints with
 // a rotation and translation written down by hand.
 #include <cmath>

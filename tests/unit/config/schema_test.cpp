@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The schema: the pinned [daemon]/[source]/[[sink]] keys, frames, every annotation type and style form, defaults,
 // path resolution, pose/intrinsics form conflicts, and the "did you mean" machinery.
 #include <filesystem>

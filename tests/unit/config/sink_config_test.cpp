@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[sink]] outputs are exclusive: two sinks on one file, however the path is spelled, or two on stdout, are refused
 // at the second one's path with its line; different files and null sinks are fine.
 #include <string>

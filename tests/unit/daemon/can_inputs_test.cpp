@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: Apache-2.0
 // CanInputs: a decoded CAN value drives its target through SceneControl only when it is valid and has moved by the
 // input's step; a malformed frame changes nothing; out of range or silent for the timeout, the target shows
 // "unknown" (the guide lines lose their wheel tracks, a slot shows the stale text) instead of the last value.
 // Frames are handed in as the socket would deliver them (the socket itself runs against vcan in the VM tier).
-#include "daemon/can_inputs.h"
+#include "control/can_inputs.h"
 
 #include <gtest/gtest.h>
 

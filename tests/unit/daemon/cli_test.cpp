@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The command line: subcommands, the default `run`, options that fall through, and usage errors.
 #include "tools/cli.h"
 

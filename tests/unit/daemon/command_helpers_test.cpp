@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The `project --json` format (hand-written expected text) and render's choice of sink from the output path.
 #include "base/json_text.h"
 #include "tools/commands.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The daemon's unit-test fixture: a Daemon over a fake source, recording sinks keyed by path and a renderer that
 // marks frames, loading whatever `file` says the config file holds now.
 #pragma once

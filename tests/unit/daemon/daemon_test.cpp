@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Daemon: start-up, READY after the first frame, DeviceLost -> NO SIGNAL frames and back-off, the watchdog rule, the
 // end of the source (reloads: reload_test.cpp). The loop's handlers are called directly; the stages are fakes.
 #include "daemon/daemon.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EventLoop: a handler that throws (a bug) is reported and skipped; the loop and the other handlers go on.
 #include "base/event_loop.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FakeGpio's provider and lines.
 #include "fake_gpio.h"
 
@@ -62,8 +63,7 @@ class FakeProvider final : public LineProvider
 public:
     explicit FakeProvider(FakeGpio &gpio) : gpio_(gpio) {}
 
-    Result<std::unique_ptr<InputLine>> requestInput(const InputRequest &request,
-                                                          const std::string &consumer) override
+    Result<std::unique_ptr<InputLine>> requestInput(const InputRequest &request, const std::string &consumer) override
     {
         auto line = claim(request.line, consumer);
         if (!line)
@@ -73,7 +73,7 @@ public:
         return std::unique_ptr<InputLine>(std::make_unique<FakeInput>(**line));
     }
     Result<std::unique_ptr<OutputLine>> requestOutput(const OutputRequest &request,
-                                                            const std::string &consumer) override
+                                                      const std::string &consumer) override
     {
         auto line = claim(request.line, consumer);
         if (!line)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FakeGpio: a LineProvider over simulated lines, as gpio-sim is in the VM tier: the test sets a line's physical
 // level (an edge event fires on its eventfd), reads what outputs drive, makes a line busy or lost.
 #pragma once

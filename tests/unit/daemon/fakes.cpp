@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fakes of the pipeline's stages.
 #include "fakes.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fakes of the pipeline's stages for the daemon's unit tests: a scripted source, a recording (optionally slow)
 // sink, a renderer that marks frames, and a notifier that records what systemd would have been told.
 #pragma once
@@ -13,7 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
 #include "daemon/stages.h"
 #include "daemon/systemd_notify.h"
 #include "media/frame_buffer.h"

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: Apache-2.0
 // GpioControl against simulated lines: start state read, active-low, debounce, the show/hide precedence through
 // SceneControl, outputs across the daemon's states, reloads that keep unchanged lines, busy and lost lines.
-#include "daemon/gpio_control.h"
+#include "control/gpio_control.h"
 
 #include <gtest/gtest.h>
 
@@ -238,8 +239,8 @@ TEST_F(GpioControlTest, AFailedReloadKeepsEveryOldLine)
     lines.line("chip0", "busy").consumer = "someone";
     GpioInputOptions changed = input("reverse", {"guides"});
     changed.activeLow = true;
-    const Status status = gpio.configure(
-        {{changed}, {output("led", OutputSignal::Streaming), output("busy", OutputSignal::Error)}});
+    const Status status =
+        gpio.configure({{changed}, {output("led", OutputSignal::Streaming), output("busy", OutputSignal::Error)}});
     ASSERT_FALSE(status.ok());
     EXPECT_EQ(lines.line("chip0", "reverse").consumer, "overlayd");
     EXPECT_FALSE(lines.line("chip0", "reverse").activeLow); // as before the reload

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Logger: journald priority prefixes, readable timestamps otherwise, level filtering and the repeat limit.
 #include "base/logger.h"
 

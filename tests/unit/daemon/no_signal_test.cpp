@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // NO SIGNAL frames: every byte replaced (dark grey) with light text in the middle, in each kind of pixel format;
 // checked after converting to BGR with OpenCV, not with our own converters.
 #include "daemon/no_signal.h"

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: Apache-2.0
 // PathInputs on real files: the file's points replace the annotation's through SceneControl; a malformed version is
 // refused naming its line and the points shown stay; a missing file is an empty path; a rebuilt renderer keeps them.
-#include "daemon/path_inputs.h"
+#include "control/path_inputs.h"
 
 #include <filesystem>
 #include <fstream>

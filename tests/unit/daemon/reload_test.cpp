@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Daemon::reload as a transaction: a bad file, an overlay, a source or a sink that cannot be built or opened
 // refuses the reload with the old config still running as it was; a good one switches between two frames, opening
 // a new source before the running one closes unless both may be the same device.

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: Apache-2.0
 // SceneControl: each change is validated before anything changes, reaches the live renderer, and survives the
 // renderer being rebuilt for a new stream.
-#include "daemon/scene_control.h"
+#include "control/scene_control.h"
 
 #include <utility>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkWorker: a slow sink never stalls the producer; the drop policy picks which frames are lost and counts them;
 // a lossless worker waits instead; close() writes everything queued.
 #include "daemon/sink_worker.h"

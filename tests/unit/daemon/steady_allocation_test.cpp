@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frame path in steady state allocates nothing: the real stages (the synthetic source drawing the demo's
 // checkerboard scene, the demo's overlay, a Pipeline, a null sink and a copying sink) run 300 frames after a
 // warm-up while every malloc of this test binary is counted, frame by frame.
@@ -16,6 +17,7 @@
 #include "config/daemon_config.h"
 #include "daemon/pipeline.h"
 #include "drivers/source_options.h"
+#include "overlay/scene_renderer.h"
 
 // Under AddressSanitizer malloc is the sanitizer's: the counting hook is left out and the tests skip.
 #if defined(__SANITIZE_ADDRESS__)
@@ -122,7 +124,7 @@ struct SteadyPipeline {
         source = std::move(*made);
         auto format = source->start();
         ASSERT_TRUE(format) << format.error().message;
-        auto renderer = OverlayRenderer::create(config.scene, *camera, *format);
+        auto renderer = SceneRenderer::create(config.scene, *camera, *format);
         ASSERT_TRUE(renderer) << renderer.error().message;
         pipeline.setRenderer(std::move(*renderer));
         std::vector<SinkOptions> sinks(1);

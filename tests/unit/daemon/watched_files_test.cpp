@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: Apache-2.0
 // WatchedFiles on real folders: a file input's health says "waiting" (an error, logged once, with its time) while its
 // folder is gone and "following" once it is back; a reload that keeps an input keeps its error count.
-#include "daemon/watched_files.h"
+#include "control/watched_files.h"
 
 #include <filesystem>
 #include <poll.h>

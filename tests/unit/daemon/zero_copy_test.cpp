@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Zero copy through the daemon: a lease-taking sink gets a reference to the source's own buffer (given back when
 // its last holder drops it, on whatever thread), every other sink a copy; the stats say how many; the config key
 // and what it makes the source do.
@@ -11,6 +12,7 @@
 #include "daemon/pipeline.h"
 #include "daemon/stages.h"
 #include "fakes.h"
+#include "stream/stream_options.h"
 
 namespace overlayd {
 namespace {
@@ -189,6 +191,28 @@ TEST_F(ZeroCopyPipeline, ADroppedQueuedLeaseIsGivenBack)
     EXPECT_EQ(recorded->sequences, (std::vector<uint64_t>{0, 4, 5}));
 }
 
+TEST_F(ZeroCopyPipeline, AnInlineSinkTakesTheLeaseOnTheCallersThread)
+{
+    // The encoded stream's form: it hands the lease to the encoder at once, so the worker has no queue for it.
+    struct InlineHoldingSink : HoldingSink {
+        bool writesInline() const override { return true; }
+    };
+    auto sink = std::make_unique<InlineHoldingSink>();
+    HoldingSink *held = sink.get();
+    SinkWorker worker(std::move(sink), SinkOptions{}, logger);
+    ASSERT_TRUE(worker.open(format).ok());
+    worker.push(std::make_shared<const FrameLease>(lease(1)));
+    ASSERT_EQ(held->held(), 1u); // written before push() returned
+    EXPECT_EQ(held->writerThread(), std::this_thread::get_id());
+    EXPECT_EQ(held->heldData(0), camera.view().planes[0].data);
+    EXPECT_EQ(worker.counters().written, 1u);
+    EXPECT_EQ(worker.counters().zeroCopy, 1u);
+    EXPECT_EQ(givenBack, 0);
+    held->release();
+    EXPECT_EQ(givenBack, 1);
+    ASSERT_TRUE(worker.close().ok());
+}
+
 DaemonConfig loadText(const std::string &text, std::vector<ConfigProblem> &problems)
 {
     auto config = loadConfigText(text, "zero.toml", ".", problems);
@@ -268,6 +292,49 @@ TEST(ZeroCopyConfig, OnlyOneSinkHoldsTheCamerasBuffers)
     EXPECT_EQ(refused.error().code, ErrorCode::ConfigError);
     EXPECT_EQ(refused.error().message,
               "sinks /a and /b both have zero_copy = \"on\"; only one sink can hold the camera's buffers");
+}
+
+TEST(ZeroCopyConfig, AV4l2EncoderMakesTheSourceExportUnlessAnOutputHoldsTheBuffers)
+{
+    DaemonConfig config;
+    config.stream.sinks.push_back({EncodedSinkKind::File, "sink[0]", {}, {}, {}, {}});
+    config.stream.encoder.kind = EncoderKind::V4l2;
+    EXPECT_TRUE(wantsZeroCopy(config));
+    config.stream.encoder.zeroCopy = EncoderZeroCopy::Off;
+    EXPECT_FALSE(wantsZeroCopy(config));
+    config.stream.encoder.zeroCopy = EncoderZeroCopy::Auto;
+    config.stream.encoder.kind = EncoderKind::OpenH264; // a software encoder only ever gets copies
+    EXPECT_FALSE(wantsZeroCopy(config));
+
+    SinkOptions output;
+    output.kind = SinkKind::V4l2Output;
+    output.path = "/dev/video10";
+    std::vector<std::string> notices;
+    EncoderOptions encoder;
+    ASSERT_TRUE(limitEncoderZeroCopy({output}, encoder, notices).ok());
+    EXPECT_EQ(encoder.zeroCopy, EncoderZeroCopy::Off);
+    EXPECT_EQ(notices, (std::vector<std::string>{
+                           "encoder: copying (zero_copy \"auto\"): /dev/video10 already takes the camera's buffers"}));
+    encoder.zeroCopy = EncoderZeroCopy::On;
+    auto refused = limitEncoderZeroCopy({output}, encoder, notices);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::ConfigError);
+    output.zeroCopy = ZeroCopy::Off; // an output that copies leaves the buffers to the encoder
+    ASSERT_TRUE(limitEncoderZeroCopy({output}, encoder, notices).ok());
+    EXPECT_EQ(encoder.zeroCopy, EncoderZeroCopy::On);
+}
+
+TEST(ZeroCopyConfig, TheEncodersOnNeedsAV4l2Encoder)
+{
+    if (!streamBuiltIn())
+        GTEST_SKIP() << "built without the encoded outputs: [encoder] itself is refused (config.StreamConfig)";
+    std::vector<ConfigProblem> problems;
+    (void)loadText("[encoder]\nencoder = \"openh264\"\nzero_copy = \"on\"\n[[sink]]\nkind = \"file\"\n"
+                   "path = \"/tmp/zero.h264\"\n",
+                   problems);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0].format(), "zero.toml:3:13: encoder.zero_copy: \"on\" needs encoder = \"v4l2\": only a V4L2 "
+                                    "M2M encoder imports the capture buffers (DMABUF), not encoder = \"openh264\"");
 }
 
 } // namespace

@@ -1,6 +1,10 @@
+// SPDX-License-Identifier: Apache-2.0
 // The checkerboard scene against Camera::project: on either side of every projected checker edge the colour is the
 // square's expected shade, for plain and distorting lenses and both viewport origins.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -117,6 +121,40 @@ TEST(CheckerScene, SkyAboveTheHorizon)
     EXPECT_EQ(image.rgb[0], kSceneSky[0]);
     EXPECT_EQ(image.rgb[1], kSceneSky[1]);
     EXPECT_EQ(image.rgb[2], kSceneSky[2]);
+}
+
+// Toward the horizon a pixel sees many squares at once: a camera averages them, so the pixel must be near the mean
+// of the two shades, not one of them by chance (moire). The footprint's length along the ground is measured here
+// from the rays through the pixel's top and bottom edges: the average of the square wave over 4 squares or more
+// lies within 1/8 of its span from grey.
+TEST(CheckerScene, FarGroundIsAveragedNotAliased)
+{
+    const auto pose = poseLookAt({0.0, -6.0, 3.0}, {0.0, 60.0, 0.0}, {0.0, 0.0, 1.0});
+    const PinholeIntrinsics k{300.0, 300.0, (kWidth - 1) / 2.0, (kHeight - 1) / 2.0, 0.0, kWidth, kHeight};
+    const auto camera = Camera::create(*pose, *Projection::pinhole(k, 0.05, 1000.0, DepthRange::ZeroToOne),
+                                       Distortion{}, *Viewport::create(ViewportSpec{kWidth, kHeight}));
+    ASSERT_TRUE(camera);
+    constexpr double square = 1.0;
+    const RgbImage image = renderCheckerScene(*camera, kWidth, kHeight, square);
+    const Plane ground = Plane::fromPointNormal({0, 0, 0}, {0, 0, 1});
+    const auto groundY = [&](double u, double v) -> std::optional<double> {
+        const auto ray = camera->unproject({u, v});
+        const auto t = ray ? intersect(*ray, ground) : std::nullopt;
+        if (!t)
+            return std::nullopt;
+        return ray->at(*t).y;
+    };
+    const double grey = (kSceneLight[0] + kSceneDark[0]) / 2.0, span = kSceneLight[0] - kSceneDark[0];
+    int checked = 0, aliased = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        const auto top = groundY(kWidth / 2.0, y - 0.5), bottom = groundY(kWidth / 2.0, y + 0.5);
+        if (!top || !bottom || std::abs(*top - *bottom) < 4.0 * square || std::abs(*top - *bottom) > 1e4)
+            continue;
+        for (int x = 0; x < kWidth; ++x, ++checked)
+            aliased += std::abs(image.rgb[(size_t(y) * kWidth + x) * 3] - grey) > span / 8.0 + 1.0;
+    }
+    EXPECT_GE(checked, 4 * kWidth) << "the camera must see far ground";
+    EXPECT_EQ(aliased, 0) << "of " << checked << " far-ground pixels";
 }
 
 TEST(CheckerScene, CameraMustMatchTheFrameSize)

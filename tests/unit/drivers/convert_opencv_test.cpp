@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The whole-frame converter against OpenCV's cvtColor, which implements BT.601 limited range for its YUV formats
 // (YUYV, UYVY, YVYU, NV12, NV21, I420, YV12) and exact channel shuffles for RGB/BGR; GREY is compared with
 // RGB2GRAY (full-range BT.601 luma). Decoding reads the frame's own memory through OpenCV; encoding is compared with

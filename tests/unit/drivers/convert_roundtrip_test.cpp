@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Round trips through every format and colorimetry, chroma averaging over a macropixel, and the BT.601/BT.709
 // colour-bar code values every broadcast reference lists (hand-checked: e.g. BT.709 limited red is 63, 102, 240).
 #include <gtest/gtest.h>

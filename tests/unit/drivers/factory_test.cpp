@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The factories refuse bad options before opening or allocating anything, with a message naming the value.
 #include <gtest/gtest.h>
 

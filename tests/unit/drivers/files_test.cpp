@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Raw frames, PNG/JPEG snapshots, image-sequence replay and the null sink.
 #include <filesystem>
 #include <fstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SinkFile: a FIFO without a reader never blocks the open (it starts at the first frame after a reader came, header
 // first), a reader that goes away is followed by the next one from the header on, and a file another writer holds is
 // refused naming the process.

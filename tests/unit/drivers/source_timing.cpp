@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // drivers_timing: CPU time (not wall time: the build machine is shared) of the synthetic source's costly steps at
 // 1280x720 YUYV. A measurement tool, not a test: run build-*/tests/unit/drivers/drivers_timing.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The synthetic source: determinism across runs, each pattern's defining property, metadata, stalling, leases.
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -115,11 +116,18 @@ TEST(Synthetic, MetadataCountsFramesAtFpsSpacing)
 {
     auto source = started(options(SyntheticPattern::ColourBars, "GREY", 16, 16));
     EXPECT_EQ(source->eventFd(), -1);
+    std::chrono::system_clock::time_point first{};
     for (uint64_t n = 0; n < 5; ++n) {
+        const auto before = std::chrono::steady_clock::now().time_since_epoch();
         auto lease = source->nextFrame();
         ASSERT_TRUE(lease);
         EXPECT_EQ(lease->metadata().sequence, n);
-        EXPECT_EQ(lease->metadata().timestamp, std::chrono::milliseconds(40 * n)); // 25 fps
+        // Made now, on CLOCK_MONOTONIC; the printed wall clock advances by the frame period.
+        EXPECT_GE(lease->metadata().timestamp, before);
+        EXPECT_LE(lease->metadata().timestamp, std::chrono::steady_clock::now().time_since_epoch());
+        if (n == 0)
+            first = lease->metadata().wallClock;
+        EXPECT_EQ(lease->metadata().wallClock - first, std::chrono::milliseconds(40 * n)); // 25 fps
     }
 }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers of the drivers tests: owned frames, deterministic test images, hashes, temporary folders, shell-outs.
 #pragma once
 

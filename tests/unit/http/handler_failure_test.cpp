@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An exception thrown by the API handler does not unwind through libmicrohttpd (which would end the process): the
 // request is answered 500 with a JSON body, the failure is logged, and the server answers the next request.
 #include "http/http_server.h"

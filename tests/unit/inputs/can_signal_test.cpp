@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CAN signal decoding checked without the production trick (reading the 8 bytes as one 64-bit word):
 // - a naive walker follows DBC's bit numbering one bit at a time, and canLayoutProblem, canBytesNeeded, canRawBits
 //   and canDecode must agree with it for every start bit and length, both byte orders, signed and unsigned, on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A watched file's folder followed by its path, on real folders: removed and made again (what systemd does to a
 // service's RuntimeDirectory= on every restart), several times, with its parent, moved away, and the file then
 // replaced by rename; each time the watch must report the new file's writes, and say while it waits.

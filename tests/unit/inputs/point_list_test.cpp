@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Path files: "x y z" per line with spaces and/or commas, comments and blank lines; every malformed line is refused
 // naming its line, and the point limit holds.
 #include "inputs/point_list.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TextFileWatch on real files: each way a program writes a file is seen, other files in the folder are not, and
 // slotLine keeps one clean line within its byte limit.
 #include "inputs/text_file_watch.h"

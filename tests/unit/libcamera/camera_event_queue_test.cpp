@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraEventQueue: events posted on another thread (libcamera's) reach the loop in order, each with one wake-up of
 // an eventfd the loop polls, and nothing is decided on the posting thread.
 #include <poll.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CameraPresence: the re-acquire state machine. A camera that goes away is waited for; the one that comes back is
 // opened again by its id, or by its model when the config names an index; another camera is never taken instead.
 #include <gtest/gtest.h>

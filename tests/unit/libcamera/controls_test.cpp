@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Config controls against libcamera: names and types through its registry, ranges against a camera's
 // ControlInfoMap (built here as a pipeline handler builds one), every problem in the config's file:line shape.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every format of the project's table against libcamera's: found both ways, and the same bytes in memory as
 // libcamera's own name for it says (DRM names a little-endian word from its top component down).
 #include <cctype>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RequestRecycler: each give-back re-queues its request once, from any thread; none after detach(); a failed
 // re-queue is reported once.
 #include <atomic>

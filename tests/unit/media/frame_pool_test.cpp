@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FramePool: frames are allocated as the pipeline holds them, up to the capacity, and a lease gives its frame back
 // even after the source let go of the pool.
 #include "media/frame_pool.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // media/codec beyond the PNG matrix: JPEGs OpenCV writes decode as OpenCV decodes them, truncated and corrupt files
 // are clear errors (never a crash: CI runs this under ASan), an image too large is refused from its header before
 // anything is decoded, and what the snapshot sink encodes reads back through OpenCV (PNG exactly, JPEG within a PSNR

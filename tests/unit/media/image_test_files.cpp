@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers of the image codec tests (see the header).
 #include "image_test_files.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers of the image codec tests: a folder per test, PNGs of any colour type and bit depth written by libpng
 // itself, files read back, and OpenCV's imgcodecs as the independent reference.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JpegEncoder: every format of the table, in every colorimetry, encodes to a JPEG of the frame's size and chroma
 // subsampling that OpenCV's decoder (JFIF: full-range BT.601) turns back into the RGB of our own frameToRgb, within
 // JPEG's loss; a wrong colorimetry is far outside that tolerance, which shows the comparison can fail.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JpegEncoder on a steady stream: once a frame size has been seen, the next frames of that size reuse the scratch
 // planes and output buffer (no operator new at all on our side) and give the same bytes for the same frame.
 #include "media/jpeg/jpeg_encoder.h"

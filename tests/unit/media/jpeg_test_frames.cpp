@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test frames of a pattern with saturated bars (the colours where matrices and ranges differ most) above smooth
 // gradients (where JPEG's quantisation error stays small), compared through OpenCV's JPEG decoder.
 #include "jpeg_test_frames.h"

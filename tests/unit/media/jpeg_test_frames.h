@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers of the JPEG encoder tests: frames of a colourful pattern, JPEG headers, and the error of a decoded JPEG
 // against our own conversion of the frame.
 #pragma once

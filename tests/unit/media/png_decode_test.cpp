@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // media/codec's PNG decoding against OpenCV's imgcodecs on files libpng writes here: every colour type and bit
 // depth, with and without tRNS, interlaced too. Rgba must equal what config/ made of cv::imread(IMREAD_UNCHANGED)
 // (16 bits times 1/257, then RGBA), Rgb what cv::imread(IMREAD_COLOR) gives (which keeps the high byte of 16 bits:

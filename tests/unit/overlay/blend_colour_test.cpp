@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour accuracy of the native blend in every format, read back through OpenCV's converters.
 //
 // OpenCV's cvtColor YUV2BGR_* (YUYV, UYVY, YVYU, NV12, NV21, I420, YV12) implements BT.601 limited range

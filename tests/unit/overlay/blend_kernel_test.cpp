@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The blend arithmetic, exhaustively: every frame value under every alpha and premultiplied colour.
 #include "overlay/blend/blend_kernel.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The blend writes nothing outside the layer's coverage: random frames (padding included) and random sparse
 // layers, byte-compared in every format, size and stride, with guard bytes after the buffer.
 #include <ostream>

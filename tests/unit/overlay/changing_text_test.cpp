@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A token text (a frame counter) is blended as its background box's layer and one stamp per glyph and place. It must
 // show what the same text written out shows, drawn the other way (the world layers' RGBA canvas, converted once),
 // for each frame number, in every format, at an odd size with padded strides.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FrameCoverageSink against the cached path (compositeCoverage -> NativeLayer::convert -> blend) on random coverage
 // rows in every format, against OpenCV's converters for colour, and byte-compared for what it must not touch.
 #include "overlay/blend/frame_coverage_sink.h"

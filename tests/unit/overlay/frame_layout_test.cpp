@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frame layouts (tight, padded, odd) and the frame check that guards every blend; V4L2 colorimetry defaults.
 #include "media/frame.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Golden frames: the demo scene blended on mid-grey at 320x240, per format and viewport origin, read back through
 // OpenCV's converters (test::toBgr) and compared with PNGs in tests/data/overlay/.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A live steering angle (setGuideSteering) moves the guide lines' wheel tracks onto the Ackermann circles for that
 // angle, computed here from the formula the docs give (each rear wheel turns about (0, R), R = wheelbase /
 // tan(angle)) and projected with GLM, not with the renderer's own path code; an unknown angle leaves only the

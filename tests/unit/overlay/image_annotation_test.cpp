@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image annotations: a screen image lands at its position, upright under both viewport origins, and is composited
 // "over" with its alpha and opacity; a world image's parts land where GLM projects the matching points of its plane;
 // it follows the camera, goes with its layer, and is left out (not mis-drawn) behind the camera. Expected colours are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A camera that changes before every frame is drawn straight into the frame (FrameCoverageSink); one that holds
 // still goes back to the cached layers. Both must show the same overlay: the direct frame is compared with a fresh
 // renderer's cached frame for the same camera, in every format, at an odd size with padded strides.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer's parts against hand-computed values: tokens, dash patterns, Ackermann guide lines, stroke widths.
 #include <cmath>
 #include <cstdlib>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pixel-format table against the V4L2 UAPI: fourccs, byte orders, bits per pixel, strides of odd widths.
 #include "media/pixel_format.h"
 

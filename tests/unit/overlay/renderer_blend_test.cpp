@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer end to end in every format: colours, partial alpha, untouched bytes, layers, token text, errors.
 #include <string>
 #include <vector>
@@ -193,7 +194,7 @@ TEST(RendererErrors, RefusesBadScenesAndMismatchedCameras)
     const auto refused = [&](Annotation a) {
         OverlayScene scene;
         scene.annotations.push_back(std::move(a));
-        auto result = OverlayRenderer::create(scene, camera, format);
+        auto result = SceneRenderer::create(scene, camera, format);
         return !result.ok() && result.error().code == ErrorCode::InvalidArgument &&
                result.error().message.find("\"bad\"") != std::string::npos;
     };
@@ -205,8 +206,8 @@ TEST(RendererErrors, RefusesBadScenesAndMismatchedCameras)
     EXPECT_TRUE(refused(annotation("bad", AxesShape{}, kWhite, 0.0)));
     EXPECT_TRUE(refused(annotation("bad", GridShape{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0.0})));
     EXPECT_TRUE(refused(annotation("bad", PolylineShape{{{0, 0, 0}, {NAN, 0, 0}}})));
-    EXPECT_FALSE(OverlayRenderer::create(OverlayScene{}, test::groundCamera(32, 48), format).ok());
-    auto ok = OverlayRenderer::create(test::demoScene(true), camera, format);
+    EXPECT_FALSE(SceneRenderer::create(OverlayScene{}, test::groundCamera(32, 48), format).ok());
+    auto ok = SceneRenderer::create(test::demoScene(true), camera, format);
     ASSERT_TRUE(ok.ok()) << ok.error().message;
     EXPECT_FALSE((*ok)->setCamera(test::groundCamera(32, 48)).ok());
     EXPECT_TRUE((*ok)->setCamera(camera).ok());

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Geometry of the rendered overlay: viewport origins, clipping at the camera, and lens curvature against OpenCV.
 #include <cmath>
 #include <vector>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer tests' camera, scene and stream helpers.
 #include "scene_fixture.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared set-up of the renderer tests: a camera looking down at a ground plane, a demo scene, stream formats.
 #pragma once
 

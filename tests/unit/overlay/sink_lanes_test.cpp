@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frame sink's 16-bit lane arithmetic (overlay/blend/sink_lanes.h) against the chroma rule written in plain integer
 // and floating-point maths, for every four-pixel opacity sum and every code: the lanes may not overflow anywhere.
 #include "overlay/blend/sink_lanes.h"

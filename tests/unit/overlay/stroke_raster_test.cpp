@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StrokeRasterizer against independent references: OpenCV's non-anti-aliased fills at 16x resolution averaged down
 // (the exact covered area), cv::pointPolygonTest for pixel centres, and hand-computed widths and end positions.
 #include "overlay/raster/stroke_raster.h"

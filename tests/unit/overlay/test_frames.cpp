@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test frames. The byte orders here are written out from the V4L2 documentation, not read from the format table, so
 // that a wrong table entry shows up as a wrong colour.
 #include "test_frames.h"

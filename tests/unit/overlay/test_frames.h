@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test frames: owned buffers with padding and guard bytes, mid-grey fills, and conversion to BGR through OpenCV.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TextRenderer composes strings from glyphs it renders once. The reference is OpenCV's FreeType module (what the
 // renderer used before the glyph cache), drawing the same string white on black with the pen at the same place:
 // the coverage must be the same, byte for byte.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // bad_input_test: every degenerate input is refused with its documented ErrorCode and a message, never a NaN.
 #include <cmath>
 #include <limits>

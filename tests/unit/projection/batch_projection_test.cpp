@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // batch_projection_test: every batch loop of Camera::projectPoints against the single-point Camera::project.
 //
 // project() is the reference here (it is itself held to OpenCV by opencv_compare_test). The batch loops must give

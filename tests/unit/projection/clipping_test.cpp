@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // clipping_test: nothing behind the near plane is drawn; segments and polygons are cut exactly at the planes.
 //
 // References: GLM (glm::lookAt, glm::perspectiveNO/ZO, glm::projectNO/ZO) for camera-space depths and pixels,

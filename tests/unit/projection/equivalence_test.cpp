@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // equivalence_test: every description of the same camera (intrinsics forms, pose forms) gives the same pixels.
 #include <cmath>
 #include <random>

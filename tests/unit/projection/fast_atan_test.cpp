@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // fast_atan_test: the fisheye model's vectorisable atan against std::atan over the whole range of doubles.
 #include "projection/fast_atan.h"
 

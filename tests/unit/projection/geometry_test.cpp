@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // geometry_test: the homogeneous form's lines, rays, planes, distances, intersections and the view frustum's six
 // planes.
 #include <cmath>

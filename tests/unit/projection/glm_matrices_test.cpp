@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // glm_matrices_test: our view and projection matrices equal GLM's explicitly suffixed (RH_NO / RH_ZO) builders.
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // lens_curve_test: straight 3D segments drawn through distorting lenses follow OpenCV's curve within tolerance.
 //
 // The reference curve is OpenCV's projection (cv::projectPoints, cv::fisheye::projectPoints) of 2000 points of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // opencv_compare_test: Camera pixels against cv::projectPoints / cv::fisheye::projectPoints on random cameras.
 #include <random>
 #include <vector>

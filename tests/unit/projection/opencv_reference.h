@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test helpers: random OpenCV-style cameras, and their projections computed by OpenCV itself as the reference.
 //
 // Everything here that produces an expected value goes through OpenCV (cv::Rodrigues, cv::projectPoints,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pose_test: each pose form puts the camera where hand-checked cases say, looking and pointing up as expected.
 #include <cmath>
 #include <random>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // scene_graph_test: world matrices compose along the path, cameras ride on frames, normals stay perpendicular.
 #include <algorithm>
 #include <cmath>

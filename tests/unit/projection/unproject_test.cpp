@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // unproject_test: unproject(project(p)) is a ray through p, for every projection form, lens, origin and window.
 //
 // Independent references: GLM (glm::lookAt) builds the poses' inverse, cv::undistortPoints and

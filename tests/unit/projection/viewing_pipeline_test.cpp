@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // viewing_pipeline_test: the classic viewing pipeline's worked mappings (window, viewport, NDC) hold for our matrices.
 #include <cmath>
 #include <random>
@@ -48,7 +49,8 @@ void expectMatNear(const glm::dmat4 &actual, const glm::dmat4 &expected, double 
 constexpr double kFocal = 2.0, kWidth = 1.6, kHeight = 0.9, kNear = 0.5, kFar = 50.0;
 const glm::dvec3 kCw{0.3, -0.2, -kFocal};
 
-// --- The viewing pipeline, step by step ---------------------------------------------------------------------------------------
+// --- The viewing pipeline, step by step
+// ---------------------------------------------------------------------------------------
 
 TEST(ViewingPipeline, ShearMovesTheWindowCentreOntoTheMinusZAxis)
 {
@@ -106,8 +108,8 @@ TEST(ViewingPipeline, PerspectiveMapsNearToZeroAndFarToOne)
         previous = depth;
     }
 
-    // The derivation prints the third row as (0, 0, 1/(1-n), n/(1-n)) and claims the box [0, 1]; that row sends near to 0
-    // but far to -1 (its own z' = -(z + n) / (z (1 - n)) gives -1 at z = -1). We use the negated row.
+    // The derivation prints the third row as (0, 0, 1/(1-n), n/(1-n)) and claims the box [0, 1]; that row sends near to
+    // 0 but far to -1 (its own z' = -(z + n) / (z (1 - n)) gives -1 at z = -1). We use the negated row.
     const glm::dmat4 printed = fromRows({1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1 / (1 - n), n / (1 - n)}, {0, 0, -1, 0});
     EXPECT_NEAR(divide(printed * glm::dvec4(0, 0, -n, 1)).z, 0.0, kTolerance);
     EXPECT_NEAR(divide(printed * glm::dvec4(0, 0, -1, 1)).z, -1.0, kTolerance);
@@ -129,8 +131,8 @@ TEST(ViewingPipeline, ParallelDropsOrKeepsDepth)
     EXPECT_EQ((ViewingPipeline::parallel(false) * p).x, 0.2);
 }
 
-// T_camera = T_raster S_raster N P_parallel P_persp S_far S_xy H R T: the derivation's corner-based raster coordinates with
-// a bottom-left origin are our pixel centres + 0.5.
+// T_camera = T_raster S_raster N P_parallel P_persp S_far S_xy H R T: the derivation's corner-based raster coordinates
+// with a bottom-left origin are our pixel centres + 0.5.
 TEST(ViewingPipeline, FullChainEqualsCameraPixelsPlusHalf)
 {
     const glm::dvec3 prp{4.0, -3.0, 2.0};
@@ -151,9 +153,9 @@ TEST(ViewingPipeline, FullChainEqualsCameraPixelsPlusHalf)
     t[3] = glm::dvec4(-prp, 1.0);
 
     const glm::dmat4 chain = ViewingPipeline::rasterTranslate(posx, posy) * ViewingPipeline::rasterScale(xres, yres) *
-                             ViewingPipeline::normalize() * ViewingPipeline::parallel(true) * ViewingPipeline::perspective(kNear / kFar) *
-                             ViewingPipeline::scaleFar(kFar) * ViewingPipeline::scaleXY(kFocal, kWidth, kHeight) * ViewingPipeline::shear(kCw) *
-                             r * t;
+                             ViewingPipeline::normalize() * ViewingPipeline::parallel(true) *
+                             ViewingPipeline::perspective(kNear / kFar) * ViewingPipeline::scaleFar(kFar) *
+                             ViewingPipeline::scaleXY(kFocal, kWidth, kHeight) * ViewingPipeline::shear(kCw) * r * t;
 
     auto projection =
         Projection::window({kFocal, {kCw.x, kCw.y}, kWidth / 2.0, kHeight / 2.0, kNear, kFar}, DepthRange::ZeroToOne);
@@ -201,12 +203,13 @@ TEST(SeedMappings, WindowOrthographicEqualsOrthoRHZOForACentredWindow)
     EXPECT_NEAR((printedScale * tNear * glm::dvec4(0, 0, -near, 1)).z, 0.0, kTolerance);
 }
 
-// --- The viewing pipeline: pseudodepth --------------------------------------------------------------------------------------
+// --- The viewing pipeline: pseudodepth
+// --------------------------------------------------------------------------------------
 
 TEST(SeedMappings, Seed004PseudodepthMapsNearToMinusOneAndFarToOne)
 {
-    // The viewing pipeline looks along +z with the near plane at z = f and the far plane at z = F; z* = (f / p)(a p + b) with
-    // a, b solved from z*(f) = -1, z*(F) = 1. Our camera looks down -z, so its point at depth p has z = -p.
+    // The viewing pipeline looks along +z with the near plane at z = f and the far plane at z = F; z* = (f / p)(a p +
+    // b) with a, b solved from z*(f) = -1, z*(F) = 1. Our camera looks down -z, so its point at depth p has z = -p.
     const double f = 0.25, bigF = 80.0;
     const double a = (bigF + f) / (f * (bigF - f));
     const double b = -2.0 * bigF / (bigF - f);
@@ -226,7 +229,8 @@ TEST(SeedMappings, Seed004PseudodepthMapsNearToMinusOneAndFarToOne)
     EXPECT_NEAR(ndcNearDepth(DepthRange::ZeroToOne), 0.0, 0.0);
 }
 
-// --- The viewing pipeline ---------------------------------------------------------------------------------------------------
+// --- The viewing pipeline
+// ---------------------------------------------------------------------------------------------------
 
 TEST(SeedMappings, Seed001ViewportMapsTheClipSquareOntoThePixelCorners)
 {

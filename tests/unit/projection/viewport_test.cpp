@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // viewport_test: NDC -> pixels for top-left and bottom-left origins, windows, scissors and non-square pixels.
 #include <cmath>
 #include <random>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // wide_fisheye_test: fisheye lenses of 185, 200 and 220 degrees, which see points behind the camera plane.
 //
 // The reference is OpenCV's fisheye model written out here on the angle from the axis (cv::fisheye cannot take

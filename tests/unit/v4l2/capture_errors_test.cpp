@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Capture error paths: EAGAIN, EINTR, ENODEV/EIO, POLLERR, a failed give-back, a device missing at start.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Capture streaming: leases give buffers back, sequence gaps count as drops, timestamps and colorimetry kept,
 // stop() frees everything and start() works again.
 #include <gtest/gtest.h>

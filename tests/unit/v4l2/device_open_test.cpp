@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Finding a device: by path, by /dev/v4l/by-id link, by card name; the errors when it is missing or wrong.
 #include <gtest/gtest.h>
 

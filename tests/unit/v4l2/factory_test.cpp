@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The factory entry points on the real kernel (this machine has no V4L2 device: only the error paths run).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fake V4L2 kernel: buffer requests, queueing and dequeueing, and frames produced by the test.
 #include "fake_v4l2.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fake V4L2 kernel: the seam's calls (open, close, ioctl, mmap, munmap, poll) over the fake devices.
 #include "fake_v4l2.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fake V4L2 kernel: a device's capabilities, formats, sizes, rates and the ioctl dispatch.
 #include "fake_v4l2.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A fake V4L2 kernel behind the Syscalls seam: devices with scripted formats, buffers, frames and errors.
 #pragma once
 

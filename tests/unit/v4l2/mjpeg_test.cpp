@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MJPEG: libjpeg-turbo decoding against OpenCV's own decoder (+-2 codes), and an MJPEG-only camera end to end.
 #include <gtest/gtest.h>
 

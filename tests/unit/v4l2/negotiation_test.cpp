@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Negotiation: Valid, Adjusted (logged once, with the exact line) and Invalid (listing the offers).
 #include <gtest/gtest.h>
 

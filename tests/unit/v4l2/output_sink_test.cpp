@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // V4L2 output: format set to the stream's, stride-aware copies into the driver's buffers, drops, errors.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plane splitting: per-plane strides from the driver, a single-plane buffer holding NV12/YUV420 split once.
 #include <gtest/gtest.h>
 

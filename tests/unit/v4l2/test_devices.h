@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ready-made fake cameras for the V4L2 tests, and a source wired to one with its log captured.
 #pragma once
 

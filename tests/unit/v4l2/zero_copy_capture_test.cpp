@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Zero copy, capture side: VIDIOC_EXPBUF on request, the fd and offset of every plane, and leases given back
 // from any thread, keeping their fds open after stop().
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Zero copy, output side: the choice at open (auto, on, off), capture buffers queued by DMABUF and held until the
 // output returns them, frames of our own, refusals and a vanished output.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The zero-copy test rig: a fake camera and a fake output in one fake kernel, the source and the sink wired to them.
 #pragma once
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Helpers for the guest checks (busybox sh): result lines, vivid set-up, overlayd, and pixel reads from Y4M and
 # raw YUYV files. Every check prints "PASS <name>: ..." or "FAIL <name>: ..."; the host counts those lines.
 
@@ -90,6 +91,25 @@ GREEN_YCC="145 54 34"
 BLUE_YCC="41 240 110"
 BLACK_YCC="16 128 128"
 NOSIGNAL_YCC="57 128 128" # the NO SIGNAL frame's grey 48, 48, 48
+
+# mask_check FILE CONFIG: the privacy masks of loopback.toml and zerocopy.toml in a looped YUYV frame of W x H:
+# white inside the screen mask, grey (128) where `overlayd project` puts the ground mask's centre (1.5, 1.5, 0), black
+# beside them. Appends to $summary; returns non-zero on any mismatch.
+WHITE_YCC="235 128 128"
+GREY_YCC="126 128 128"
+mask_check() {
+    _r=0 _mask=$(overlayd project --config "$2" 1.5 1.5 0 2>/dev/null |
+        sed -n 's/.*pixel (\([-0-9.]*\), \([-0-9.]*\)),.*, visible$/\1 \2/p' | awk '{ printf "%d %d", $1 + 0.5, $2 + 0.5 }')
+    [ -n "$_mask" ] || { summary="$summary ground mask centre not visible" && return 1; }
+    for probe in "1042 42:$WHITE_YCC:screen-mask" "1140 100:$WHITE_YCC:screen-mask" "1238 158:$WHITE_YCC:screen-mask" \
+        "1020 100:$BLACK_YCC:beside" "$_mask:$GREY_YCC:ground-mask"; do
+        _at=${probe%%:*} _rest=${probe#*:}
+        _got=$(yuyv_pixel "$1" 3 $W $H $_at)
+        summary="$summary ${_rest#*:}@${_at% *},${_at#* }=($_got)"
+        near "$_got" "${_rest%%:*}" 8 || _r=1
+    done
+    return $_r
+}
 
 # axes_check "POINTS": the axis colours at the three axes_points lines, and black (the source pattern) at the
 # top-left corner. $PIXEL is a command that, given "X Y", prints "Y Cb Cr". Sets $summary; returns non-zero on

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Host half of the VM tier's CAN steering check (tests/vm/guest/checks/90-can-steering.sh).
 
 The guest sent steering-wheel angles A and B over vcan0 and kept overlayd's /snapshot JPEGs: one per angle, one after
@@ -31,7 +32,7 @@ SAMPLE_STEP = 0.1  # metres of arc between track samples
 MIN_FAR_POINTS = 15  # the other angle's points far from this one's lines: enough to prove the lines moved
 FAR_PX = 14.0  # "far": this many pixels from every line drawn in a snapshot (its tracks and marks)
 
-# overlayd's named colours (config/toml_values.cpp)
+# overlayd's named colours (config/toml_reader.cpp)
 COLOURS = {"white": (255, 255, 255), "black": (0, 0, 0), "red": (255, 0, 0), "green": (0, 255, 0),
            "blue": (0, 0, 255), "yellow": (255, 255, 0), "cyan": (0, 255, 255), "magenta": (255, 0, 255),
            "orange": (255, 165, 0)}

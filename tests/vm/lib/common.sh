@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Shared helpers of the VM harness: logging, timing, the cache and work folders, host package installation.
 # Sourced by run.sh; every function here is quiet unless something needs the user's attention.
 # shellcheck shell=bash

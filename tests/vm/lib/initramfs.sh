@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The guest's initramfs, in concatenated cpio archives (the kernel unpacks them in order): a base with busybox
 # and the kernel modules, cached per kernel version, and a per-run archive with the V4L2 tools, overlayd, all
 # their libraries, the guest /init and the checks. overlayd's ~150 libraries (OpenCV's closure, 190 MB) are in
@@ -6,7 +7,7 @@
 
 # Debian's modules the checks load, with their dependencies (modprobe --show-depends): SocketCAN's core, raw
 # sockets and the virtual CAN bus for checks/90-can-steering.sh.
-VM_GUEST_MODULES="vivid vimc gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci can can-raw vcan"
+VM_GUEST_MODULES="vivid vimc vicodec gpio-sim gpio-mockup configfs 9p 9pnet_virtio virtio_pci can can-raw vcan"
 
 vmBaseInitramfs() {
     local out=$VM_KCACHE/base.cpio root=$VM_KCACHE/base-root kimg=$VM_KCACHE/kimg
@@ -129,4 +130,22 @@ vmStageOverlayd() {
     [ -x "$binary" ] || return 0
     strip --strip-debug -o "$work/sysroot/usr/bin/overlayd" "$binary"
     vmCopyLibraries "$work/sysroot" "$binary"
+    vmStageStreamModule "$work/sysroot" "$(dirname "$binary")/overlayd-stream.so"
+}
+
+# The encoded outputs (checks/47-m2m-encode.sh): overlayd's GStreamer module beside the binary (where it looks
+# first), and the GStreamer plugins that pipeline uses: appsrc/appsink (app), identity, tee, queue and filesink
+# (coreelements), and the v4l2 plugin, which registers v4l2fwhtenc when it finds vicodec's encoder node. The
+# plugin scanner lets GStreamer build its registry in a child process, as on a real system. A build without the
+# module (-DOVERLAYD_STREAM=OFF) stages none of it: that check then fails, saying so.
+vmStageStreamModule() {
+    local root=$1 module=$2 gst=/usr/lib/x86_64-linux-gnu/gstreamer-1.0 plugin
+    rm -f "$root/usr/bin/overlayd-stream.so"
+    [ -e "$module" ] || return 0
+    strip --strip-debug -o "$root/usr/bin/overlayd-stream.so" "$module"
+    vmCopyLibraries "$root" "$module"
+    for plugin in app coreelements video4linux2; do
+        [ -e "$gst/libgst$plugin.so" ] && vmCopyWithLibraries "$root" "$gst/libgst$plugin.so"
+    done
+    vmCopyWithLibraries "$root" /usr/lib/x86_64-linux-gnu/gstreamer1.0/gstreamer-1.0/gst-plugin-scanner
 }

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The guest kernel: the ABI Debian's linux-image-amd64 points at today, fetched with `apt-get download` (never
 # installed on the host), unpacked into the cache and kept there per kernel package version.
 # shellcheck shell=bash

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Booting the guest: KVM when it really works (on many CI machines /dev/kvm exists but nested virtualization
 # fails on MSRs or cmpxchg16b), else TCG software emulation. 2 vCPUs at most: the build machines are shared.
 # shellcheck shell=bash

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The verdict: the guest's PASS/FAIL lines, host-side checks of what the guest produced (ffprobe reads the Y4M
 # files as an independent client), and the harness's own failures (module build, a guest that never finished).
 # shellcheck shell=bash

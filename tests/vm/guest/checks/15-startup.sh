@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # How long overlayd takes to start in the guest, where most of this tier's time goes (it starts overlayd some 17
 # times): `overlayd --version` (exec, the loader and every library's constructors) and a one-frame synthetic render,
 # each the median of three runs. A measurement (docs/vm-tests.md keeps the figures); it fails only when overlayd

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # vivid itself, with v4l2-ctl as the client: the driver streams the sizes the overlayd checks use, so a failure
 # in the later checks is ours, not the driver's.
 . /vm/lib.sh

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # overlayd render captures from vivid in YUYV, NV12 and RGB24 at 640x480 and 1280x720, through the single- and
 # the multi-planar API, with an overlay: the Y4M stream has the right header and size, the driver was set to the
 # asked format (v4l2-ctl reads it back), and the axes are where `overlayd project` puts them.

@@ -1,12 +1,17 @@
+# SPDX-License-Identifier: Apache-2.0
 # Loopback proof: overlayd captures vivid instance 0 (black pattern) and writes the overlaid stream to instance
 # 1's HDMI output, which vivid loops back (loop_video=1) to instance 1's HDMI capture input. v4l2-ctl reads the
 # looped frames: the axes must be where `overlayd project` puts them, so the overlay went through a real kernel
-# output driver. v4l2-compliance then streams the same looped node as an independent client.
+# output driver, and the privacy masks must be there too. v4l2-compliance then streams the same looped node as an
+# independent client.
 . /vm/lib.sh
 
 have_overlayd || { fail loopback "no overlayd binary was staged (build the overlayd target)"; exit 0; }
 vivid_hdmi_loop || { fail loopback "modprobe vivid failed"; exit 0; }
 loop_overlay_run loopback loopback.toml ""
+summary=''
+mask_check /tmp/loopback.yuv /tmp/loopback.toml
+verdict loopback-mask $? "privacy masks in the frame looped back from $OUT, filled before the sink saw it:$summary"
 
 # v4l2-compliance as an independent client of the frames we write: its streaming tests (MMAP with select and
 # epoll: sequence numbers, timestamps, field, bytesused) on the looped capture node while overlayd feeds the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Zero copy through real drivers: overlayd captures vivid instance 0 and queues the very capture buffers it blended
 # into on instance 1's HDMI output (zero_copy = "on": VIDIOC_EXPBUF on the capture, V4L2_MEMORY_DMABUF on the
 # output), which vivid loops back to instance 1's capture node. The looped frames must carry the overlay where
@@ -20,6 +21,9 @@ $caps captured, $outs output; $(grep -m1 'failed' /tmp/zc-base.log)"
 cp /tmp/zc-base.log "$ART/zerocopy-v4l2ctl.log"
 
 loop_overlay_run zerocopy zerocopy.toml ", zero_copy = on"
+summary=''
+mask_check /tmp/zerocopy.yuv /tmp/zerocopy.toml
+verdict zerocopy-mask $? "privacy masks in the frame looped back from $OUT, filled before the sink saw it:$summary"
 
 stop_overlayd $pid
 rc=$?

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Unplug: vivid disappears while `overlayd run` streams (unbind from the driver, then rmmod), and comes back
 # (modprobe). The daemon must stay up, keep writing frames that are the NO SIGNAL frame (grey 48 = Y 57 in
 # BT.601 limited) while the device is gone, and show vivid's pattern again once it is back.

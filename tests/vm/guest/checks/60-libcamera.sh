@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # libcamera: vimc's camera through libcamera 0.3.2 (Debian bookworm-backports: vimc pipeline handler and IPA) into
 # the real overlayd. list-cameras lists the sensor; render writes a Y4M at the asked size (the host's ffprobe reads
 # it) with the axes where `overlayd project` puts them over Sensor B's black test pattern; a format vimc lacks is

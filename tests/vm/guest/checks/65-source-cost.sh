@@ -1,4 +1,5 @@
-# What a frame costs in CPU through the libcamera source (vimc, Debian's libcamera 0.0.3) against the V4L2 source
+# SPDX-License-Identifier: Apache-2.0
+# What a frame costs in CPU through the libcamera source (vimc, libcamera 0.3.2) against the V4L2 source
 # (vivid's webcam input) at the same format and overlay and nearly the same size (vimc turns 640x480 into 636x480):
 # `overlayd render` of 10 and of 40 frames under busybox `time -v`, user + system time, the difference over 30 frames
 # so that start-up (libraries, the camera manager, the IPA) cancels out; the median of three such pairs, and the

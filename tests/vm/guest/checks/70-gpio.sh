@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # GPIO: a gpio-sim chip (made through configfs) with named lines, and Debian's gpiod tools (libgpiod 1.6) as the
 # independent client. An input line switches the "guides" layer of `overlayd run` (the axes over vivid's black
 # pattern, read back from its Y4M file where `overlayd project` puts them); an output line follows the stream (1 while

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # overlayd's HTTP MJPEG stream side by side with µStreamer (Debian 12's ustreamer 4.9, its default CPU encoder, the
 # baseline a user would otherwise run): the same vivid capture, HDMI input at 1280x720p30 YUYV, streamed to ONE
 # client (curl, reading /stream for $STREAM_S seconds) on the guest's loopback, first by overlayd (configs/
@@ -100,6 +101,9 @@ measure overlayd $OPORT $opid
 o_ok=$?
 o_idle=$R_IDLE o_cpu=$R_CPU o_frames=$R_FRAMES o_fps=$R_FPS o_kb=$R_KB o_note=$R_NOTE
 o_state=$(curl -s --max-time 5 "http://127.0.0.1:$OPORT/state" | grep -o '"\(http\|source\)":{[^}]*}' | tr '\n' ' ')
+# The same capture without the overlay (/snapshot?raw=1, the stream's encoder): what µStreamer's parts are to be
+# compared with; the overlay's thin lines and text over flat colour bars are most of the difference.
+o_raw_kb=$(curl -s --max-time 5 "http://127.0.0.1:$OPORT/snapshot?raw=1" | wc -c | awk '{ printf "%.0f", $1 / 1024 }')
 stop_overlayd $opid
 o_exit=$?
 [ $o_ok = 0 ] && enough "$o_fps" && [ $o_exit = 0 ]
@@ -131,7 +135,7 @@ cost=$(awk -v a="$o_cpu" -v b="$u_cpu" 'BEGIN { print ((b > 0 && a <= b) ? "over
 per_frame() { awk -v c="$1" -v f="$2" 'BEGIN { if (f > 0) printf "%.0f", c / f * 1000; else print "n/a" }'; }
 echo "MEASURE http-vs-ustreamer: overlayd $o_cpu cpu-s/s ($o_fps fps), ustreamer $u_cpu cpu-s/s ($u_fps fps)," \
     "ratio $ratio ($cost; per delivered frame: overlayd $(per_frame "$o_cpu" "$o_fps") ms, ustreamer" \
-    "$(per_frame "$u_cpu" "$u_fps") ms; JPEG overlayd $o_kb kB, ustreamer $u_kb kB; idle: overlayd $o_idle," \
+    "$(per_frame "$u_cpu" "$u_fps") ms; JPEG overlayd $o_kb kB (without the overlay $o_raw_kb kB), ustreamer $u_kb kB; idle: overlayd $o_idle," \
     "ustreamer $u_idle cpu-s/s; ${W}x$H YUYV from vivid," \
     "one curl client for ${STREAM_S} s, ustreamer --workers $USTREAMER_WORKERS; $(nproc) vCPUs: $cpu)"
 rmmod vivid

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # [[input.can]]: the reverse camera's guide lines follow a steering-wheel angle read from SocketCAN. Debian's can,
 # can-raw and vcan modules give a virtual bus, vcan0; can-utils' cangen plays the steering-angle sensor (one fixed
 # frame every 50 ms, as an ECU repeats it), cansend sends single frames, and candump, on the same bus for the whole

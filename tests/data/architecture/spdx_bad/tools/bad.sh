@@ -1,0 +1,3 @@
+#!/bin/sh
+# A script without it.
+exit 0
