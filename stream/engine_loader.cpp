@@ -79,6 +79,22 @@ const Module &theModule()
     return module;
 }
 
+// One of the module's checks (`asked`), its refusal as `code`; Ok when there is no module and none is required (a
+// unit test's binary has none beside it).
+template<class Function, class... Arguments>
+Status askModule(Function Module::*asked, ErrorCode code, Arguments... arguments)
+{
+    const Module &module = theModule();
+    if (module.*asked == nullptr && moduleRequired)
+        return makeError(ErrorCode::NotFound, module.error);
+    if (module.*asked == nullptr)
+        return Ok{};
+    std::string error;
+    if (!(module.*asked)(arguments..., &error))
+        return makeError(code, error);
+    return Ok{};
+}
+
 } // namespace
 
 bool streamBuiltIn()
@@ -100,28 +116,12 @@ Result<std::unique_ptr<EncodedStreamEngine>> loadStreamEngine(const StreamOption
 
 Status checkEncoder(const EncoderOptions &options)
 {
-    const Module &module = theModule();
-    if (module.check == nullptr && moduleRequired)
-        return makeError(ErrorCode::NotFound, module.error);
-    if (module.check == nullptr)
-        return Ok{}; // no module, and none required: a unit test's binary has none beside it
-    std::string error;
-    if (!module.check(&options, &error))
-        return makeError(ErrorCode::NotFound, error);
-    return Ok{};
+    return askModule(&Module::check, ErrorCode::NotFound, &options);
 }
 
 Status checkRtspsCertificate(const std::string &certPem, const std::string &keyPem)
 {
-    const Module &module = theModule();
-    if (module.checkTls == nullptr && moduleRequired)
-        return makeError(ErrorCode::NotFound, module.error);
-    if (module.checkTls == nullptr)
-        return Ok{}; // as checkEncoder()
-    std::string error;
-    if (!module.checkTls(&certPem, &keyPem, &error))
-        return makeError(ErrorCode::Unsupported, error);
-    return Ok{};
+    return askModule(&Module::checkTls, ErrorCode::Unsupported, &certPem, &keyPem);
 }
 
 void requireStreamModule()

@@ -67,12 +67,14 @@ path = "/cam"
 
 
 def finished_segment(directory, timeout=15.0):
-    """The second recorded segment once a third one has begun (whole, and past the encoder's start, whose first
-    frames the rate control makes coarser)."""
+    """The second finished recorded segment (whole, and past the encoder's start, whose first frames the rate control
+    makes coarser). A segment being written is named *.partial until the recorder renames it: only renamed ones
+    count, or ffmpeg may open a name that is gone."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
-        files = sorted(f for f in glob.glob(os.path.join(directory, "*")) if not os.path.basename(f).startswith("."))
-        if len(files) >= 3:
+        files = sorted(f for f in glob.glob(os.path.join(directory, "*"))
+                       if not os.path.basename(f).startswith(".") and not f.endswith(".partial"))
+        if len(files) >= 2:
             return files[1]
         time.sleep(0.2)
     masks.check(False, f"{directory}: no finished segment within {timeout} s")
