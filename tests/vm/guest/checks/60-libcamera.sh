@@ -138,7 +138,9 @@ echo 20 >/proc/sys/kernel/hung_task_timeout_secs 2>/dev/null
 
 wait_for 60 is_live
 verdict libcamera-unplug-streaming $? "before: $(frames) frames, last pixel ($(probe)); $(fds) fds, $(threads) threads"
-cycles=0 stuck="" detail=""
+cycles=0 stuck="" detail="" http=0 http_back=0
+URL=http://127.0.0.1:8091
+ip link set lo up 2>/dev/null || ifconfig lo 127.0.0.1 up # for curl (the guest has no other network device)
 for i in 1 2 3 4 5; do
     echo "-- cycle $i: unbinding vimc at $(uptime_s)s"
     sysfs_write $UNBIND vimc.0 20
@@ -152,7 +154,12 @@ for i in 1 2 3 4 5; do
     # required before the bind (a manager still listing the camera aborts when it comes back).
     wait_for 10 released
     rel=$?
-    echo "-- cycle $i: NO SIGNAL $ns, frames $n0 -> $n1, device fds $(devfds) (released $rel); overlayd says:"
+    # The HTTP surface stays up while the camera is gone (configs/libcamera-unplug.toml's [http]).
+    http_gone=$(curl -sf -m 5 $URL/state | grep -o '"source":{[^}]*"state":"[a-z]*"' | grep -o '"state":"[a-z]*"')
+    snap=$(curl -sf -m 5 -o /tmp/lc-snap.jpg -w '%{content_type} %{size_download}' $URL/snapshot)
+    [ "$http_gone" = '"state":"waiting"' ] && [ "${snap%% *}" = image/jpeg ] && http=$((http + 1))
+    echo "-- cycle $i: NO SIGNAL $ns, frames $n0 -> $n1, device fds $(devfds) (released $rel); /state $http_gone," \
+        "/snapshot $snap; overlayd says:"
     tail -n 4 /tmp/lc-unplug.log | cut -c1-200
     echo "-- cycle $i: binding vimc at $(uptime_s)s"
     sysfs_write $BIND vimc.0 20
@@ -163,6 +170,7 @@ for i in 1 2 3 4 5; do
     live=$?
     running
     alive=$?
+    curl -sf -m 5 $URL/state | grep -q '"source":{[^}]*"state":"streaming"' && http_back=$((http_back + 1))
     [ $i = 1 ] && fd1=$(fds) th1=$(threads)
     detail="$detail [$i: nosignal=$ns frames $n0->$n1 released=$rel live=$live alive=$alive fds=$(fds) threads=$(threads)]"
     echo "-- cycle $i: live $live at $(uptime_s)s"
@@ -172,6 +180,9 @@ done
 verdict libcamera-replug-sysfs $? "${stuck:-every unbind and bind returned}"
 [ $cycles = 5 ]
 verdict libcamera-replug-5-cycles $? "$cycles of 5 cycles NO SIGNAL, released, then live in pid $pid:$detail"
+[ $http = 5 ] && [ $http_back = 5 ]
+verdict libcamera-replug-http $? "camera gone: /state \"waiting\" and a /snapshot JPEG in $http of 5 cycles;" \
+    "back: /state \"streaming\" in $http_back of 5"
 fd5=$(fds) th5=$(threads)
 running && [ "${fd1:-0}" -gt 0 ] && [ "$fd5" -le "$fd1" ] && [ "$th5" -le "$th1" ]
 verdict libcamera-replug-no-growth $? "after cycle 1: ${fd1:-?} fds, ${th1:-?} threads; after cycle 5: $fd5 fds, $th5 threads"
