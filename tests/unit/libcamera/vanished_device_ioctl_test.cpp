@@ -4,6 +4,7 @@
 // other call, answer and caller passes unchanged.
 #include <cerrno>
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -122,9 +123,19 @@ TEST(VanishedDeviceIoctlLibc, RealCallsReachTheCLibrary)
     int pending = -1;
     EXPECT_EQ(::ioctl(fds[0], FIONREAD, &pending), 0);
     EXPECT_EQ(pending, 3);
+    // A pipe is no V4L2 device: the refusal is passed on as the C library gives it (ENOTTY from the kernel;
+    // qemu-user, which the arm64 tier runs under, answers an ioctl it does not know with ENOSYS).
+    using LibcIoctl = int (*)(int, unsigned long, ...);
+    const auto libc = reinterpret_cast<LibcIoctl>(::dlsym(RTLD_NEXT, "ioctl"));
+    ASSERT_NE(libc, nullptr);
     int type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    EXPECT_EQ(::ioctl(fds[0], VIDIOC_STREAMOFF, &type), -1); // a pipe is no V4L2 device: ENOTTY, not hidden
-    EXPECT_EQ(errno, ENOTTY);
+    errno = 0;
+    ASSERT_EQ(libc(fds[0], VIDIOC_STREAMOFF, &type), -1);
+    const int refusal = errno;
+    EXPECT_TRUE(refusal == ENOTTY || refusal == ENOSYS) << refusal;
+    errno = 0;
+    EXPECT_EQ(::ioctl(fds[0], VIDIOC_STREAMOFF, &type), -1);
+    EXPECT_EQ(errno, refusal);
     ::close(fds[0]);
     ::close(fds[1]);
 }
