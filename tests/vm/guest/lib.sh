@@ -227,6 +227,9 @@ watched() {
 # sysfs_write FILE VALUE SECONDS: echo VALUE >FILE, watched.
 sysfs_write() { watched "$3" sh -c 'echo "$1" >"$2"' sysfs_write "$2" "$1"; }
 
+# The guest has no network device, only lo, and it is down after boot: the checks that talk HTTP bring it up.
+loopback_up() { ip link set lo up 2>/dev/null || ifconfig lo 127.0.0.1 up; }
+
 # libcamera only enumerates devices udev has initialised, and hears of unplugs only from udevd: udev_start runs
 # Debian's udevd (staged by the harness) once per boot, as a real system does, and sets UDEVD=1; without it,
 # udev_initialise writes udev's database by hand (no hot-plug then).

@@ -140,7 +140,7 @@ wait_for 60 is_live
 verdict libcamera-unplug-streaming $? "before: $(frames) frames, last pixel ($(probe)); $(fds) fds, $(threads) threads"
 cycles=0 stuck="" detail="" http=0 http_back=0
 URL=http://127.0.0.1:8091
-ip link set lo up 2>/dev/null || ifconfig lo 127.0.0.1 up # for curl (the guest has no other network device)
+loopback_up # for curl
 for i in 1 2 3 4 5; do
     echo "-- cycle $i: unbinding vimc at $(uptime_s)s"
     sysfs_write $UNBIND vimc.0 20

@@ -26,8 +26,7 @@ for tool in ustreamer curl; do
 done
 mkdir -p "$ART"
 
-# The guest has no network device, only lo, and it is down after boot.
-ip link set lo up 2>/dev/null || ifconfig lo 127.0.0.1 up
+loopback_up
 ip addr show lo 2>/dev/null | grep -q 'inet 127\.0\.0\.1' || ifconfig lo 2>/dev/null | grep -q '127\.0\.0\.1' ||
     { fail $NAME "could not bring the loopback interface up"; exit 0; }
 

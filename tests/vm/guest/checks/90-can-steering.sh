@@ -38,7 +38,7 @@ cleanup() {
 # The modules, and lo for curl (the guest has no other network device).
 ok=0 loaded=''
 for m in can can-raw vcan; do modprobe $m && loaded="$loaded $m" || ok=1; done
-ip link set lo up 2>/dev/null || ifconfig lo 127.0.0.1 up
+loopback_up
 mods=$(grep -E '^(can|can_raw|vcan|can_dev) ' /proc/modules | cut -d' ' -f1 | tr '\n' ' ')
 verdict can-modules $ok "modprobe:$loaded (/proc/modules: $mods)"
 [ $ok = 0 ] || { cleanup; exit 0; }
