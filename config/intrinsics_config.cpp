@@ -84,6 +84,11 @@ void readPinhole(TableReader &camera, bool calibrated, PinholeIntrinsics &k)
         k.width = int(*width);
     if (auto height = table->integer("height", 1, 65536))
         k.height = int(*height);
+    // One without the other would leave the calibrated size half set, which the camera reads as "not given":
+    // refused at the key that is there, so that what is written is what the camera uses.
+    if (table->has("width") != table->has("height"))
+        table->problem(table->has("width") ? "width" : "height",
+                       "width and height go together: the image size fx, fy, cx and cy were calibrated at");
     table->finish();
 }
 

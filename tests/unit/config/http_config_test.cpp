@@ -167,6 +167,10 @@ TEST(CameraRequest, RefusalsNameTheKeyInTheConfigFilesWords)
     EXPECT_NE(refused(R"({"position": [0,0,1], "yw": 1})").find("did you mean 'yaw'"), std::string::npos);
     EXPECT_NE(refused(R"({"calibration": "/etc/passwd"})").find("camera.calibration"), std::string::npos);
     EXPECT_NE(refused(R"({"fov": 180})").find("camera.fov"), std::string::npos);
+    // Accepted, this would be saved as "height = 0", which the next start refuses.
+    EXPECT_NE(refused(R"({"pinhole": {"fx": 500, "fy": 500, "cx": 319.5, "cy": 239.5, "width": 2}})")
+                  .find("camera.pinhole.width: width and height go together"),
+              std::string::npos);
     std::string deep = "{\"a\":" + std::string(20, '[') + std::string(20, ']') + "}";
     EXPECT_NE(refused(deep).find("nested"), std::string::npos);
 }

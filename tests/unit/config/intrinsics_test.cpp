@@ -94,6 +94,17 @@ TEST(Intrinsics, PinholeOfAnotherAspectIsRefusedWithoutACrop)
     EXPECT_TRUE(hasProblem(problems, "camera.pinhole", "calibration_crop = \"center\"")) << formatProblems(problems);
 }
 
+// The calibrated size is both numbers or neither: one alone would be read as "not given" and silently ignored.
+TEST(Intrinsics, PinholeWidthWithoutHeightIsRefusedAtItsKey)
+{
+    const std::string pinhole = "[camera.pinhole]\nfx = 1000\nfy = 1000\ncx = 639.5\ncy = 359.5\n";
+    for (const auto &[keys, refusedKey] :
+         {std::pair{"width = 1280\n", "camera.pinhole.width"}, std::pair{"height = 720\n", "camera.pinhole.height"}}) {
+        const auto problems = loadInvalid(kHeader + kIdentityPose + pinhole + keys);
+        EXPECT_TRUE(hasProblem(problems, refusedKey, "width and height go together")) << formatProblems(problems);
+    }
+}
+
 // calibration_crop = "center": the stream is the largest centred 16:9 region of the 4:3 calibration (1600x900 from
 // row 150), scaled by 0.8. Worked by hand: the calibrated centre (799.5, 599.5) is the stream's (639.5, 359.5);
 // 50 px below it (cy 649.5) is 40 px below (399.5); f 1000 -> 800. The stream's pixels against cv::projectPoints
