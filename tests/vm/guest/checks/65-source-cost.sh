@@ -17,7 +17,7 @@ run_cost() { # CONFIG FRAMES: "cpu-seconds minor-faults" of one render
 per_frame() { # CONFIG: "ms-per-frame faults-per-frame", the median of three 40-minus-10 pairs
     for _ in 1 2 3; do
         set -- "$1" $(run_cost "$1" 10) $(run_cost "$1" 40)
-        awk -v a="$2" -v fa="$3" -v b="$4" -v fb="$5" 'BEGIN { printf "%.1f %.0f\n", (b - a) / 30 * 1000, (fb - fa) / 30 }'
+        awk -v a="$2" -v fa="$3" -v b="$4" -v fb="$5" 'BEGIN { f = (fb - fa) / 30; printf "%.1f %d\n", (b - a) / 30 * 1000, int(f + (f < 0 ? -0.5 : 0.5)) }'
     done | sort -n | sed -n 2p
 }
 
