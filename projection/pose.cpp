@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <glm/gtc/matrix_access.hpp>
@@ -136,20 +137,30 @@ Result<Pose> poseFromYawPitchRoll(const glm::dvec3 &position, double yawDeg, dou
 
 YawPitchRoll yawPitchRollOf(const Pose &pose)
 {
-    // world_from_body = Rz(yaw) Ry(pitch) Rx(roll); its first column is the optical axis, its last row gives roll.
+    // world_from_body = Rz(yaw) Ry(pitch) Rx(roll); its first column is the optical axis.
     const glm::dmat3 worldFromBody = glm::transpose(pose.rotation) * internalFromAxes(CameraAxes::Body);
+    const glm::dvec3 forward = worldFromBody[0];
+    const double cosPitch = std::hypot(forward.x, forward.y);
     YawPitchRoll out;
     out.position = pose.position();
-    const double sinPitch = std::clamp(-worldFromBody[0][2], -1.0, 1.0);
-    out.pitchDeg = glm::degrees(std::asin(sinPitch));
-    if (std::abs(sinPitch) > 1.0 - 1e-12) {
-        // Gimbal lock: only yaw - roll (or yaw + roll) is defined; put it all in yaw.
+    // atan2, not asin: asin loses half the digits near +-90 degrees, where its slope is infinite.
+    out.pitchDeg = glm::degrees(std::atan2(-forward.z, cosPitch));
+    // Straight up or down, to rounding, only yaw - roll (or yaw + roll) is defined: all of it goes in yaw. The roll
+    // left out moves the rotation by cos(pitch) * roll, under 1e-14 rad: no further from the lock than this.
+    if (cosPitch < 4.0 * std::numeric_limits<double>::epsilon()) {
         out.yawDeg = glm::degrees(std::atan2(-worldFromBody[1][0], worldFromBody[1][1]));
         out.rollDeg = 0.0;
-    } else {
-        out.yawDeg = glm::degrees(std::atan2(worldFromBody[0][1], worldFromBody[0][0]));
-        out.rollDeg = glm::degrees(std::atan2(worldFromBody[1][2], worldFromBody[2][2]));
+        return out;
     }
+    // Near the lock, yaw from the optical axis alone has an error of about eps / cos(pitch); roll is read from what
+    // yaw and pitch leave, Rx(roll) = Ry(pitch)^T Rz(yaw)^T world_from_body, so that it takes that error back and
+    // the three angles rebuild the rotation to rounding at every pitch.
+    const double yaw = std::atan2(forward.y, forward.x), pitch = glm::radians(out.pitchDeg);
+    const glm::dmat3 rollOnly = glm::transpose(glm::mat3_cast(glm::angleAxis(yaw, glm::dvec3(0, 0, 1)) *
+                                                              glm::angleAxis(pitch, glm::dvec3(0, 1, 0)))) *
+                                worldFromBody;
+    out.yawDeg = glm::degrees(yaw);
+    out.rollDeg = glm::degrees(std::atan2(rollOnly[1][2] - rollOnly[2][1], rollOnly[1][1] + rollOnly[2][2]));
     return out;
 }
 

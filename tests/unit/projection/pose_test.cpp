@@ -230,3 +230,21 @@ TEST(YawPitchRollOf, RebuildsTheRotationAndRecoversTheAngles)
                 EXPECT_NEAR(rebuilt.rotation[c][r], pose.rotation[c][r], 1e-6) << "pitch " << p;
     }
 }
+
+// Close to straight up or down, where yaw and roll nearly share one axis, the angles must still rebuild the rotation
+// to rounding: a pose saved in yaw/pitch/roll must project as the live one did. (Folding the roll into yaw within
+// 1.4e-6 rad of the lock moved a point 1e-3 px at 100 px of focal length.)
+TEST(YawPitchRollOf, RebuildsTheRotationToRoundingNearGimbalLock)
+{
+    for (const double p : {89.99992, -89.99992, 90.0 - 1e-7, 90.0 - 1e-9, 90.0 - 1e-11, -90.0 + 1e-10, 89.0})
+        for (const double r : {0.0, 0.7, 37.0, -120.0, 179.5}) {
+            const Pose pose = *poseFromYawPitchRoll({1, 2, 3}, 30.0, p, r);
+            const YawPitchRoll back = yawPitchRollOf(pose);
+            const Pose rebuilt = *poseFromYawPitchRoll(back.position, back.yawDeg, back.pitchDeg, back.rollDeg);
+            for (int c = 0; c < 3; ++c)
+                for (int row = 0; row < 3; ++row)
+                    EXPECT_NEAR(rebuilt.rotation[c][row], pose.rotation[c][row], 1e-13)
+                        << "pitch " << p << ", roll " << r << ": rebuilt from yaw " << back.yawDeg << ", pitch "
+                        << back.pitchDeg << ", roll " << back.rollDeg;
+        }
+}
